@@ -1,0 +1,5 @@
+import sys
+
+from windflutter.cli import main
+
+sys.exit(main())

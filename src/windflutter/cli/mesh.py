@@ -1,0 +1,17 @@
+"""`windflutter mesh` (not implemented yet)."""
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("mesh", help="(not implemented yet)")
+    p.add_argument("args", nargs="*")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    print("windflutter mesh: not implemented yet", file=sys.stderr)
+    return 2

@@ -1,0 +1,49 @@
+"""Errors that reach the user.
+
+Every problem with user input is raised as :class:`InputError`, which names the field, the
+value received and what was expected.  The CLI prints it as one line and exits non-zero;
+library users can catch it (it is a ``ValueError``).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class WindflutterError(Exception):
+    """Base class of windflutter's own errors."""
+
+
+class InputError(WindflutterError, ValueError):
+    """Bad user input: a config, turbine file or argument.
+
+    Parameters
+    ----------
+    field
+        Dotted path of the offending field, e.g. ``"blade.chord[3]"``.
+    value
+        The value received (shown with ``repr``; long values are shortened).
+    expected
+        What was expected, in words, e.g. ``"a positive number (kg/m)"``.
+    source
+        Optional file name the field came from.
+    """
+
+    def __init__(self, field: str, value: Any, expected: str, source: str | None = None):
+        self.field = field
+        self.value = value
+        self.expected = expected
+        self.source = source
+        shown = repr(value)
+        if len(shown) > 80:
+            shown = shown[:77] + "..."
+        where = f"{source}: " if source else ""
+        super().__init__(f"{where}{field} = {shown}: expected {expected}")
+
+
+class ModelError(WindflutterError):
+    """A model that cannot be analysed, e.g. unconstrained rigid-body motion."""
+
+
+class ConvergenceError(WindflutterError):
+    """An iteration (p-k, root finding, eigen-solve) did not converge."""

@@ -1,0 +1,1 @@
+"""windflutter.mesh"""
