@@ -1,0 +1,449 @@
+"""``windflutter run``: from a turbine and an analysis config to stored results, plots and report.
+
+The run is a loop over *operating points*: one wind speed with one aerodynamic variant and one
+search method.  Each point is handed to an **analyser**, a callable
+
+    ``analyse(point: OperatingPoint, progress=None) -> PointResult``
+
+which finds the flutter and divergence onset over the rotor-speed range, sweeps the rotor speed
+for the Campbell diagram and returns the flutter mode.  The workflow owns everything around it:
+
+* planning the points from the config;
+* storing each finished point at once (atomic NetCDF, :mod:`windflutter.post.store`);
+* recording a failing point (any exception, e.g. no convergence) as ``failed`` with the reason,
+  and going on;
+* keeping finished points on Ctrl-C or a kill; ``resume=True`` skips them, and the final dataset
+  equals that of an uninterrupted run (apart from the wall-clock times);
+* progress bars, the combined dataset with units and attributes, the plots and the HTML report.
+
+The built-in analyser comes from :func:`make_analyser` (the stability solver); a user analyser can
+be plugged in with ``solver.backend: "package.module:factory"``, where
+``factory(turbine, config)`` returns the callable (it may also have a ``describe() -> dict``
+method giving model size and the operating curve; see ``docs/workflow.md``).
+"""
+
+from __future__ import annotations
+
+import datetime as _dt
+import importlib
+import inspect
+import math
+import platform
+import shutil
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any, Protocol
+
+import numpy as np
+import xarray as xr
+
+from windflutter import __version__
+from windflutter.config import AnalysisConfig
+from windflutter.errors import InputError, ModelError
+from windflutter.post import store
+from windflutter.post.progress import RunProgress
+
+RUN_FILE = "analysis.yaml"
+
+
+# --------------------------------------------------------------------------------------------
+# the per-point interface
+# --------------------------------------------------------------------------------------------
+@dataclass(frozen=True)
+class OperatingPoint:
+    """One operating point of a run (user units at this edge: m/s, RPM).
+
+    Attributes
+    ----------
+    index : position in the run (0-based), stable across resumes.
+    wind_speed : free wind speed (m/s).
+    aero : ``potential`` or ``viscous``.
+    method : ``pk`` or ``thesis``.
+    rpm_min, rpm_max : rotor-speed search range (RPM).
+    tolerance_rpm : onset tolerance (RPM).
+    sweep_rpm : rotor speeds of the Campbell / damping sweep (RPM).
+    """
+
+    index: int
+    wind_speed: float
+    aero: str
+    method: str
+    rpm_min: float
+    rpm_max: float
+    tolerance_rpm: float
+    sweep_rpm: tuple[float, ...]
+
+    @property
+    def label(self) -> str:
+        return f"V = {self.wind_speed:g} m/s, {self.aero}, {self.method}"
+
+    @property
+    def omega_range(self) -> tuple[float, float]:
+        """Search range in rad/s."""
+        return self.rpm_min * math.pi / 30.0, self.rpm_max * math.pi / 30.0
+
+
+@dataclass
+class PointResult:
+    """What an analyser returns for one operating point (NaN / None = not found / not given).
+
+    Attributes
+    ----------
+    flutter_rpm : lowest rotor speed with a flutter mode (RPM); NaN if stable in the range.
+    flutter_frequency_hz : frequency of the flutter mode at onset (Hz).
+    flutter_mode : label of the flutter mode (e.g. ``"1st edge"``).
+    divergence_rpm : lowest rotor speed with static divergence (RPM); NaN if none.
+    sweep_rpm : (nr,) rotor speeds of the sweep (RPM).
+    frequency_hz, damping_ratio : (nr, nm) tracked modes over the sweep (Hz, -).
+    mode_labels : (nm,) labels of the tracked modes.
+    station_radius : (ns,) radii of the span stations (m).
+    flutter_shape : (ns, 3) complex flap, edge (m) and torsion (rad) of the flutter mode at onset
+        at each station, any common normalisation.
+    aero_work : (ns, 3) aerodynamic work per cycle on the flutter mode at each station, split
+        into plunge, pitch and edgewise (J, same normalisation as ``flutter_shape``); see
+        :mod:`windflutter.post.aerowork`.
+    info : extra scalars stored as attributes of the point (e.g. iterations, pitch).
+    status, reason : ``ok`` / ``failed`` and why (set by the workflow on an exception).
+    elapsed : wall-clock time (s), set by the workflow.
+    """
+
+    flutter_rpm: float = float("nan")
+    flutter_frequency_hz: float = float("nan")
+    flutter_mode: str = ""
+    divergence_rpm: float = float("nan")
+    sweep_rpm: np.ndarray | None = None
+    frequency_hz: np.ndarray | None = None
+    damping_ratio: np.ndarray | None = None
+    mode_labels: list[str] | None = None
+    station_radius: np.ndarray | None = None
+    flutter_shape: np.ndarray | None = None
+    aero_work: np.ndarray | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+    status: str = "ok"
+    reason: str = ""
+    elapsed: float = float("nan")
+
+
+ProgressCallback = Callable[..., None]
+
+
+class Analyser(Protocol):
+    """``analyse(point, progress=None) -> PointResult``; ``progress(fraction, text=None)``."""
+
+    def __call__(self, point: OperatingPoint, progress: ProgressCallback | None = None) -> PointResult: ...
+
+
+# --------------------------------------------------------------------------------------------
+# planning and analysers
+# --------------------------------------------------------------------------------------------
+def plan_points(config: AnalysisConfig) -> list[OperatingPoint]:
+    """The run's operating points: for each (aero, method) case, every wind speed."""
+    r = config.rotor_speed
+    sweep = tuple(config.sweep_rpm())
+    pts = []
+    for aero, method in config.cases:
+        for v in config.wind_speeds:
+            pts.append(OperatingPoint(len(pts), float(v), aero, method, r.min_rpm, r.max_rpm,
+                                      r.tolerance_rpm, sweep))
+    return pts
+
+
+def make_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
+    """The analyser of ``config.solver.backend``.
+
+    ``windflutter`` gives the built-in stability solver (:func:`_builtin_analyser`);
+    ``"package.module:factory"`` imports ``factory`` and returns ``factory(turbine, config)``.
+    """
+    backend = config.solver.backend
+    if backend == "windflutter":
+        return _builtin_analyser(turbine, config)
+    mod_name, _, attr = backend.partition(":")
+    try:
+        module = importlib.import_module(mod_name)
+    except ImportError as exc:
+        raise InputError("solver.backend", backend, f"an importable module ({exc})") from None
+    factory = getattr(module, attr, None)
+    if not callable(factory):
+        raise InputError("solver.backend", backend, f"a callable '{attr}' in module {mod_name}")
+    return factory(turbine, config)
+
+
+def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
+    """ADAPTER POINT to the stability solver (issue 5).
+
+    The solver is expected to provide ``windflutter.stability.turbine.make_point_analyser
+    (turbine, config) -> analyse`` following the interface of this module.  Until it exists, a
+    clear :class:`~windflutter.errors.ModelError` is raised.
+    """
+    try:
+        from windflutter.stability import turbine as _st  # noqa: PLC0415
+    except ImportError:
+        _st = None
+    factory = getattr(_st, "make_point_analyser", None) if _st is not None else None
+    if factory is None:
+        raise ModelError("the built-in turbine stability solver is not available in this version "
+                         "(windflutter.stability.turbine.make_point_analyser); use solver.backend "
+                         "'package.module:factory' for your own analyser")
+    return factory(turbine, config)
+
+
+def _accepts_progress(fn: Callable) -> bool:
+    try:
+        sig = inspect.signature(fn)
+    except (TypeError, ValueError):
+        return False
+    return "progress" in sig.parameters or any(
+        p.kind is inspect.Parameter.VAR_KEYWORD for p in sig.parameters.values())
+
+
+# --------------------------------------------------------------------------------------------
+# run description (attributes of the dataset)
+# --------------------------------------------------------------------------------------------
+def describe_run(turbine: Any, config: AnalysisConfig, analyser: Any) -> dict[str, Any]:
+    """Turbine, model and reference rotor speeds of a run (for attributes, plots and report).
+
+    Values from ``analyser.describe()`` (if present) win over those read from ``turbine``.
+    Returns keys ``turbine``, ``rated_rpm``, ``overspeed_rpm``, ``operating_wind_speed``,
+    ``operating_rpm``, ``operating_pitch_deg`` (arrays or None) and any model-size entries.
+    """
+    info: dict[str, Any] = {"turbine": str(getattr(turbine, "name", turbine))}
+    curve = getattr(turbine, "operating_curve", None)
+    if curve is not None:
+        info["operating_wind_speed"] = np.asarray(curve.wind_speed, float)
+        info["operating_rpm"] = np.asarray(curve.rotor_speed, float) * 30.0 / math.pi
+        info["operating_pitch_deg"] = np.degrees(np.asarray(curve.pitch, float))
+    rated = getattr(turbine, "rated_rotor_speed", None)
+    if rated is not None and np.isfinite(rated) and rated > 0:
+        info["rated_rpm"] = float(rated) * 30.0 / math.pi
+    for attr in ("rotor_diameter", "hub_height", "n_blades", "source"):
+        val = getattr(turbine, attr, None)
+        if val is not None:
+            info[attr] = val
+    describe = getattr(analyser, "describe", None)
+    if callable(describe):
+        info.update(describe() or {})
+    if config.operating.rated_rpm is not None:
+        info["rated_rpm"] = config.operating.rated_rpm
+    if "rated_rpm" not in info and info.get("operating_rpm") is not None:
+        info["rated_rpm"] = float(np.max(info["operating_rpm"]))
+    rated = info.get("rated_rpm")
+    if config.operating.overspeed_rpm is not None:
+        info["overspeed_rpm"] = config.operating.overspeed_rpm
+    elif rated is not None:
+        info["overspeed_rpm"] = config.operating.overspeed_factor * float(rated)
+    return info
+
+
+def _versions() -> dict[str, str]:
+    import scipy  # noqa: PLC0415
+
+    v = {"windflutter_version": __version__, "numpy_version": np.__version__,
+         "scipy_version": scipy.__version__, "xarray_version": xr.__version__,
+         "python_version": platform.python_version()}
+    try:
+        import pyfe3d  # noqa: PLC0415
+        v["pyfe3d_version"] = getattr(pyfe3d, "__version__", "?")
+    except ImportError:  # pragma: no cover
+        pass
+    return v
+
+
+def _run_attrs(config: AnalysisConfig, info: dict[str, Any]) -> dict[str, Any]:
+    attrs: dict[str, Any] = {
+        "title": config.title or f"windflutter stability analysis of {info.get('turbine', '?')}",
+        "Conventions": "CF-1.8 (units and long_name on every variable)",
+        "source": "windflutter run",
+        "config_fingerprint": config.fingerprint(),
+        "config_yaml": config.to_yaml(),
+    }
+    attrs.update(_versions())
+    for section in ("solver", "model", "damping"):
+        for k, v in config.to_dict()[section].items():
+            attrs[f"{section}_{k}"] = v
+    attrs["air_density"] = config.air_density
+    for k, v in info.items():
+        if isinstance(v, np.ndarray):
+            continue
+        attrs[k] = v
+    return attrs
+
+
+def _operating_vars(info: dict[str, Any]) -> dict[str, xr.DataArray]:
+    out = {}
+    v = info.get("operating_wind_speed")
+    if v is None:
+        return out
+    out["operating_rpm"] = xr.DataArray(np.asarray(info["operating_rpm"], float), dims="operating",
+                                        coords={"operating_wind_speed": ("operating", np.asarray(v, float))},
+                                        attrs={"units": "rpm", "long_name": "rotor speed of the control curve"})
+    if info.get("operating_pitch_deg") is not None:
+        out["operating_pitch"] = xr.DataArray(np.asarray(info["operating_pitch_deg"], float), dims="operating",
+                                              attrs={"units": "degree", "long_name": "blade pitch of the control curve"})
+    return out
+
+
+def assemble_dataset(points: dict[int, xr.Dataset], config: AnalysisConfig, info: dict[str, Any],
+                     n_planned: int) -> xr.Dataset:
+    """Combine stored points with the run's attributes and the operating curve."""
+    attrs = _run_attrs(config, info)
+    attrs["n_points_planned"] = n_planned
+    attrs["n_points_done"] = len(points)
+    attrs["complete"] = int(len(points) == n_planned)
+    ds = store.combine(points, attrs)
+    for name, da in _operating_vars(info).items():
+        ds[name] = da
+    if "operating_wind_speed" in ds.coords:
+        ds["operating_wind_speed"].attrs.update(units="m/s", long_name="wind speed of the control curve")
+    return ds
+
+
+# --------------------------------------------------------------------------------------------
+# the run
+# --------------------------------------------------------------------------------------------
+class RunInterrupted(KeyboardInterrupt):
+    """Ctrl-C during a run; finished points are stored.  ``done`` / ``total`` / ``outdir``."""
+
+    def __init__(self, done: int, total: int, outdir: Path):
+        super().__init__(f"{done} of {total} points stored in {outdir}")
+        self.done, self.total, self.outdir = done, total, outdir
+
+
+def _check_resume(outdir: Path, config: AnalysisConfig) -> None:
+    path = outdir / RUN_FILE
+    if not path.is_file():
+        return
+    import yaml  # noqa: PLC0415
+
+    try:
+        stored = yaml.safe_load(path.read_text()) or {}
+    except yaml.YAMLError:
+        return
+    old = stored.get("fingerprint")
+    if old and old != config.fingerprint():
+        raise InputError("--resume", str(outdir), f"the analysis config of the interrupted run "
+                         f"(fingerprint {old}, now {config.fingerprint()}); use the same config or "
+                         "a new output folder")
+
+
+def _analyse_one(analyse: Analyser, point: OperatingPoint, prog: RunProgress, with_progress: bool) -> PointResult:
+    t0 = time.perf_counter()
+    try:
+        if with_progress:
+            res = analyse(point, progress=prog.update_point)
+        else:
+            res = analyse(point)
+        if not isinstance(res, PointResult):
+            raise TypeError(f"analyser returned {type(res).__name__}, expected PointResult")
+    except KeyboardInterrupt:
+        raise
+    except Exception as exc:  # a failing point must not stop the run
+        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        res = PointResult(status="failed", reason=f"{type(exc).__name__}: {msg}"[:500])
+    res.elapsed = time.perf_counter() - t0
+    return res
+
+
+def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool = False,
+        progress: bool = True, analyser: Analyser | None = None, stream=None) -> xr.Dataset:
+    """Run the analysis: every operating point, stored as it finishes; then plots and report.
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.turbine.Turbine` (or whatever the analyser needs).
+    config : the analysis.
+    outdir : output folder (created).  Without ``resume``, stored points of an earlier run in it
+        are discarded.
+    resume : keep the stored points of an interrupted run with the same config and compute only
+        the missing ones.
+    progress : draw progress bars (``False``: quiet).
+    analyser : per-point analyser; default :func:`make_analyser`.
+    stream : where progress goes (default stderr).
+
+    Returns
+    -------
+    xarray.Dataset
+        the combined results (also in ``outdir/results.nc``).
+
+    Raises
+    ------
+    RunInterrupted
+        on Ctrl-C, after storing what was finished.
+    """
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    if analyser is None:
+        analyser = make_analyser(turbine, config)
+    points = plan_points(config)
+    info = describe_run(turbine, config, analyser)
+
+    import yaml  # noqa: PLC0415
+
+    if resume:
+        _check_resume(outdir, config)
+        store.clean_temporaries(outdir)
+        stored = store.read_points(outdir)
+        planned = {p.index: p for p in points}
+        done = {}
+        for i, ds in stored.items():
+            p = planned.get(i)
+            if p is not None and float(ds["wind_speed"].values[0]) == p.wind_speed \
+                    and str(ds["aero"].values[0]) == p.aero and str(ds["method"].values[0]) == p.method:
+                done[i] = ds
+    else:
+        shutil.rmtree(outdir / store.POINTS_DIR, ignore_errors=True)
+        (outdir / store.RESULTS_FILE).unlink(missing_ok=True)
+        done = {}
+    run_doc = {"fingerprint": config.fingerprint(), "windflutter_version": __version__,
+               "turbine": info.get("turbine"), "config": config.to_dict()}
+    store.atomic_write_text(yaml.safe_dump(run_doc, sort_keys=False), outdir / RUN_FILE)
+
+    todo = [p for p in points if p.index not in done]
+    with_progress = _accepts_progress(analyser)
+    point_attrs = {"config_fingerprint": config.fingerprint()}
+    with RunProgress(len(points), len(done), quiet=not progress, stream=stream) as prog:
+        try:
+            for p in todo:
+                prog.start_point(p.label)
+                res = _analyse_one(analyser, p, prog, with_progress)
+                ds = store.point_dataset(p, res, point_attrs)
+                store.write_point(outdir, ds)
+                done[p.index] = ds
+                store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
+                                          outdir / store.RESULTS_FILE)
+                msg = None
+                if res.status != "ok":
+                    msg = f"[yellow]point {p.label} failed: {res.reason}[/yellow]"
+                prog.finish_point(res.status, msg)
+        except KeyboardInterrupt:
+            if done:
+                store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
+                                          outdir / store.RESULTS_FILE)
+            raise RunInterrupted(len(done), len(points), outdir) from None
+
+    ds = assemble_dataset(done, config, info, len(points))
+    ds.attrs["finished_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)
+    write_outputs(ds, config, outdir)
+    return ds
+
+
+def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path) -> dict[str, Path]:
+    """Figures and report of a finished run (``outdir/figures/*``, ``outdir/report.html``)."""
+    outdir = Path(outdir)
+    written: dict[str, Path] = {}
+    if not (config.output.plots or config.output.report):
+        return written
+    from windflutter.post import plots, report  # noqa: PLC0415  (matplotlib is slow to import)
+
+    figs = plots.all_figures(ds)
+    try:
+        if config.output.plots:
+            written.update(plots.save_figures(figs, outdir / "figures", config.output.formats, config.output.dpi))
+        if config.output.report:
+            html = report.build_report(ds, figs, dpi=config.output.dpi)
+            written["report"] = store.atomic_write_text(html, outdir / "report.html")
+    finally:
+        plots.close_figures(figs)
+    return written
