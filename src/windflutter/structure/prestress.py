@@ -1,0 +1,134 @@
+"""Prestress: linear static solution, geometric stiffness, centrifugal load, spin softening.
+
+The geometric (stress) stiffness ``K_sigma`` of a prestressed state is built from a displacement
+field ``u0`` (typically ``static_solve(struct, F)``):
+
+* beams: ``N int (v'^2 + w'^2) dx`` on the transverse translations (section frame), N the
+  element's axial force (Hermite fields, see :mod:`windflutter.structure.beam`);
+* shells: the FULL membrane geometric stiffness ``int N_ab dS/dx_a dS/dx_b dA (x) I3`` acting on
+  all three translations (a, b in-plane), with the membrane resultants N_ab from the laminate
+  ``A`` and ``B`` matrices at the element centroid, see :mod:`windflutter.structure.shell`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from windflutter.errors import InputError
+from windflutter.structure.assembly import Structural
+from windflutter.structure.constraints import _skew
+from windflutter.structure.fem import FEModel
+
+
+def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None = None) -> np.ndarray:
+    """Linear static displacement ``u = T (T^T K T)^-1 T^T F`` in the full numbering.
+
+    Parameters
+    ----------
+    struct : assembled structure.
+    F : (n_dof,) or (n_dof, k) nodal loads (N, N m) in the full numbering; loads on constrained
+        DOFs are reactions and are ignored, loads on rigid-link dependent DOFs are carried over to
+        the independent node.
+    K_extra : optional extra full-numbering stiffness (e.g. spin softening).
+
+    Returns
+    -------
+    u : displacements (m, rad), same shape as F.
+    """
+    F = np.asarray(F, dtype=float)
+    if F.shape[0] != struct.n_dof or not np.all(np.isfinite(F)):
+        raise InputError("F", F.shape, f"a finite load array with first dimension {struct.n_dof}")
+    K = struct.Kr
+    if K_extra is not None:
+        K = (K + struct.reduce(sp.csr_matrix(K_extra))).tocsr()
+    lu = spla.splu(K.tocsc())
+    q = lu.solve(struct.reduce_vector(F))
+    return struct.expand(q)
+
+
+def geometric_stiffness(fe: FEModel, u0: np.ndarray) -> sp.csr_matrix:
+    """Geometric stiffness (full numbering, CSR, symmetric) of the prestressed state ``u0``.
+
+    Parameters
+    ----------
+    fe : the model.
+    u0 : (n_dof,) static displacement field (m, rad) in the full numbering.
+    """
+    u0 = np.asarray(u0, dtype=float)
+    if u0.shape != (fe.n_dof,) or not np.all(np.isfinite(u0)):
+        raise InputError("u0", u0.shape, f"a finite ({fe.n_dof},) displacement vector")
+    n = fe.n_dof
+    rows, cols, vals = [], [], []
+    if len(fe.beam_conn):
+        from windflutter.structure.beam import beam_axial_force, beam_geometric_matrices
+
+        N = beam_axial_force(fe, u0)
+        KG, d = beam_geometric_matrices(fe, N)
+        k = d.shape[1]
+        rows.append(np.repeat(d, k, axis=1).ravel())
+        cols.append(np.tile(d, (1, k)).ravel())
+        vals.append(KG.ravel())
+    if len(fe.shell_conn):
+        from windflutter.structure.shell import shell_membrane_kg
+
+        r, c, v = shell_membrane_kg(fe, u0)
+        rows.append(r)
+        cols.append(c)
+        vals.append(v)
+    if not rows:
+        return sp.csr_matrix((n, n))
+    A = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
+    return ((A + A.T) * 0.5).tocsr()
+
+
+def _omega(omega_vec) -> np.ndarray:
+    w = np.asarray(omega_vec, dtype=float).reshape(-1)
+    if w.shape != (3,) or not np.all(np.isfinite(w)):
+        raise InputError("omega_vec", omega_vec, "a finite 3-vector angular velocity (rad/s)")
+    return w
+
+
+def centrifugal_load(fe: FEModel, struct: Structural, omega_vec, center=(0.0, 0.0, 0.0),
+                     nodes: np.ndarray | None = None) -> np.ndarray:
+    """Centrifugal nodal loads ``F = -M a`` with ``a = Omega x (Omega x (x - center))``.
+
+    Parameters
+    ----------
+    fe : the model (node positions).
+    struct : assembled structure (mass matrix).
+    omega_vec : (3,) angular velocity (rad/s), global axes.
+    center : (3,) a point on the rotation axis (m).
+    nodes : optional node indices that rotate (default all), e.g. ``fe.node_groups["rotor"]``.
+
+    Returns
+    -------
+    F : (n_dof,) loads (N, N m) in the full numbering; the consistent mass matrix also gives
+        moments where translations and rotations are coupled (offsets, consistent shell/beam mass).
+    """
+    w = _omega(omega_vec)
+    x = np.asarray(fe.nodes, dtype=float) - np.asarray(center, dtype=float)
+    acc = np.cross(w[None, :], np.cross(w[None, :], x))
+    a = np.zeros((fe.n_nodes, 6))
+    sel = np.arange(fe.n_nodes) if nodes is None else np.asarray(nodes, dtype=np.int64)
+    a[sel, :3] = acc[sel]
+    return -(struct.M @ a.reshape(-1))
+
+
+def spin_softening(struct: Structural, omega_vec, nodes: np.ndarray | None = None) -> sp.csr_matrix:
+    """Spin-softening stiffness ``-Q^T M Q`` (full numbering), Q = blockdiag(S(Omega)) on translations.
+
+    In the rotating frame the centrifugal force on a displacement u is ``-M Omega x (Omega x u)``;
+    for translational mass blocks ``m_ij I3`` this is the stiffness ``m_ij S(Omega)^2`` (negative
+    semi-definite; zero for motion along Omega).  Rotational-inertia contributions are neglected.
+    """
+    w = _omega(omega_vec)
+    n = struct.fe.n_nodes
+    sel = np.arange(n) if nodes is None else np.asarray(nodes, dtype=np.int64)
+    S = _skew(w)
+    r = (6 * sel[:, None, None] + np.arange(3)[None, :, None]) * np.ones((1, 1, 3), dtype=np.int64)
+    c = (6 * sel[:, None, None] + np.arange(3)[None, None, :]) * np.ones((1, 3, 1), dtype=np.int64)
+    v = np.broadcast_to(S, (sel.size, 3, 3))
+    Q = sp.csr_matrix((v.ravel(), (r.ravel(), c.ravel())), shape=(6 * n, 6 * n))
+    return (-(Q.T @ struct.M @ Q)).tocsr()
