@@ -1,0 +1,50 @@
+"""One blade as 2-node Timoshenko beams along its reference axis (blade root frame)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from windflutter.errors import InputError
+from windflutter.mesh.blade_shell import station_positions
+from windflutter.mesh.loft import chord_frame
+from windflutter.model.turbine import interp_span
+from windflutter.structure.fem import BeamSection
+
+
+@dataclass
+class BladeBeamMesh:
+    """Beam blade in the root frame: ``nodes`` (n_st, 3) on the reference axis, ``conn`` (ne, 2),
+    ``sections`` (one per element), ``orient`` (ne, 3) section y axis (flapwise, with twist)."""
+
+    nodes: np.ndarray
+    conn: np.ndarray
+    sections: list[BeamSection]
+    orient: np.ndarray
+    eta: np.ndarray
+
+
+def blade_beam_mesh(blade, n_span: int, clustering: float = 0.0) -> BladeBeamMesh:
+    """Beam elements between ``n_span + 1`` stations; each element takes the 6x6 stiffness and
+    mass of :attr:`Blade.beam` averaged over its length (Simpson rule on the piecewise-linear
+    tables), and the section y axis turned by the structural twist at its midpoint.
+    """
+    bp = blade.beam
+    if bp is None:
+        raise InputError("blade.beam", None, "6x6 beam properties (windIO elastic_properties or BeamDyn) for the beam model")
+    eta = station_positions(n_span, clustering)
+    nodes = np.column_stack([np.interp(eta, blade.s, blade.ref_axis[:, c]) for c in range(3)])
+    conn = np.column_stack([np.arange(n_span), np.arange(1, n_span + 1)])
+    a, b = eta[:-1], eta[1:]
+    m = 0.5 * (a + b)
+
+    def avg(v: np.ndarray) -> np.ndarray:
+        return (interp_span(bp.s, v, a) + 4 * interp_span(bp.s, v, m) + interp_span(bp.s, v, b)) / 6.0
+
+    K = avg(bp.stiffness)
+    M = avg(bp.mass)
+    tw = np.interp(m, bp.s, bp.twist)
+    _, e_n = chord_frame(tw)
+    secs = [BeamSection(stiffness=0.5 * (K[e] + K[e].T), mass=0.5 * (M[e] + M[e].T), name=f"blade_{e}") for e in range(n_span)]
+    return BladeBeamMesh(nodes=nodes, conn=conn, sections=secs, orient=e_n, eta=eta)

@@ -1,0 +1,271 @@
+"""Shell mesh of one blade in its root frame: lofted skin of quads plus shear webs sharing skin nodes.
+
+The chordwise grid is split at *key arcs* (web attachment points and layer boundaries such as
+spar-cap edges), each segment keeping the same number of elements at every station, so that
+the quad topology is one structured grid, webs attach exactly at skin nodes and layer
+boundaries follow element edges (seed, Castillo Capponi 2010, sec. 4.1.6: quad-only mesh,
+parametric in the number of elements per section).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from windflutter.errors import InputError
+from windflutter.mesh import loft as lf
+from windflutter.mesh.layup import group_laminates, layer_tables
+from windflutter.mesh.settings import MeshSettings
+from windflutter.structure.fem import ShellProperty
+
+MIN_KEY_GAP = 0.004  # minimum arc gap between two key arcs anywhere on the span (-)
+
+
+@dataclass
+class BladeShellMesh:
+    """One blade's shell mesh in the blade root frame (see :mod:`windflutter.mesh.loft`).
+
+    Attributes
+    ----------
+    nodes : (n, 3) m, blade root frame.
+    conn : (ne, 4) quads, outward normals on the skin.
+    prop : (ne,) index into ``properties``.
+    matdir : (ne, 3) material axis (span direction of the element), blade frame.
+    properties : laminates.
+    region : (ne,) index into ``region_names``.
+    region_names : e.g. ``["skin", "web:Web_fore", ...]``.
+    eta : (n_st,) station span positions (-).
+    station_nodes : (n_st, n_chord) skin node index of station i, chordwise point j.
+    arc : (n_st, n_chord) contour arc of each skin node.
+    ref_axis : (n_st, 3) reference-axis points (m).
+    chord, twist, pitch_axis : (n_st,) section data at the stations.
+    """
+
+    nodes: np.ndarray
+    conn: np.ndarray
+    prop: np.ndarray
+    matdir: np.ndarray
+    properties: list[ShellProperty]
+    region: np.ndarray
+    region_names: list[str]
+    eta: np.ndarray
+    station_nodes: np.ndarray
+    arc: np.ndarray
+    ref_axis: np.ndarray
+    chord: np.ndarray
+    twist: np.ndarray
+    pitch_axis: np.ndarray
+
+
+def station_positions(n_span: int, clustering: float = 0.0) -> np.ndarray:
+    """Span positions of ``n_span + 1`` stations on [0, 1]: uniform blended with cosine spacing."""
+    u = np.linspace(0.0, 1.0, n_span + 1)
+    c = 0.5 * (1.0 - np.cos(np.pi * u))
+    return (1.0 - clustering) * u + clustering * c
+
+
+def choose_key_arcs(curves: list[tuple[str, np.ndarray]], max_keys: int, priority: int) -> list[tuple[str, np.ndarray]]:
+    """Select a consistently ordered set of key-arc curves.
+
+    Parameters
+    ----------
+    curves : (name, (n_st,) arc values) candidates; the first ``priority`` are the webs' and are
+        tried first.
+    max_keys : maximum number of keys kept.
+
+    Returns
+    -------
+    The kept curves sorted by mean arc; every pair differs by at least ``MIN_KEY_GAP`` at all
+    stations and none touches the trailing edge (arc 0 / 1).
+    """
+    kept: list[tuple[str, np.ndarray]] = []
+    for name, c in curves:
+        if len(kept) >= max_keys:
+            break
+        if np.any(c < MIN_KEY_GAP) or np.any(c > 1.0 - MIN_KEY_GAP):
+            continue
+        ok = True
+        for _, k in kept:
+            d = c - k
+            if np.min(np.abs(d)) < MIN_KEY_GAP or not (np.all(d > 0) or np.all(d < 0)):
+                ok = False
+                break
+        if ok:
+            kept.append((name, c))
+    return sorted(kept, key=lambda t: float(np.mean(t[1])))
+
+
+def _oriented_stack(blade, airfoils) -> tuple[np.ndarray, list[np.ndarray]]:
+    pos = np.asarray(blade.airfoil_positions, dtype=float)
+    shapes = []
+    for name in blade.airfoil_names:
+        af = airfoils.get(name)
+        if af is None:
+            raise InputError("blade.airfoils", name, "an airfoil defined in the airfoils list")
+        if len(af.x) < 8:
+            raise InputError(f"airfoils[{name}].coordinates", len(af.x), "at least 8 points for the shell loft")
+        shapes.append(lf.orient_airfoil(np.column_stack([af.x, af.y]), name))
+    return pos, shapes
+
+
+def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSettings) -> BladeShellMesh:
+    """Loft and mesh one blade (skin + webs) with laminates from its layup.
+
+    Parameters
+    ----------
+    blade : :class:`windflutter.model.turbine.Blade` with a layup.
+    airfoils : name -> :class:`windflutter.model.turbine.Airfoil`.
+    materials : name -> FE material.
+    settings : element counts.
+    """
+    if blade.layup is None or not blade.layup.layers:
+        raise InputError("blade.layup", None, "a composite layup (layers and webs) for the shell model")
+    eta = station_positions(settings.n_span, settings.span_clustering)
+    n_st = len(eta)
+    layup = blade.layup
+    shell_layers = layup.shell_layers
+    webs = [w for w in layup.webs if layup.web_layers(w.name)]
+
+    # --- key arcs: webs first, then layer boundaries
+    curves: list[tuple[str, np.ndarray]] = []
+    for w in webs:
+        curves.append((f"{w.name}.start", np.interp(eta, w.s, w.start_arc)))
+        curves.append((f"{w.name}.end", np.interp(eta, w.s, w.end_arc)))
+    n_web_keys = len(curves)
+    for lay in shell_layers:
+        if np.max(lay.thickness) <= 0:
+            continue
+        a0, a1 = lay.arcs_at(eta)
+        curves.append((f"{lay.name}.start", np.mod(a0, 1.0)))
+        curves.append((f"{lay.name}.end", np.mod(a1, 1.0)))
+    max_keys = max(n_web_keys, settings.n_chord // 3 - 1)
+    keys = choose_key_arcs(curves, max_keys, n_web_keys)
+    web_keys = {name for name, _ in keys}
+    for w in webs:
+        for h in ("start", "end"):
+            if f"{w.name}.{h}" not in web_keys:
+                raise InputError(f"blade.layup.webs[{w.name}]", h, "web attachment arcs inside (0, 1), distinct from other webs")
+    key_arr = np.column_stack([np.zeros(n_st)] + [c for _, c in keys])  # (n_st, nk+1)
+    seg_len = np.diff(np.column_stack([key_arr, np.ones(n_st)]), axis=1).mean(axis=0)
+    counts = lf.distribute_counts(seg_len, settings.n_chord)
+    key_index = {name: int(np.sum(counts[: i + 1])) for i, (name, _) in enumerate(keys)}
+
+    # --- sections: airfoil blend at each station on its own arc grid
+    pos, shapes = _oriented_stack(blade, airfoils)
+    arc = np.stack([lf.segmented_grid(key_arr[i], counts) for i in range(n_st)])
+    j = np.clip(np.searchsorted(pos, eta, side="right") - 1, 0, len(pos) - 2)
+    w = np.clip((eta - pos[j]) / np.maximum(pos[j + 1] - pos[j], 1e-300), 0.0, 1.0)
+    sec = np.stack(
+        [(1 - w[i]) * lf.resample_airfoil(shapes[j[i]], arc[i]) + w[i] * lf.resample_airfoil(shapes[j[i] + 1], arc[i]) for i in range(n_st)]
+    )
+    ref = np.column_stack([np.interp(eta, blade.s, blade.ref_axis[:, c]) for c in range(3)])
+    chord = blade.at("chord", eta)
+    twist = blade.at("twist", eta)
+    pa = blade.at("pitch_axis", eta)
+    skin = lf.loft(sec, chord, twist, pa, ref)  # (n_st, n_chord, 3)
+    nc = settings.n_chord
+    nodes = [skin.reshape(-1, 3)]
+    station_nodes = np.arange(n_st * nc).reshape(n_st, nc)
+    next_id = n_st * nc
+
+    # --- skin elements
+    conn_skin = lf.quad_grid(n_st, nc)
+    ii = np.repeat(np.arange(n_st - 1), nc)
+    jj = np.tile(np.arange(nc), n_st - 1)
+    s_elem = 0.5 * (eta[ii] + eta[ii + 1])
+    arc_e = np.mod(0.5 * (_center_arc_rows(arc, ii, jj) + _center_arc_rows(arc, ii + 1, jj)), 1.0)
+    T, A = layer_tables(shell_layers, s_elem, arc_e)
+    mats = [_material(materials, lay.material, lay.name) for lay in shell_layers]
+    empty = np.where(T.sum(axis=1) <= 0)[0]
+    if empty.size:
+        e = int(empty[0])
+        raise InputError("blade.layup", f"no layer at span {s_elem[e]:.3f}, arc {arc_e[e]:.3f}", "layers covering the whole skin")
+    prop_skin, props = group_laminates(T, A, mats, "skin")
+    conns = [conn_skin]
+    prop_list = [prop_skin]
+    region = [np.zeros(len(conn_skin), dtype=np.int64)]
+    region_names = ["skin"]
+
+    # --- webs
+    nw = settings.n_web
+    for w in webs:
+        wl = layup.web_layers(w.name)
+        js, je = key_index[f"{w.name}.start"], key_index[f"{w.name}.end"]
+        a = skin[:, js, :]
+        b = skin[:, je, :]
+        t = np.linspace(0.0, 1.0, nw + 1)[1:-1]
+        inner = a[:, None, :] + t[None, :, None] * (b - a)[:, None, :]  # (n_st, nw-1, 3)
+        cols = np.empty((n_st, nw + 1), dtype=np.int64)
+        cols[:, 0] = station_nodes[:, js]
+        cols[:, -1] = station_nodes[:, je]
+        if nw > 1:
+            cols[:, 1:-1] = next_id + np.arange(n_st * (nw - 1)).reshape(n_st, nw - 1)
+            nodes.append(inner.reshape(-1, 3))
+            next_id += n_st * (nw - 1)
+        se = 0.5 * (eta[:-1] + eta[1:])
+        on = np.where((se >= w.s_start - 1e-9) & (se <= w.s_end + 1e-9))[0]
+        if on.size == 0:
+            continue
+        i = np.repeat(on, nw)
+        k = np.tile(np.arange(nw), on.size)
+        cw = np.stack([cols[i, k], cols[i, k + 1], cols[i + 1, k + 1], cols[i + 1, k]], axis=1)
+        sw = np.repeat(se[on], nw)
+        Tw, Aw = layer_tables(wl, sw, None)
+        if np.any(Tw.sum(axis=1) <= 0):
+            raise InputError(f"blade.layup.webs[{w.name}]", "zero thickness", "web layers over the web's extent")
+        pw, props_w = group_laminates(Tw, Aw, [_material(materials, lay.material, lay.name) for lay in wl], f"web_{w.name}")
+        conns.append(cw)
+        prop_list.append(pw + len(props))
+        props = props + props_w
+        region.append(np.full(len(cw), len(region_names), dtype=np.int64))
+        region_names.append(f"web:{w.name}")
+
+    all_nodes = np.vstack(nodes)
+    conn = np.vstack(conns)
+    all_nodes, conn, station_nodes = _compact(all_nodes, conn, station_nodes)
+    p = all_nodes[conn]
+    matdir = (p[:, 3] + p[:, 2] - p[:, 0] - p[:, 1])
+    # webs: columns along the web height, stations along the span; the span edge for web quads
+    # (cols[i,k], cols[i,k+1], cols[i+1,k+1], cols[i+1,k]) is p3 + p2 - p0 - p1 as for the skin.
+    matdir /= np.linalg.norm(matdir, axis=1, keepdims=True)
+    return BladeShellMesh(
+        nodes=all_nodes,
+        conn=conn,
+        prop=np.concatenate(prop_list),
+        matdir=matdir,
+        properties=props,
+        region=np.concatenate(region),
+        region_names=region_names,
+        eta=eta,
+        station_nodes=station_nodes,
+        arc=arc,
+        ref_axis=ref,
+        chord=chord,
+        twist=twist,
+        pitch_axis=pa,
+    )
+
+
+def _center_arc_rows(arc: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+    nc = arc.shape[1]
+    a = arc[i, j]
+    b = arc[i, (j + 1) % nc]
+    b = np.where(b <= a, b + 1.0, b)
+    return 0.5 * (a + b)
+
+
+def _material(materials: dict, name: str, layer: str):
+    m = materials.get(name)
+    if m is None:
+        raise InputError(f"blade.layup.layers[{layer}].material", name, "a material defined in the materials list")
+    return m
+
+
+def _compact(nodes: np.ndarray, conn: np.ndarray, station_nodes: np.ndarray):
+    """Drop nodes no element uses; renumber."""
+    used = np.zeros(len(nodes), dtype=bool)
+    used[conn.ravel()] = True
+    new = -np.ones(len(nodes), dtype=np.int64)
+    new[used] = np.arange(used.sum())
+    return nodes[used], new[conn], new[station_nodes]

@@ -1,0 +1,113 @@
+"""Mode labels ("1st flap collective", "1st tower fore-aft", ...) from energy fractions.
+
+For each mode shape ``phi`` (full numbering):
+
+1. Kinetic-energy density ``e = phi * (M phi)`` summed per node group decides whether the mode
+   lives in the blades (``rotor`` group) or in the tower (``tower`` group; hub and nacelle count
+   with neither).
+2. Blade modes: each aerodynamic strip's rigid motion (``AeroSections.motion_map @ phi``) is
+   split into flapwise translation (normal to the chord and the span), edgewise translation
+   (along the chord) and torsion (rotation about the span times a radius of gyration of a
+   quarter chord), weighted by the strip width; the largest sum names the mode.  With several
+   blades, blade participations ``c_k`` (projection of blade k's strip motions on the most
+   active blade's) give ``collective`` (all of one sign, each >= 1/4 of the largest: tower
+   coupling makes collective modes uneven) or ``asymmetric``; a mode confined to one blade is
+   labelled with that blade.
+3. Tower modes: the tower nodes' kinetic energy in x (fore-aft), y (side-side) and rz
+   (torsion).
+
+Ordinals count modes of the same kind in frequency order; with ``B`` blades each order is a
+family of ``B`` modes (one collective and ``B - 1`` asymmetric), so the order is
+``ceil(count / B)``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import scipy.sparse as sp
+
+_ORD = {1: "1st", 2: "2nd", 3: "3rd"}
+
+
+def ordinal(n: int) -> str:
+    return _ORD.get(n, f"{n}th")
+
+
+def blade_motion_components(sections, shapes: np.ndarray) -> np.ndarray:
+    """(3, ns, n) flap, edge and torsion amplitudes (m) of each strip for each mode."""
+    q = sections.motion_map @ shapes  # (6 ns, n)
+    ns = sections.n_sections
+    q = q.reshape(ns, 6, -1)
+    u, th = q[:, :3, :], q[:, 3:, :]
+    ec, es = sections.e_chord, sections.e_span
+    ef = np.cross(es, ec)
+    flap = np.einsum("jc,jcn->jn", ef, u)
+    edge = np.einsum("jc,jcn->jn", ec, u)
+    tors = np.einsum("jc,jcn->jn", es, th) * 0.25 * sections.chord[:, None]
+    return np.stack([flap, edge, tors])
+
+
+def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[str]:
+    """One label per column of ``shapes`` (full numbering, modes in ascending frequency).
+
+    Parameters
+    ----------
+    fe : the :class:`FEModel` (node groups ``rotor``/``blade<k>``/``tower``).
+    M : full-numbering mass matrix.
+    shapes : (n_dof, n) mode shapes.
+    sections : :class:`AeroSections` of the model (needed to label blade modes).
+    """
+    shapes = np.asarray(shapes)
+    n = shapes.shape[1]
+    e = shapes * (M @ shapes)  # (n_dof, n)
+    groups = fe.node_groups
+
+    def dofs(nodes, comps=(0, 1, 2, 3, 4, 5)):
+        nodes = np.asarray(nodes, dtype=np.int64)
+        return (6 * nodes[:, None] + np.array(comps)[None, :]).ravel()
+
+    total = np.maximum(np.abs(e.sum(axis=0)), 1e-300)
+    blade_nodes = [groups[k] for k in sorted(groups) if k.startswith("blade")]
+    nbl = len(blade_nodes)
+    e_bl = sum((e[dofs(g)].sum(axis=0) for g in blade_nodes), np.zeros(n))
+    e_tw = e[dofs(groups["tower"])].sum(axis=0) if "tower" in groups else np.zeros(n)
+    comps = blade_motion_components(sections, shapes) if (sections is not None and sections.n_sections) else None
+    counts: dict[str, int] = {}
+    labels = []
+    for m in range(n):
+        if comps is not None and (e_bl[m] >= 0.5 * total[m] or "tower" not in groups):
+            w = sections.width[:, None]
+            en = (comps[:, :, m] ** 2 * w.T).sum(axis=1)
+            kind = ("flap", "edge", "torsion")[int(np.argmax(en))]
+            kidx = int(np.argmax(en))
+            variant = ""
+            if nbl > 1:
+                c = comps[kidx, :, m]
+                b = sections.blade
+                amps = np.array([np.sqrt(np.sum(w[b == k, 0] * c[b == k] ** 2)) for k in range(nbl)])
+                kref = int(np.argmax(amps))
+                ref = c[b == kref]
+                proj = np.array([np.sum(w[b == k, 0] * c[b == k] * ref) for k in range(nbl)]) / max(np.sum(w[b == kref, 0] * ref**2), 1e-300)
+                if np.all(proj > 0.25):
+                    variant = "collective"
+                elif np.sum(amps > 0.1 * amps.max()) == 1:
+                    variant = f"blade {kref}"
+                else:
+                    variant = "asymmetric"
+            counts[kind] = counts.get(kind, 0) + 1
+            order = (counts[kind] + nbl - 1) // nbl if nbl > 1 else counts[kind]
+            labels.append(f"{ordinal(order)} {kind}" + (f" {variant}" if variant else ""))
+        elif "tower" in groups:
+            tn = groups["tower"]
+            ex = e[dofs(tn, (0,))].sum(axis=0)[m]
+            ey = e[dofs(tn, (1,))].sum(axis=0)[m]
+            rz = e[dofs(tn, (5,))].sum(axis=0)[m]
+            if rz > max(ex, ey):
+                kind = "tower torsion"
+            else:
+                kind = "tower fore-aft" if ex >= ey else "tower side-side"
+            counts[kind] = counts.get(kind, 0) + 1
+            labels.append(f"{ordinal(counts[kind])} {kind}")
+        else:
+            labels.append("other")
+    return labels
