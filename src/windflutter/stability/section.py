@@ -497,6 +497,25 @@ def divergence_speed_numerical(sec: TypicalSection) -> float | None:
 # --------------------------------------------------------------------------------------------
 # p-k
 # --------------------------------------------------------------------------------------------
+def _companion_parts(sec: TypicalSection, U: float) -> tuple[np.ndarray, np.ndarray]:
+    """First-order companion matrix of the coupled system split as ``base + C * dC``.
+
+    The state is ``[q, q']``; C enters linearly (circulatory terms), so p-k iterations only
+    rescale ``dC``.
+    """
+    M, K = structural_matrices(sec)
+    A2, A1, qc, w, r1, r0 = _aero_parts(sec, U)
+    Minv = np.linalg.inv(M - A2)
+    base = np.zeros((4, 4), dtype=complex)
+    base[:2, 2:] = np.eye(2)
+    base[2:, :2] = -Minv @ K
+    base[2:, 2:] = Minv @ A1
+    dC = np.zeros((4, 4), dtype=complex)
+    dC[2:, :2] = qc * Minv @ np.outer(w, r0)
+    dC[2:, 2:] = qc * Minv @ np.outer(w, r1)
+    return base, dC
+
+
 def _c_scalar(c_func: Callable, k: float) -> complex:
     """C(k) for one k; exact Theodorsen evaluated directly (hot loop of p-k / k-method)."""
     if c_func is theodorsen and 1e-12 < k < 1e8:
@@ -533,16 +552,16 @@ def pk_eigen(
     -------
     lam, eigenvector (h down), k
     """
-    M, K = structural_matrices(sec)
     b = sec.semi_chord
+    base, dC = _companion_parts(sec, U)
+    n = 2
 
     def solve(omega: float, ref: complex) -> tuple[complex, np.ndarray, float]:
         k = omega * b / U
-        Ma, Da, Ka = aero_matrices(sec, U, C=_c_scalar(c_func, k))
-        lams, V = _quad_eig(M - Ma, -Da, K - Ka)
+        lams, V = np.linalg.eig(base + _c_scalar(c_func, k) * dC)
         cand = np.where(lams.imag >= -1e-12 * np.abs(lams))[0]
         j = cand[np.argmin(np.abs(lams[cand] - ref))]
-        return lams[j], V[:, j], k
+        return lams[j], V[:n, j], k
 
     lam = complex(lam_guess)
     if frozen_omega is not None:
@@ -586,16 +605,22 @@ class _Track:
 def _pk_track(sec_at: Callable[[float], tuple[TypicalSection, float]], params: np.ndarray,
               lam0: np.ndarray, **kw) -> tuple[np.ndarray, list[list[np.ndarray]]]:
     """Follow each mode of ``lam0`` along a parameter path; returns lam (n_modes, n)."""
-    lam = np.zeros((len(lam0), len(params)), dtype=complex)
+    lam = np.full((len(lam0), len(params)), np.nan + 0j)
     vecs: list[list[np.ndarray]] = [[] for _ in lam0]
     for i, x in enumerate(params):
         sec, U = sec_at(x)
-        for m in range(len(lam0)):
-            guess = lam0[m] if i == 0 else (lam[m, i - 1] if i < 2 else
-                                             2 * lam[m, i - 1] - lam[m, i - 2])
-            l, v, _ = pk_eigen(sec, U, guess, **kw)
-            lam[m, i] = l
-            vecs[m].append(v)
+        try:
+            for m in range(len(lam0)):
+                guess = lam0[m] if i == 0 else (lam[m, i - 1] if i < 2 else
+                                                 2 * lam[m, i - 1] - lam[m, i - 2])
+                l, v, _ = pk_eigen(sec, U, guess, **kw)
+                lam[m, i] = l
+                vecs[m].append(v)
+        except ConvergenceError:
+            if i < 2:
+                raise
+            # typically beyond divergence (real root pair): stop the curves here
+            return lam[:, :i], vecs
     return lam, vecs
 
 
@@ -629,8 +654,9 @@ def locate_pk_onset(
     ``vec``, ``k``, ``U``, ``mode``.
     """
     lam, vecs = _pk_track(sec_at, params, lam0, **kw)
+    params = params[: lam.shape[1]]
     scale = float(np.max(np.abs(lam0.imag))) if np.max(np.abs(lam0.imag)) > 0 else 1.0
-    out = {"params": params, "lam": lam, "x": None}
+    out = {"params": params, "lam": lam, "x": None, "n_tracked": lam.shape[1]}
     crossings = _first_crossing(lam.real, np.abs(lam.imag), omega_min_ratio * scale)
     best = None
     for m, i in crossings:
@@ -678,7 +704,7 @@ def pk_method(
     res = locate_pk_onset(lambda U: (sec, U), speeds, lam0, c_func=c_func)
     lam = res["lam"]
     curves = StabilityCurves(
-        speed=speeds,
+        speed=speeds[: lam.shape[1]],
         frequency=np.abs(lam.imag),
         damping=-lam.real / np.maximum(np.abs(lam), 1e-300),
         damping_kind="zeta",
