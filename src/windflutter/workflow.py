@@ -439,10 +439,12 @@ def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path) ->
 
     figs = plots.all_figures(ds)
     try:
+        png = plots.render_png(figs, config.output.dpi)
         if config.output.plots:
-            written.update(plots.save_figures(figs, outdir / "figures", config.output.formats, config.output.dpi))
+            written.update(plots.save_figures(figs, outdir / "figures", config.output.formats,
+                                              config.output.dpi, png=png))
         if config.output.report:
-            html = report.build_report(ds, figs, dpi=config.output.dpi)
+            html = report.build_report(ds, figs, dpi=config.output.dpi, png=png)
             written["report"] = store.atomic_write_text(html, outdir / "report.html")
     finally:
         plots.close_figures(figs)

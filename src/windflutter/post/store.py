@@ -82,33 +82,36 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
         "aero": ("point", np.array([point.aero], dtype=object)),
         "method": ("point", np.array([point.method], dtype=object)),
     }
-    if result.sweep_rpm is not None and len(result.sweep_rpm):
-        rpm = np.asarray(result.sweep_rpm, float)
-        freq = np.asarray(result.frequency_hz, float).reshape(rpm.size, -1)
-        zeta = np.asarray(result.damping_ratio, float).reshape(rpm.size, -1)
-        nm = freq.shape[1]
-        labels = list(result.mode_labels or [f"mode {i + 1}" for i in range(nm)])
-        labels = (labels + [""] * nm)[:nm]
-        data["rotor_speed"] = (("point", "sweep"), rpm[None, :])
-        data["frequency"] = (("point", "sweep", "mode"), freq[None])
-        data["damping_ratio"] = (("point", "sweep", "mode"), zeta[None])
-        data["mode_label"] = (("point", "mode"), np.array([labels], dtype=object))
-    if result.station_radius is not None and len(result.station_radius):
-        r = np.asarray(result.station_radius, float)
-        data["station_radius"] = (("point", "station"), r[None])
-        if result.flutter_shape is not None:
-            shp = np.asarray(result.flutter_shape, complex).reshape(r.size, 3)
-            data["flutter_shape_real"] = (("point", "station", "component"), shp.real[None])
-            data["flutter_shape_imag"] = (("point", "station", "component"), shp.imag[None])
-        if result.aero_work is not None:
-            w = np.asarray(result.aero_work, float).reshape(r.size, 3)
-            data["aero_work"] = (("point", "station", "dof"), w[None])
-            data["aero_work_total"] = (("point",), [float(np.nansum(w))])
-    if "aero_work_total" not in data:
-        data["aero_work_total"] = (("point",), [nan])
+    # sub-dimension variables always exist (size 0 when absent) so that points combine
+    rpm = np.asarray(result.sweep_rpm if result.sweep_rpm is not None else [], float).ravel()
+    nr = rpm.size
+    if nr:
+        freq = np.asarray(result.frequency_hz, float).reshape(nr, -1)
+        zeta = np.asarray(result.damping_ratio, float).reshape(nr, -1)
+    else:
+        freq = zeta = np.zeros((0, 0))
+    nm = freq.shape[1]
+    labels = list(result.mode_labels or [])
+    labels = (labels + [f"mode {i + 1}" for i in range(len(labels), nm)])[:nm]
+    data["rotor_speed"] = (("point", "sweep"), rpm[None, :])
+    data["frequency"] = (("point", "sweep", "mode"), freq[None])
+    data["damping_ratio"] = (("point", "sweep", "mode"), zeta[None])
+    data["mode_label"] = (("point", "mode"), np.array(labels, dtype=object).reshape(1, nm))
+    r = np.asarray(result.station_radius if result.station_radius is not None else [], float).ravel()
+    ns = r.size
+    shp = (np.asarray(result.flutter_shape, complex).reshape(ns, 3) if result.flutter_shape is not None and ns
+           else np.full((ns, 3), nan + 0j))
+    w = (np.asarray(result.aero_work, float).reshape(ns, 3) if result.aero_work is not None and ns
+         else np.full((ns, 3), nan))
+    data["station_radius"] = (("point", "station"), r[None])
+    data["flutter_shape_real"] = (("point", "station", "component"), shp.real[None])
+    data["flutter_shape_imag"] = (("point", "station", "component"), shp.imag[None])
+    data["aero_work"] = (("point", "station", "dof"), w[None])
+    data["aero_work_total"] = (("point",), [float(np.sum(w)) if ns and np.all(np.isfinite(w)) else nan])
+    coords.update(sweep=("sweep", np.arange(nr)), mode=("mode", np.arange(nm)),
+                  station=("station", np.arange(ns)), component=("component", list(COMPONENTS)),
+                  dof=("dof", list(WORK_DOFS)))
     ds = xr.Dataset(data, coords=coords)
-    if "flutter_shape_real" in ds or "aero_work" in ds:
-        ds = ds.assign_coords(component=list(COMPONENTS), dof=list(WORK_DOFS))
     for name in list(ds.data_vars) + ["wind_speed"]:
         ds[name].attrs.update(_attrs(name))
     for k, v in (result.info or {}).items():
@@ -132,12 +135,16 @@ def _attr_value(v):
     return str(v)
 
 
-def _encoding(ds: xr.Dataset) -> dict:
-    enc = {}
-    for name, var in ds.variables.items():
+def _strings_fixed(ds: xr.Dataset) -> xr.Dataset:
+    """Object (string) variables as NumPy unicode arrays, which netCDF4 stores as strings
+    even when empty."""
+    ds = ds.copy()
+    for name, var in list(ds.variables.items()):
         if var.dtype == object:
-            enc[name] = {"dtype": str}
-    return enc
+            vals = np.array([("" if (isinstance(x, float) and x != x) else str(x)) for x in var.values.ravel()],
+                            dtype="U").reshape(var.shape) if var.size else np.zeros(var.shape, dtype="U1")
+            ds[name] = var.copy(data=vals)
+    return ds
 
 
 def atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
@@ -147,7 +154,7 @@ def atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".nc.tmp", dir=path.parent)
     os.close(fd)
     try:
-        ds.to_netcdf(tmp, engine="netcdf4", encoding=_encoding(ds))
+        _strings_fixed(ds).to_netcdf(tmp, engine="netcdf4")
         with open(tmp, "rb+") as fh:
             os.fsync(fh.fileno())
         os.replace(tmp, path)

@@ -1,0 +1,300 @@
+"""Figures of a run, drawn from the results dataset alone (so any stored run can be re-plotted).
+
+* :func:`stability_map` — flutter and divergence onset rotor speed vs wind speed, per case, with
+  the turbine's operating rotor-speed curve and the rated and overspeed lines;
+* :func:`campbell` — frequency vs rotor speed of the tracked modes, coloured by damping ratio,
+  with the 1P/3P/6P excitation lines and mode labels;
+* :func:`damping_plot` — V-g / V-f style: damping ratio and frequency of each mode vs rotor speed;
+* :func:`flutter_mode` — the flutter mode's flap / edge / torsion amplitude and phase along span;
+* :func:`aero_work_plot` — aerodynamic work per cycle per station, split into plunge / pitch /
+  edgewise (:mod:`windflutter.post.aerowork`).
+
+Matplotlib's object interface is used (``Figure``, no pyplot state), so nothing here depends on
+a display or a global backend.  Rotor speeds in RPM, frequencies in Hz (user units).
+"""
+
+from __future__ import annotations
+
+import io
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+from matplotlib.colors import TwoSlopeNorm
+from matplotlib.figure import Figure
+
+CASE_STYLES = {("potential", "pk"): "C0", ("viscous", "pk"): "C1",
+               ("potential", "thesis"): "C2", ("viscous", "thesis"): "C3"}
+COMPONENT_STYLE = {"flap": "C0", "edge": "C1", "torsion": "C3"}
+
+
+def cases(ds: xr.Dataset) -> list[tuple[str, str]]:
+    """The (aero, method) cases present, in point order."""
+    out: list[tuple[str, str]] = []
+    if "point" not in ds.dims or ds.sizes["point"] == 0:
+        return out
+    for a, m in zip(ds["aero"].values, ds["method"].values):
+        if (str(a), str(m)) not in out:
+            out.append((str(a), str(m)))
+    return out
+
+
+def case_points(ds: xr.Dataset, case: tuple[str, str]) -> xr.Dataset:
+    sel = (ds["aero"] == case[0]) & (ds["method"] == case[1])
+    return ds.isel(point=np.where(sel.values)[0])
+
+
+def critical_point(ds: xr.Dataset, case: tuple[str, str]) -> int | None:
+    """Index (into ``ds.point``) of the case's lowest flutter onset; else its first ok point."""
+    sel = np.where(((ds["aero"] == case[0]) & (ds["method"] == case[1])).values)[0]
+    if sel.size == 0:
+        return None
+    f = ds["flutter_rpm"].values[sel]
+    if np.any(np.isfinite(f)):
+        return int(sel[np.nanargmin(f)])
+    ok = [i for i in sel if str(ds["status"].values[i]) == "ok"]
+    return int(ok[0]) if ok else None
+
+
+def _case_name(case: tuple[str, str]) -> str:
+    return f"{case[0]}, {case[1]}"
+
+
+def _reference_lines(ax, ds: xr.Dataset) -> None:
+    rated = ds.attrs.get("rated_rpm")
+    over = ds.attrs.get("overspeed_rpm")
+    if rated is not None and np.isfinite(rated):
+        ax.axhline(rated, color="k", lw=1.0, ls="-.", label=f"rated {rated:.1f} RPM")
+    if over is not None and np.isfinite(over):
+        ax.axhline(over, color="0.4", lw=1.0, ls=":", label=f"overspeed {over:.1f} RPM")
+
+
+def stability_map(ds: xr.Dataset) -> Figure:
+    """Onset rotor speed (RPM) vs wind speed (m/s)."""
+    fig = Figure(figsize=(7.5, 4.8), layout="constrained")
+    ax = fig.add_subplot()
+    for case in cases(ds):
+        c = case_points(ds, case)
+        col = CASE_STYLES.get(case, None)
+        v = c["wind_speed"].values
+        ax.plot(v, c["flutter_rpm"].values, "o-", color=col, label=f"flutter ({_case_name(case)})")
+        if np.any(np.isfinite(c["divergence_rpm"].values)):
+            ax.plot(v, c["divergence_rpm"].values, "s--", color=col, mfc="none",
+                    label=f"divergence ({_case_name(case)})")
+        failed = np.array([str(s) != "ok" for s in c["status"].values])
+        if failed.any():
+            lab = "failed point" if "failed point" not in ax.get_legend_handles_labels()[1] else None
+            ax.plot(v[failed], np.zeros(failed.sum()), "x", color="r", ms=9, clip_on=False, label=lab)
+    if "operating_rpm" in ds:
+        ax.plot(ds["operating_wind_speed"].values, ds["operating_rpm"].values, "-", color="k",
+                lw=2, label="operating rotor speed")
+    _reference_lines(ax, ds)
+    ax.set_xlabel("wind speed (m/s)")
+    ax.set_ylabel("rotor speed (RPM)")
+    ax.set_title(f"Stability map — {ds.attrs.get('turbine', '')}")
+    ax.set_ylim(bottom=0)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    return fig
+
+
+def _sweep(ds: xr.Dataset, i: int):
+    p = ds.isel(point=i)
+    rpm = p["rotor_speed"].values
+    ok = np.isfinite(rpm)
+    freq = p["frequency"].values[ok]
+    zeta = p["damping_ratio"].values[ok]
+    labels = [str(x) for x in p["mode_label"].values] if "mode_label" in p else []
+    keep = [j for j in range(freq.shape[1]) if np.any(np.isfinite(freq[:, j]))]
+    return rpm[ok], freq[:, keep], zeta[:, keep], [labels[j] if j < len(labels) else f"mode {j + 1}" for j in keep]
+
+
+def _point_title(ds: xr.Dataset, i: int) -> str:
+    return (f"V = {float(ds['wind_speed'].values[i]):g} m/s, {ds['aero'].values[i]}, "
+            f"{ds['method'].values[i]}")
+
+
+def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
+    """Campbell diagram of point ``i``: frequency vs rotor speed coloured by damping ratio."""
+    fig = Figure(figsize=(7.5, 5.0), layout="constrained")
+    ax = fig.add_subplot()
+    rpm, freq, zeta, labels = _sweep(ds, i)
+    # colour scale: +-10 % damping at most, so that the region near zero stays readable
+    zmax = float(np.nanpercentile(np.abs(zeta), 95)) if zeta.size and np.any(np.isfinite(zeta)) else 0.05
+    zmax = min(max(zmax, 1e-3), 0.1)
+    norm = TwoSlopeNorm(vcenter=0.0, vmin=-zmax, vmax=zmax)
+    sc = None
+    for j in range(freq.shape[1]):
+        ax.plot(rpm, freq[:, j], "-", color="0.7", lw=1, zorder=1)
+        sc = ax.scatter(rpm, freq[:, j], c=np.clip(zeta[:, j], -zmax, zmax), cmap="RdBu", norm=norm, s=26, zorder=2,
+                        edgecolors="k", linewidths=0.3)
+        ax.annotate(labels[j], (rpm[-1], freq[-1, j]), xytext=(4, 9 * (j % 2) - 4),
+                    textcoords="offset points", fontsize=8, va="center")
+    fmax = float(np.nanmax(freq)) * 1.15 if freq.size else 1.0
+    for n in harmonics:
+        ax.plot(rpm, n * rpm / 60.0, "--", color="0.3", lw=0.8)
+        xe = min(rpm[-1], fmax * 60.0 / n)
+        ax.annotate(f"{n}P", (xe, n * xe / 60.0), fontsize=8, color="0.3", xytext=(2, 2),
+                    textcoords="offset points")
+    _rpm_lines(ax, ds)
+    fr = ds["flutter_rpm"].values[i]
+    if np.isfinite(fr):
+        ax.axvline(fr, color="r", lw=1.2, label=f"flutter {fr:.2f} RPM")
+    if sc is not None:
+        fig.colorbar(sc, ax=ax, extend="both", label="damping ratio ζ (−)  [red: unstable]")
+    ax.set_ylim(0, fmax)
+    ax.set_xlim(rpm[0], rpm[-1] * 1.12 if rpm.size else 1)
+    ax.set_xlabel("rotor speed (RPM)")
+    ax.set_ylabel("frequency (Hz)")
+    ax.set_title(f"Campbell diagram — {_point_title(ds, i)}")
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=8, loc="upper left")
+    return fig
+
+
+def _rpm_lines(ax, ds: xr.Dataset) -> None:
+    rated = ds.attrs.get("rated_rpm")
+    over = ds.attrs.get("overspeed_rpm")
+    if rated is not None and np.isfinite(rated):
+        ax.axvline(rated, color="k", lw=1.0, ls="-.", label=f"rated {rated:.1f} RPM")
+    if over is not None and np.isfinite(over):
+        ax.axvline(over, color="0.4", lw=1.0, ls=":", label=f"overspeed {over:.1f} RPM")
+
+
+def damping_plot(ds: xr.Dataset, i: int) -> Figure:
+    """V-g / V-f style: damping ratio (top) and frequency (bottom) of each mode vs rotor speed."""
+    fig = Figure(figsize=(7.5, 6.0), layout="constrained")
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    rpm, freq, zeta, labels = _sweep(ds, i)
+    for j in range(freq.shape[1]):
+        ax1.plot(rpm, zeta[:, j], "o-", ms=3, label=labels[j])
+        ax2.plot(rpm, freq[:, j], "o-", ms=3, label=labels[j])
+    ax1.axhline(0.0, color="k", lw=0.8)
+    for ax in (ax1, ax2):
+        _rpm_lines(ax, ds)
+        fr = ds["flutter_rpm"].values[i]
+        if np.isfinite(fr):
+            ax.axvline(fr, color="r", lw=1.2)
+        ax.grid(alpha=0.3)
+    ax1.set_ylabel("damping ratio ζ (−)")
+    ax2.set_ylabel("frequency (Hz)")
+    ax2.set_xlabel("rotor speed (RPM)")
+    ax1.set_title(f"Damping and frequency vs rotor speed — {_point_title(ds, i)}")
+    ax1.legend(fontsize=8, ncols=2)
+    return fig
+
+
+def flutter_mode(ds: xr.Dataset, i: int) -> Figure:
+    """Flap, edge (m, normalised) and torsion (rad) amplitude and phase along span at onset."""
+    fig = Figure(figsize=(7.5, 6.0), layout="constrained")
+    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    p = ds.isel(point=i)
+    r = p["station_radius"].values
+    ok = np.isfinite(r)
+    shape = (p["flutter_shape_real"].values + 1j * p["flutter_shape_imag"].values)[ok]
+    r = r[ok]
+    ref = shape.ravel()[np.nanargmax(np.abs(shape.ravel()))] if shape.size else 1.0
+    shape = shape / (ref if abs(ref) > 0 else 1.0)
+    axt = ax1.twinx()
+    for c, name in enumerate(("flap", "edge", "torsion")):
+        ax = axt if name == "torsion" else ax1
+        ax.plot(r, np.abs(shape[:, c]), "-o", ms=3, color=COMPONENT_STYLE[name], label=name)
+        amp = np.abs(shape[:, c])
+        phase = np.degrees(np.angle(shape[:, c]))
+        phase[amp < 1e-3 * max(np.nanmax(np.abs(shape)), 1e-300)] = np.nan
+        ax2.plot(r, phase, "-o", ms=3, color=COMPONENT_STYLE[name], label=name)
+    ax1.set_ylabel("flap, edge amplitude (−, normalised)")
+    axt.set_ylabel("torsion amplitude (rad per unit)", color=COMPONENT_STYLE["torsion"])
+    h1, l1 = ax1.get_legend_handles_labels()
+    h2, l2 = axt.get_legend_handles_labels()
+    ax1.legend(h1 + h2, l1 + l2, fontsize=8, loc="upper left")
+    ax2.set_ylabel("phase (deg)")
+    ax2.set_xlabel("radius (m)")
+    ax2.set_ylim(-185, 185)
+    ax2.set_yticks([-180, -90, 0, 90, 180])
+    for ax in (ax1, ax2):
+        ax.grid(alpha=0.3)
+    f = float(p["flutter_frequency"].values)
+    ax1.set_title(f"Flutter mode '{p['flutter_mode'].values}' at {float(p['flutter_rpm'].values):.2f} RPM, "
+                  f"{f:.3f} Hz — {_point_title(ds, i)}", fontsize=9)
+    return fig
+
+
+def aero_work_plot(ds: xr.Dataset, i: int) -> Figure:
+    """Aerodynamic work per cycle on the flutter mode, per station and section DOF."""
+    fig = Figure(figsize=(7.5, 4.2), layout="constrained")
+    ax = fig.add_subplot()
+    p = ds.isel(point=i)
+    r = p["station_radius"].values
+    ok = np.isfinite(r)
+    w = p["aero_work"].values[ok]
+    r = r[ok]
+    width = 0.8 * (np.min(np.diff(r)) if r.size > 1 else 1.0) / 3
+    for c, name in enumerate(("plunge", "pitch", "edgewise")):
+        ax.bar(r + (c - 1) * width, w[:, c], width=width, label=name)
+    ax.axhline(0, color="k", lw=0.8)
+    ax.set_xlabel("radius (m)")
+    ax.set_ylabel("aero work per cycle (J, mode normalised)")
+    ax.set_title(f"Aero work on the flutter mode (> 0 feeds the mode), total "
+                 f"{float(np.nansum(w)):.3g} J — {_point_title(ds, i)}", fontsize=9)
+    ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return fig
+
+
+def all_figures(ds: xr.Dataset) -> dict[str, Figure]:
+    """Every figure of a run, by name (``stability_map``, ``campbell_<aero>_<method>``, ...)."""
+    figs: dict[str, Figure] = {}
+    if "point" not in ds.dims or ds.sizes["point"] == 0:
+        return figs
+    figs["stability_map"] = stability_map(ds)
+    for case in cases(ds):
+        i = critical_point(ds, case)
+        if i is None:
+            continue
+        tag = f"{case[0]}_{case[1]}"
+        if "rotor_speed" in ds and np.any(np.isfinite(ds["rotor_speed"].values[i])):
+            figs[f"campbell_{tag}"] = campbell(ds, i)
+            figs[f"damping_{tag}"] = damping_plot(ds, i)
+        if ("flutter_shape_real" in ds and "station_radius" in ds
+                and np.any(np.isfinite(ds["flutter_shape_real"].values[i]))):
+            figs[f"flutter_mode_{tag}"] = flutter_mode(ds, i)
+        if "aero_work" in ds and np.any(np.isfinite(ds["aero_work"].values[i])):
+            figs[f"aero_work_{tag}"] = aero_work_plot(ds, i)
+    return figs
+
+
+def render_png(figs: dict[str, Figure], dpi: int = 110) -> dict[str, bytes]:
+    """Each figure rendered once as PNG bytes (shared by the files and the report)."""
+    out = {}
+    for name, fig in figs.items():
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=dpi)
+        out[name] = buf.getvalue()
+    return out
+
+
+def save_figures(figs: dict[str, Figure], folder: str | Path, formats=("png",), dpi: int = 110,
+                 png: dict[str, bytes] | None = None) -> dict[str, Path]:
+    """Save figures as ``folder/<name>.<fmt>``; return name -> path of the first format.
+
+    ``png``: already rendered PNG bytes (from :func:`render_png`) to write instead of redrawing.
+    """
+    folder = Path(folder)
+    folder.mkdir(parents=True, exist_ok=True)
+    out = {}
+    for name, fig in figs.items():
+        for k, fmt in enumerate(formats):
+            path = folder / f"{name}.{fmt}"
+            if fmt == "png" and png is not None and name in png:
+                path.write_bytes(png[name])
+            else:
+                fig.savefig(path, dpi=dpi)
+            if k == 0:
+                out[name] = path
+    return out
+
+
+def close_figures(figs: dict[str, Figure]) -> None:
+    for fig in figs.values():
+        fig.clear()
