@@ -1,0 +1,224 @@
+"""Beam section properties: source conventions -> the ``BeamSection`` convention.
+
+Conventions
+-----------
+* **BeamDyn** (``*_BeamDyn_Blade.dat``) and **windIO 6x6** (v2 ``K11..K66`` /
+  ``inertia_matrix``, v1 ``six_x_six`` upper triangles): blade section frame with x flapwise
+  (towards the suction side), y chordwise (towards the trailing edge), z along the span, rotated
+  by the local structural twist.  Generalised forces ordered ``(F_x, F_y, F_z(axial), M_x, M_y,
+  M_z(torsion))``; so ``K33 = EA``, ``K44`` = bending about the flapwise axis = *edgewise* EI,
+  ``K55`` = *flapwise* EI, ``K66 = GJ``.  Evidence: NREL 5 MW at r/R = 0.5236, BeamDyn
+  ``K44 = 2.5549e9`` = ElastoDyn ``EdgStff``, ``K55 = 5.3472e8`` = ``FlpStff``; the WISDEM
+  windIO v2 file has the same numbers under ``K44``/``K55`` (the windIO schema text, which calls
+  x the trailing-edge direction and K44 flapwise, does not match the data it ships with).
+  Mass matrix ``[[m I, m S(c)^T], [m S(c), J]]`` with ``c = (cm_x, cm_y, 0)``, ``J11 = i_edge``
+  (about x), ``J22 = i_flap``, ``J12 = -i_cp``, ``J33 = i_plr`` (checked against the IEA 15 MW
+  BeamDyn file: ``M16 = -m cm_y``, ``M26 = m cm_x``, ``M45 = -i_cp``).
+* **ElastoDyn** blade: only mass per length, flapwise and edgewise EI (plus a mass adjustment
+  factor ``AdjBlMs``); the section is uncoupled.
+* **BeamSection** (``windflutter.structure.fem``): x along the beam, y and z in the section plane;
+  order ``(N, V_y, V_z, T, M_y, M_z)``.  For the blade we take section ``y`` = blade flapwise
+  (BeamDyn x) and section ``z`` = chordwise towards the TE (BeamDyn y):
+  ``(x, y, z)_section = (z, x, y)_BeamDyn``, a cyclic permutation (a proper rotation, no sign
+  changes), so the conversion is ``K_s = K[P][:, P]`` with ``P = [2, 0, 1, 5, 3, 4]``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+
+from windflutter.errors import InputError
+from windflutter.model.turbine import BeamProperties, IsotropicMaterial, OrthotropicMaterial, Turbine
+
+PERM_BEAMDYN_TO_SECTION = np.array([2, 0, 1, 5, 3, 4])
+
+
+def beamdyn_to_section(K: np.ndarray, M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Reorder (n, 6, 6) BeamDyn/windIO stiffness and mass matrices into the BeamSection order."""
+    P = PERM_BEAMDYN_TO_SECTION
+    return K[:, P][:, :, P], M[:, P][:, :, P]
+
+
+def beamdyn_mass_matrix(
+    mass: np.ndarray,
+    cm_x: np.ndarray,
+    cm_y: np.ndarray,
+    i_edge: np.ndarray,
+    i_flap: np.ndarray,
+    i_plr: np.ndarray | None = None,
+    i_cp: np.ndarray | None = None,
+) -> np.ndarray:
+    """(n, 6, 6) BeamDyn-order mass matrices from windIO v2 ``inertia_matrix`` columns.
+
+    ``i_plr`` defaults to ``i_edge + i_flap`` where missing/NaN.
+    """
+    n = mass.size
+    i_cp = np.zeros(n) if i_cp is None else i_cp
+    ip = i_edge + i_flap if i_plr is None else np.where(np.isfinite(i_plr), i_plr, i_edge + i_flap)
+    M = np.zeros((n, 6, 6))
+    for a in range(3):
+        M[:, a, a] = mass
+    myc, mxc = mass * cm_y, mass * cm_x
+    M[:, 0, 5] = M[:, 5, 0] = -myc
+    M[:, 1, 5] = M[:, 5, 1] = mxc
+    M[:, 2, 3] = M[:, 3, 2] = myc
+    M[:, 2, 4] = M[:, 4, 2] = -mxc
+    M[:, 3, 3] = i_edge
+    M[:, 4, 4] = i_flap
+    M[:, 3, 4] = M[:, 4, 3] = -i_cp
+    M[:, 5, 5] = ip
+    return M
+
+
+# ---------------------------------------------------------------------------------- file readers
+def _numbers(line: str) -> list[float] | None:
+    try:
+        return [float(t) for t in line.replace(",", " ").split()]
+    except ValueError:
+        return None
+
+
+def read_beamdyn_blade(path: str | Path, twist_deg_by_eta: tuple[np.ndarray, np.ndarray] | None = None,
+                       length: float = float("nan")) -> BeamProperties:
+    """Read a BeamDyn blade file (``station_total`` blocks of eta + 6x6 K + 6x6 M).
+
+    Parameters
+    ----------
+    path : BeamDyn blade file.
+    twist_deg_by_eta : optional (eta, twist_deg) of the BeamDyn main file key points, stored in the
+        result (converted to rad); zeros otherwise.
+    length : blade length (m) for :attr:`BeamProperties.length`.
+    """
+    p = Path(path)
+    lines = p.read_text().splitlines()
+    n_st = None
+    start = None
+    for i, ln in enumerate(lines):
+        if "station_total" in ln:
+            n_st = int(ln.split()[0])
+        if "DISTRIBUTED PROPERTIES" in ln.upper():
+            start = i + 1
+            break
+    if n_st is None or start is None:
+        raise InputError("BeamDyn blade file", str(p), "a BeamDyn blade input file (station_total, DISTRIBUTED "
+                         "PROPERTIES)")
+    rows = [r for r in (_numbers(ln) for ln in lines[start:]) if r]
+    eta, K, M = [], [], []
+    i = 0
+    while i < len(rows) and len(eta) < n_st:
+        if len(rows[i]) == 1:
+            eta.append(rows[i][0])
+            K.append(rows[i + 1:i + 7])
+            M.append(rows[i + 7:i + 13])
+            i += 13
+        else:
+            i += 1
+    if len(eta) != n_st:
+        raise InputError("BeamDyn blade file", str(p), f"{n_st} stations, found {len(eta)}")
+    eta_a = np.array(eta)
+    Ks, Ms = beamdyn_to_section(np.array(K, dtype=float), np.array(M, dtype=float))
+    tw = np.zeros_like(eta_a)
+    if twist_deg_by_eta is not None:
+        tw = np.radians(np.interp(eta_a, *twist_deg_by_eta))
+    return BeamProperties(s=eta_a, stiffness=Ks, mass=Ms, twist=tw, length=float(length),
+                          source=f"BeamDyn {p.name}")
+
+
+def read_elastodyn_blade(path: str | Path, length: float, apply_mass_adjustment: bool = True,
+                         GJ: np.ndarray | None = None, EA: np.ndarray | None = None) -> BeamProperties:
+    """ElastoDyn blade file -> uncoupled sections (EA and GJ are not in ElastoDyn: pass them or
+    they default to 1e3 x EI_max-scale placeholders flagged in ``source``).
+
+    Mass per length is multiplied by ``AdjBlMs`` and the EIs by ``AdjFlSt``/``AdjEdSt`` when
+    ``apply_mass_adjustment`` (Jonkman 2009's 17,740 kg includes AdjBlMs = 1.04536).
+    """
+    p = Path(path)
+    lines = p.read_text().splitlines()
+    adj = {"AdjBlMs": 1.0, "AdjFlSt": 1.0, "AdjEdSt": 1.0}
+    n_st = None
+    for ln in lines:
+        tok = ln.split()
+        if len(tok) >= 2 and tok[1] in adj:
+            adj[tok[1]] = float(tok[0])
+        if len(tok) >= 2 and tok[1] == "NBlInpSt":
+            n_st = int(tok[0])
+    i0 = next(i for i, ln in enumerate(lines) if "BlFract" in ln) + 2
+    tab = np.array([_numbers(ln)[:6] for ln in lines[i0:i0 + n_st]])
+    frac, _, twist, mden, flp, edg = tab.T
+    if not apply_mass_adjustment:
+        adj = {k: 1.0 for k in adj}
+    m = mden * adj["AdjBlMs"]
+    EIflap, EIedge = flp * adj["AdjFlSt"], edg * adj["AdjEdSt"]
+    big = 1e3 * max(EIflap.max(), EIedge.max())
+    EA_ = EA if EA is not None else np.full_like(m, big)
+    GJ_ = GJ if GJ is not None else np.full_like(m, big)
+    n = m.size
+    Ks = np.zeros((n, 6, 6))
+    Ms = np.zeros((n, 6, 6))
+    for j in range(n):
+        # section y is the flapwise *direction*: bending about y is edgewise, about z flapwise
+        Ks[j] = np.diag([EA_[j], big, big, GJ_[j], EIedge[j], EIflap[j]])
+        Ms[j] = np.diag([m[j], m[j], m[j], 0.0, 0.0, 0.0])
+    src = f"ElastoDyn {p.name} (AdjBlMs={adj['AdjBlMs']})" + ("" if EA is not None else "; EA/GJ rigid placeholders")
+    return BeamProperties(s=frac, stiffness=Ks, mass=Ms, twist=np.radians(twist), length=float(length), source=src)
+
+
+# ------------------------------------------------------------------------------------- functions
+def blade_beam_sections(turbine: Turbine) -> BeamProperties:
+    """Blade 6x6 properties about the reference axis in the BeamSection convention.
+
+    Uses the properties that came with the turbine (windIO 6x6, or a BeamDyn/ElastoDyn file named
+    in its supplement).  Raises :class:`InputError` if the turbine has none (computing them from
+    the layup is a cross-section analysis, not done here).
+    """
+    if turbine.blade.beam is None:
+        raise InputError("components.blade.elastic_properties", None,
+                         "blade 6x6 beam properties in the turbine file or its supplement", turbine.source)
+    return turbine.blade.beam
+
+
+def tube_section(D: float, t: float, material: IsotropicMaterial | OrthotropicMaterial,
+                 mass_factor: float = 1.0) -> tuple[np.ndarray, np.ndarray]:
+    """Exact properties of a circular tube (outer diameter D, wall t) in the BeamSection order.
+
+    EA = E A, EI = E I, GJ = G J with A = pi (Ro^2 - Ri^2), I = pi/4 (Ro^4 - Ri^4), J = 2 I;
+    shear areas with the thin-tube shear factor k = 0.5; mass per length rho A (x mass_factor for
+    outfitting), mass moments rho I (y, z) and rho J (torsion).
+    """
+    Ro = 0.5 * D
+    Ri = Ro - t
+    A = np.pi * (Ro**2 - Ri**2)
+    I = 0.25 * np.pi * (Ro**4 - Ri**4)
+    J = 2.0 * I
+    if isinstance(material, IsotropicMaterial):
+        E, G, rho = material.E, material.G, material.rho
+    else:
+        E, G, rho = material.E1, material.G12, material.rho
+    K = np.diag([E * A, 0.5 * G * A, 0.5 * G * A, G * J, E * I, E * I])
+    m = rho * A * mass_factor
+    Mm = np.diag([m, m, m, rho * J * mass_factor, rho * I * mass_factor, rho * I * mass_factor])
+    return K, Mm
+
+
+def tower_beam_sections(turbine: Turbine) -> BeamProperties:
+    """Tower sections from outer diameter, wall layers and materials (circular tubes; layers
+    stacked from the outside in).  Section frame: x up the tower axis, y = global x (downwind),
+    z = global y; the tube is axisymmetric so the orientation only matters for the labels."""
+    tw = turbine.tower
+    n = tw.s.size
+    K = np.zeros((n, 6, 6))
+    M = np.zeros((n, 6, 6))
+    # layers are concentric: a layer's outer diameter is D minus twice the walls outside it
+    outside = np.zeros(n)
+    for lay in tw.layers:
+        mat = turbine.materials[lay.material]
+        for j in range(n):
+            Kj, Mj = tube_section(tw.outer_diameter[j] - 2 * outside[j], lay.thickness[j], mat,
+                                  tw.outfitting_factor)
+            K[j] += Kj
+            M[j] += Mj
+        outside = outside + lay.thickness
+    return BeamProperties(s=tw.s, stiffness=K, mass=M, twist=np.zeros(n), length=tw.height,
+                          source="thin-walled tube from outer_diameter/layers")
