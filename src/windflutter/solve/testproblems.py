@@ -19,7 +19,7 @@ import scipy.sparse as sp
 
 from windflutter.errors import InputError
 
-__all__ = ["TubeQEP", "tube_qep"]
+__all__ = ["TubeQEP", "tube_qep", "demo_point"]
 
 
 @dataclass
@@ -169,3 +169,31 @@ def tube_qep(
     loads[2::6, 0] = 1.0
     loads[3::6, 1] = 1.0
     return TubeQEP(Ms=Ms, Ks=Ks, G=G, Ma=Ma, Da=Da, Ka=Ka, loads=loads, n_nodes=n_free_nodes)
+
+
+def demo_point(task: dict) -> dict:
+    """A stand-in "operating point" for tests and benchmarks of :mod:`windflutter.parallel`.
+
+    Builds :func:`tube_qep` with the task's size and a speed-dependent stiffening
+    ``K + speed^2 * 0.3 Ks``, reduces it on ``n_modes`` structural modes and returns the
+    ``n_eig`` smallest eigenvalues. Deterministic in ``task``.
+
+    Parameters
+    ----------
+    task
+        ``{"speed": float, "n_around": int, "n_along": int, "n_modes": int, "n_eig": int,
+        "repeat": int}``; ``repeat`` re-solves to make the task longer (benchmarks).
+        A negative ``speed`` raises :class:`InputError` (to test failure reporting).
+    """
+    from windflutter.solve.reduction import reduced_eigs, structural_modes
+
+    speed = float(task.get("speed", 0.0))
+    if speed < 0:
+        raise InputError("speed", speed, "a non-negative rotor speed (rad/s)")
+    p = tube_qep(int(task.get("n_around", 4)), int(task.get("n_along", 4)), seed=int(task.get("seed", 0)))
+    Kstr = (p.Ks * (1.0 + 0.3 * speed**2)).tocsc()
+    K = (Kstr - p.Ka).tocsc()
+    for _ in range(max(1, int(task.get("repeat", 1)))):
+        b = structural_modes(p.Ms, Kstr, int(task.get("n_modes", 10)))
+        lam, _ = reduced_eigs(p.M, p.D, K, b, int(task.get("n_eig", 6)))
+    return {"speed": speed, "eigenvalues": lam, "pid": __import__("os").getpid()}

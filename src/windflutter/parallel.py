@@ -1,0 +1,297 @@
+"""Run independent tasks (operating points, design variants) serially, on local cores or on Dask.
+
+A stability map is a set of independent operating points; each one is an eigen-solve sweep
+that takes seconds to minutes. :func:`run_tasks` runs ``fn(task)`` for every task
+
+* in this process (``workers=1``),
+* on the local cores with a :class:`concurrent.futures.ProcessPoolExecutor` (default: one worker
+  per core), or
+* on a Dask cluster (``scheduler="tcp://host:8786"``, a :class:`distributed.Client` or a
+  :class:`distributed.LocalCluster`),
+
+and returns one :class:`TaskResult` per task **in input order**, whatever order they finished
+in. The result of a task does not depend on where it ran (each task is a pure function of its
+input; nothing is shared between tasks), so serial, local-parallel and Dask runs give identical
+results -- ``tests/perf/test_perf_parallel.py`` checks this bit for bit.
+
+An exception inside a task does not stop the run: that task comes back with ``ok=False`` and
+the error text and traceback. A worker process that dies (segfault, out of memory) fails the
+tasks it held in the same way.
+
+The function and tasks are serialised with ``cloudpickle`` (installed with dask), so closures
+and lambdas work; the function is sent to each local worker once, not once per task, so it may
+carry a large model. :func:`iter_tasks` yields results as they complete, for callers that store
+each point as soon as it is done (``windflutter run``).
+"""
+
+from __future__ import annotations
+
+import os
+import pickle
+import time
+import traceback
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from concurrent.futures.process import BrokenProcessPool
+from dataclasses import dataclass
+from typing import Any, Callable, Iterable, Iterator, Sequence
+
+from windflutter.errors import InputError
+
+try:  # cloudpickle ships with dask; fall back to pickle (module-level functions only)
+    import cloudpickle as _cp
+except Exception:  # pragma: no cover - depends on the environment
+    _cp = pickle
+
+__all__ = ["TaskResult", "run_tasks", "iter_tasks", "default_workers"]
+
+ProgressCallback = Callable[[int, int, "TaskResult"], None]
+
+
+@dataclass
+class TaskResult:
+    """Outcome of one task.
+
+    Attributes
+    ----------
+    index
+        Position of the task in the input sequence.
+    ok
+        ``True`` if ``fn(task)`` returned; ``False`` if it raised (or its worker died).
+    value
+        The return value (``None`` when failed).
+    error
+        ``"ExceptionType: message"`` when failed, else ``""``.
+    traceback
+        Formatted traceback of the failure (from the worker), else ``""``.
+    elapsed
+        Wall time of the task inside the worker (s).
+    worker
+        Where it ran: ``"local"``, ``"pid:<n>"`` or the Dask worker address.
+    """
+
+    index: int
+    ok: bool
+    value: Any = None
+    error: str = ""
+    traceback: str = ""
+    elapsed: float = 0.0
+    worker: str = ""
+
+
+def default_workers() -> int:
+    """Number of local worker processes used by default: the usable cores (at least 1)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _execute(fn: Callable, index: int, task: Any, where: str) -> TaskResult:
+    t0 = time.perf_counter()
+    try:
+        value = fn(task)
+    except Exception as exc:  # noqa: BLE001 - every task failure is reported, not raised
+        msg = str(exc).strip()
+        return TaskResult(index, False, None, f"{type(exc).__name__}: {msg}" if msg else type(exc).__name__,
+                          traceback.format_exc(), time.perf_counter() - t0, where)
+    return TaskResult(index, True, value, "", "", time.perf_counter() - t0, where)
+
+
+# --- local process pool -------------------------------------------------------------------
+# The task function lives in a per-worker-process slot, set once by the pool initializer, so a
+# large callable (e.g. one holding an assembled FE model) is transferred once per worker.
+_WORKER_FN: Callable | None = None
+
+
+def _init_worker(fn_bytes: bytes) -> None:
+    global _WORKER_FN
+    _WORKER_FN = _cp.loads(fn_bytes)
+
+
+def _run_in_worker(index: int, task_bytes: bytes) -> bytes:
+    where = f"pid:{os.getpid()}"
+    try:
+        task = _cp.loads(task_bytes)
+    except Exception as exc:  # noqa: BLE001
+        res = TaskResult(index, False, None, f"{type(exc).__name__}: cannot unpickle task: {exc}",
+                         traceback.format_exc(), 0.0, where)
+    else:
+        res = _execute(_WORKER_FN, index, task, where)
+    try:
+        return _cp.dumps(res)
+    except Exception as exc:  # noqa: BLE001 - an unpicklable return value fails that task only
+        return _cp.dumps(TaskResult(index, False, None,
+                                    f"{type(exc).__name__}: result cannot be sent back: {exc}",
+                                    traceback.format_exc(), res.elapsed, where))
+
+
+def _dumps_task(index: int, task: Any) -> tuple[bytes | None, TaskResult | None]:
+    try:
+        return _cp.dumps(task), None
+    except Exception as exc:  # noqa: BLE001
+        return None, TaskResult(index, False, None, f"{type(exc).__name__}: cannot pickle task: {exc}",
+                                traceback.format_exc(), 0.0, "local")
+
+
+def _iter_pool(fn, tasks, workers, start_method) -> Iterator[TaskResult]:
+    import multiprocessing as mp
+
+    try:
+        fn_bytes = _cp.dumps(fn)
+    except Exception as exc:
+        raise InputError("fn", repr(fn), f"a picklable callable ({type(exc).__name__}: {exc})") from exc
+    ctx = mp.get_context(start_method) if start_method else None
+    n_workers = max(1, min(workers, len(tasks)))
+    ex = ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx, initializer=_init_worker,
+                             initargs=(fn_bytes,))
+    futures = {}
+    try:
+        for i, t in enumerate(tasks):
+            payload, failed = _dumps_task(i, t)
+            if failed is not None:
+                yield failed
+                continue
+            futures[ex.submit(_run_in_worker, i, payload)] = i
+        pending = set(futures)
+        while pending:
+            done, pending = wait(pending, return_when=FIRST_COMPLETED)
+            for fut in done:
+                i = futures[fut]
+                try:
+                    yield _cp.loads(fut.result())
+                except BrokenProcessPool as exc:
+                    yield TaskResult(i, False, None,
+                                     f"BrokenProcessPool: worker process died ({exc})", "", 0.0, "local")
+                except Exception as exc:  # noqa: BLE001
+                    yield TaskResult(i, False, None, f"{type(exc).__name__}: {exc}",
+                                     traceback.format_exc(), 0.0, "local")
+    finally:
+        ex.shutdown(wait=True, cancel_futures=True)
+
+
+# --- Dask ---------------------------------------------------------------------------------
+def _dask_execute(fn: Callable, index: int, task: Any) -> TaskResult:
+    try:
+        from distributed import get_worker
+
+        where = get_worker().address
+    except Exception:  # noqa: BLE001
+        where = "dask"
+    return _execute(fn, index, task, where)
+
+
+def _iter_dask(fn, tasks, scheduler, connect_timeout: float) -> Iterator[TaskResult]:
+    try:
+        from distributed import Client, as_completed
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise InputError("scheduler", scheduler,
+                         "dask.distributed installed (pip install windflutter[dist])") from exc
+    own = False
+    if isinstance(scheduler, Client):
+        client = scheduler
+    else:
+        try:
+            client = Client(scheduler, timeout=connect_timeout, set_as_default=False)
+        except Exception as exc:  # noqa: BLE001 - unreachable address, bad string
+            raise InputError("scheduler", str(scheduler),
+                             f"the address of a running Dask scheduler, e.g. tcp://host:8786 "
+                             f"({type(exc).__name__}: {exc})") from exc
+        own = True
+    try:
+        fn_future = client.scatter(fn, broadcast=True, hash=False) if len(tasks) > 1 else fn
+        futs = [client.submit(_dask_execute, fn_future, i, t, pure=False) for i, t in enumerate(tasks)]
+        index_of = {f.key: i for i, f in enumerate(futs)}
+        for fut in as_completed(futs, loop=client.loop):
+            i = index_of[fut.key]
+            try:
+                yield fut.result()
+            except Exception as exc:  # noqa: BLE001 - e.g. KilledWorker
+                yield TaskResult(i, False, None, f"{type(exc).__name__}: {exc}",
+                                 traceback.format_exc(), 0.0, "dask")
+            fut.release()
+    finally:
+        if own:
+            client.close()
+
+
+# --- public API ---------------------------------------------------------------------------
+def iter_tasks(
+    fn: Callable[[Any], Any],
+    tasks: Sequence[Any] | Iterable[Any],
+    *,
+    workers: int | None = None,
+    scheduler: Any = None,
+    start_method: str | None = None,
+    connect_timeout: float = 10.0,
+) -> Iterator[TaskResult]:
+    """Run ``fn(task)`` for every task; yield :class:`TaskResult` objects as they complete.
+
+    Same parameters as :func:`run_tasks`; the order is completion order (use ``.index``).
+    """
+    tasks = list(tasks)
+    if scheduler is not None and not isinstance(scheduler, str):
+        # a LocalCluster / SpecCluster object: connect a client to its scheduler
+        if hasattr(scheduler, "scheduler_address") and not hasattr(scheduler, "submit"):
+            scheduler = scheduler.scheduler_address
+    if scheduler is not None:
+        yield from _iter_dask(fn, tasks, scheduler, connect_timeout)
+        return
+    if workers is None:
+        workers = default_workers()
+    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
+        raise InputError("workers", workers, "a positive integer (1 = serial, in this process)")
+    if workers == 1 or len(tasks) <= 1:
+        for i, t in enumerate(tasks):
+            yield _execute(fn, i, t, "local")
+        return
+    yield from _iter_pool(fn, tasks, workers, start_method)
+
+
+def run_tasks(
+    fn: Callable[[Any], Any],
+    tasks: Sequence[Any] | Iterable[Any],
+    *,
+    workers: int | None = None,
+    scheduler: Any = None,
+    progress: ProgressCallback | None = None,
+    start_method: str | None = None,
+    connect_timeout: float = 10.0,
+) -> list[TaskResult]:
+    """Run ``fn(task)`` for every task and return the results in input order.
+
+    Parameters
+    ----------
+    fn
+        The task function; any callable that ``cloudpickle`` can serialise (closures and lambdas
+        included). It should be a pure function of its argument.
+    tasks
+        The task arguments (each serialisable), e.g. operating points.
+    workers
+        Local worker processes; default: the number of usable cores; ``1`` runs serially in this
+        process (no pickling). Ignored when ``scheduler`` is given.
+    scheduler
+        Dask scheduler address (``"tcp://host:8786"``), a ``distributed.Client`` or a
+        ``distributed.LocalCluster``; the workers must have windflutter installed.
+    progress
+        Called in this process as ``progress(n_done, n_total, result)`` after each task.
+    start_method
+        ``multiprocessing`` start method for the local pool (``"fork"``, ``"forkserver"``,
+        ``"spawn"``); default: the platform's.
+    connect_timeout
+        Seconds to wait for the Dask scheduler at ``scheduler`` (an address).
+
+    Returns
+    -------
+    list of TaskResult
+        ``results[i]`` belongs to ``tasks[i]``; failed tasks have ``ok=False``.
+    """
+    tasks = list(tasks)
+    out: list[TaskResult | None] = [None] * len(tasks)
+    n_done = 0
+    for res in iter_tasks(fn, tasks, workers=workers, scheduler=scheduler, start_method=start_method,
+                          connect_timeout=connect_timeout):
+        out[res.index] = res
+        n_done += 1
+        if progress is not None:
+            progress(n_done, len(tasks), res)
+    return out  # type: ignore[return-value]
