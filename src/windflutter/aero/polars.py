@@ -1,0 +1,98 @@
+"""Linear fits of airfoil polars over the attached-flow range (seed ch. 3.2, viscous model).
+
+The attached-flow range of a polar is found as the contiguous interval of angles of attack
+around the zero-lift angle where the local lift slope stays above half of the slope at zero
+lift and below the stall peaks, limited to ``max_range`` on either side.  Over that range
+``Cl`` and ``Cd`` are fitted by least-squares straight lines; their slopes are ``Cl_alpha`` and
+``Cd_alpha`` (1/rad).  Polars without a lift slope (cylinders) give ``Cl_alpha = 0``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from windflutter.aero.sections import Polar
+from windflutter.errors import InputError
+
+
+@dataclass(frozen=True)
+class PolarFit:
+    """Linear fit of one polar.
+
+    Attributes
+    ----------
+    cl_alpha, cd_alpha : slopes (1/rad).  alpha_zero_lift : zero-lift angle (rad).
+    alpha_min, alpha_max : attached-flow range used (rad).  n_points : points in the fit.
+    name : airfoil name.
+    """
+
+    cl_alpha: float
+    cd_alpha: float
+    alpha_zero_lift: float
+    alpha_min: float
+    alpha_max: float
+    n_points: int
+    name: str = ""
+
+
+def fit_polar(polar: Polar, max_range: float = np.radians(12.0), slope_fraction: float = 0.5) -> PolarFit:
+    """Fit ``Cl = Cl_alpha (alpha - alpha_0)`` and ``Cd`` linearly over the attached-flow range.
+
+    Parameters
+    ----------
+    polar : the airfoil polar (alpha in rad).
+    max_range : largest distance from the zero-lift angle kept on either side (rad).
+    slope_fraction : the range ends where the local lift slope drops below this fraction of the
+        slope at zero lift (onset of separation).
+    """
+    a = np.asarray(polar.alpha, float)
+    cl = np.asarray(polar.cl, float)
+    cd = np.asarray(polar.cd, float)
+    if a.ndim != 1 or a.size < 3 or cl.shape != a.shape or cd.shape != a.shape:
+        raise InputError(f"polar[{polar.name}]", a.shape, "alpha, cl, cd arrays of equal length >= 3")
+    if np.any(np.diff(a) <= 0):
+        raise InputError(f"polar[{polar.name}].alpha", "not increasing", "increasing angles of attack (rad)")
+    # candidate window around small angles, where attached flow lives
+    win = np.abs(a) <= np.radians(20.0)
+    if win.sum() < 3 or np.ptp(cl[win]) < 1e-3:
+        return PolarFit(0.0, 0.0, 0.0, float(a[win].min()) if win.any() else 0.0,
+                        float(a[win].max()) if win.any() else 0.0, int(win.sum()), polar.name)
+    # zero-lift angle: first upward zero crossing of Cl inside the window
+    aw, clw = a[win], cl[win]
+    cross = np.where((clw[:-1] <= 0) & (clw[1:] > 0))[0]
+    if cross.size:
+        i = cross[np.argmin(np.abs(aw[cross]))]
+        a0 = aw[i] - clw[i] * (aw[i + 1] - aw[i]) / (clw[i + 1] - clw[i])
+    else:
+        a0 = aw[np.argmin(np.abs(clw))]
+    slope = np.gradient(cl, a)
+    i0 = int(np.argmin(np.abs(a - a0)))
+    s0 = np.median(slope[max(i0 - 1, 0): i0 + 2])
+    if s0 <= 0:
+        return PolarFit(0.0, 0.0, float(a0), float(a0), float(a0), 0, polar.name)
+    ok = (slope >= slope_fraction * s0) & (np.abs(a - a0) <= max_range)
+    lo = hi = i0
+    while lo - 1 >= 0 and ok[lo - 1]:
+        lo -= 1
+    while hi + 1 < a.size and ok[hi + 1]:
+        hi += 1
+    if hi - lo < 2:
+        lo, hi = max(i0 - 1, 0), min(i0 + 1, a.size - 1)
+    sel = slice(lo, hi + 1)
+    A = np.vstack([a[sel], np.ones(hi - lo + 1)]).T
+    cla = float(np.linalg.lstsq(A, cl[sel], rcond=None)[0][0])
+    cda = float(np.linalg.lstsq(A, cd[sel], rcond=None)[0][0])
+    return PolarFit(cla, cda, float(a0), float(a[lo]), float(a[hi]), hi - lo + 1, polar.name)
+
+
+def fit_table(polars: list[Polar]) -> list[dict]:
+    """Fits of several polars as rows (degrees for ranges) for reports."""
+    rows = []
+    for p in polars:
+        f = fit_polar(p)
+        rows.append({"airfoil": f.name, "cl_alpha_per_rad": f.cl_alpha, "cd_alpha_per_rad": f.cd_alpha,
+                     "alpha0_deg": np.degrees(f.alpha_zero_lift), "range_deg": (np.degrees(f.alpha_min),
+                     np.degrees(f.alpha_max)), "n_points": f.n_points})
+    return rows

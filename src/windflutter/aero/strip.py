@@ -1,0 +1,337 @@
+"""Strip-theory (Theodorsen) aerodynamic matrices on a finite-element model.
+
+For every strip ``j`` of an :class:`~windflutter.aero.sections.AeroSections` and an
+:class:`OperatingPoint` (wind speed, rotor speed, extra pitch) we build
+
+* the relative flow: ``U_vec = V w - Omega x (x_j - hub)`` projected on the plane normal to the
+  span; ``U = |U_vec|`` (equals ``sqrt(V^2 + (Omega r)^2)`` for an unconed, untilted rotor;
+  induction neglected as in the seed, ch. 3.2);
+* the inflow axes: ``e3`` along ``U_vec`` (drag), ``e1`` normal to it in the section plane on the
+  suction side (lift), ``e2 = e1 x e3`` (nose-up pitch axis, +-span);
+* the section motion ``q_j = (h, alpha, s)`` with ``h = e1 . u`` (plunge along lift, i.e. up),
+  ``alpha = e2 . theta`` and ``s = e3 . u`` from the section's rows of ``motion_map``;
+* Theodorsen's forces (Bisplinghoff-Ashley-Halfman / Hodges & Pierce form with h positive
+  *down*; here rewritten for h up), frozen at ``C(k_j)``, ``k_j = omega b_j / U_j``:
+  ``F_j = (Ma_j s^2 + Da_j s + Ka_j) q_j`` per unit span, times the strip width;
+* global matrices by consistent virtual work: ``A = P^T blockdiag(A_j) P`` with
+  ``P = E motion_map`` (``E`` picks (e1.u, e2.theta, e3.u) of each section).
+
+The coupled equation of motion is then ``(Ms - Ma) u'' + (Ds + G - Da) u' + (Ks - Kr - Ka) u = 0``.
+
+Variants (seed ch. 3.2, eqs. 3.49-3.54): ``"potential"`` (lift slope 2 pi, no drag) and
+``"viscous"`` (circulatory 2 pi replaced by the polar's fitted ``Cl_alpha``; drag
+``D = rho U^2 b Cd_alpha alpha_unsteady`` along ``e3`` with
+``alpha_unsteady = L_circ / (Cl_alpha rho U^2 b)``; apparent-mass terms optionally scaled by
+``Cl_alpha / 2 pi``).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.sparse as sp
+
+from windflutter.aero.sections import AeroSections, RotorGeometry
+from windflutter.errors import InputError
+
+
+def theodorsen_c(k) -> np.ndarray:
+    """Theodorsen's function ``C(k)`` for reduced frequency ``k >= 0`` (vectorized).
+
+    Uses the typical-section engineer's :func:`windflutter.aero.theodorsen.theodorsen` when
+    present, otherwise ``C = H1(2)(k) / (H1(2)(k) + i H0(2)(k))`` with ``C(0) = 1``.
+    """
+    k = np.asarray(k, dtype=float)
+    try:  # the project's own implementation, if it has landed
+        from windflutter.aero.theodorsen import theodorsen as _th
+
+        return np.asarray(_th(k), dtype=complex)
+    except ImportError:
+        pass
+    from scipy.special import hankel2
+
+    out = np.ones(k.shape, dtype=complex)
+    pos = k > 0
+    kk = k[pos]
+    h1 = hankel2(1, kk)
+    h0 = hankel2(0, kk)
+    out[pos] = h1 / (h1 + 1j * h0)
+    return out
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """Where the rotor runs.
+
+    Parameters
+    ----------
+    wind_speed : free wind V (m/s) along ``rotor.wind_direction``.
+    omega : rotor speed (rad/s) about ``rotor.shaft_axis`` (0 for a fixed wing).
+    air_density : rho (kg/m^3).
+    rotor : rotor geometry; for a fixed wing only ``wind_direction`` is used.
+    pitch : extra blade pitch (rad, positive nose-down to feather) on top of what the model's
+        ``e_chord`` already holds; it only changes the reported angle of attack (the linear
+        strip matrices use the inflow axes).
+    """
+
+    wind_speed: float
+    omega: float = 0.0
+    air_density: float = 1.225
+    rotor: RotorGeometry | None = None
+    pitch: float = 0.0
+
+
+@dataclass(frozen=True)
+class AeroOptions:
+    """Which strip model.
+
+    Parameters
+    ----------
+    model : ``"potential"`` or ``"viscous"``.
+    apparent_mass_scaling : scale apparent-mass (non-circulatory) terms by ``Cl_alpha / 2 pi``
+        (viscous only; the seed does this).
+    lift_slope : optional per-section ``Cl_alpha`` (1/rad) overriding the polar fits (viscous),
+        shape (ns,) or scalar.
+    drag_slope : optional per-section ``Cd_alpha`` (1/rad), same rules.
+    """
+
+    model: str = "potential"
+    apparent_mass_scaling: bool = False
+    lift_slope: np.ndarray | float | None = None
+    drag_slope: np.ndarray | float | None = None
+
+    def __post_init__(self):
+        if self.model not in ("potential", "viscous"):
+            raise InputError("aero.model", self.model, "'potential' or 'viscous'")
+
+
+@dataclass
+class SectionFlow:
+    """Relative flow at each strip (arrays over sections).
+
+    U (m/s), e1/e2/e3 (ns, 3) inflow axes, phi inflow angle from the rotor plane (rad),
+    alpha geometric angle of attack (rad, chord vs U, nose-up positive).
+    """
+
+    U: np.ndarray
+    e1: np.ndarray
+    e2: np.ndarray
+    e3: np.ndarray
+    phi: np.ndarray
+    alpha: np.ndarray
+
+
+def _unit(v: np.ndarray) -> np.ndarray:
+    n = np.linalg.norm(v, axis=-1, keepdims=True)
+    return v / np.where(n > 0, n, 1.0)
+
+
+def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
+    """Relative speed, inflow axes and angles at every strip (see module docstring)."""
+    if not np.isfinite(op.wind_speed) or op.wind_speed < 0:
+        raise InputError("wind_speed", op.wind_speed, "a non-negative speed (m/s)")
+    if not np.isfinite(op.omega):
+        raise InputError("omega", op.omega, "a finite rotor speed (rad/s)")
+    if not (np.isfinite(op.air_density) and op.air_density > 0):
+        raise InputError("air_density", op.air_density, "a positive density (kg/m^3)")
+    ns = sections.n_sections
+    span = _unit(np.asarray(sections.e_span, float))
+    chord = _unit(np.asarray(sections.e_chord, float))
+    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
+    vrel = np.tile(op.wind_speed * wind, (ns, 1))
+    blade_vel = np.zeros((ns, 3))
+    if op.omega != 0.0:
+        if op.rotor is None:
+            raise InputError("rotor", None, "a RotorGeometry when the rotor speed is not zero")
+        axis = _unit(np.asarray(op.rotor.shaft_axis, float))
+        rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
+        blade_vel = op.omega * np.cross(axis, rvec)
+        vrel = vrel - blade_vel
+    vrel = vrel - np.sum(vrel * span, axis=1, keepdims=True) * span
+    U = np.linalg.norm(vrel, axis=1)
+    if np.any(U <= 0):
+        j = int(np.argmin(U))
+        raise InputError("operating point", (op.wind_speed, op.omega), f"a non-zero relative speed at section {j}")
+    e3 = vrel / U[:, None]
+    e1 = _unit(np.cross(e3, span))
+    suction = np.cross(chord, span)
+    flip = np.sum(e1 * suction, axis=1) < 0
+    e1[flip] *= -1.0
+    e2 = np.cross(e1, e3)
+    ca = np.sum(chord * e3, axis=1)
+    sa = -np.sum(chord * e1, axis=1)
+    alpha = np.arctan2(sa, ca) - op.pitch
+    vrot = np.linalg.norm(blade_vel, axis=1)
+    phi = np.arctan2(np.full(ns, op.wind_speed), vrot)
+    return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
+
+
+def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0):
+    """Theodorsen section matrices per unit span in ``q = (h up, alpha nose-up, s along U)``.
+
+    Parameters
+    ----------
+    b : (ns,) semi-chord (m).  a : (ns,) elastic axis aft of mid-chord (semi-chords).
+    U : (ns,) relative speed (m/s).  C : (ns,) complex Theodorsen values C(k_j).
+    rho : air density (kg/m^3).  cla, cda : lift and drag slopes (1/rad), scalars or (ns,).
+    am_scale : factor on the apparent-mass terms (1, or Cl_alpha / 2 pi).
+
+    Returns
+    -------
+    Ma, Da, Ka : (ns, 3, 3) complex, so that the section forces (lift along e1 (N/m), moment
+    about e2 (N m/m), drag along e3 (N/m)) are ``Ma q'' + Da q' + Ka q``.
+    """
+    b, a, U, C = (np.asarray(x) for x in (b, a, U, C))
+    ns = b.shape[0]
+    cla = np.broadcast_to(np.asarray(cla, float), (ns,))
+    cda = np.broadcast_to(np.asarray(cda, float), (ns,))
+    am = np.broadcast_to(np.asarray(am_scale, float), (ns,))
+    Ma = np.zeros((ns, 3, 3), complex)
+    Da = np.zeros((ns, 3, 3), complex)
+    Ka = np.zeros((ns, 3, 3), complex)
+    pr = np.pi * rho
+    # non-circulatory (apparent mass) part, h_down = -h:
+    # L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
+    # M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
+    Ma[:, 0, 0] = -pr * b**2 * am
+    Ma[:, 0, 1] = -pr * b**3 * a * am
+    Ma[:, 1, 0] = -pr * b**3 * a * am
+    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
+    Da[:, 0, 1] = pr * b**2 * U * am
+    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
+    # circulatory: Q = C [h_down' + U alpha + b (1/2 - a) alpha'] -> L_c = cla rho U b Q
+    # the circulatory "downwash" row w = [d/dt coeffs (h, alpha), static coeffs]
+    circ = cla * rho * U * b * C  # (ns,)
+    wd_h = -1.0
+    wd_a = b * (0.5 - a)
+    wk_a = U
+    mom_arm = b * (a + 0.5)  # M_c = b (a + 1/2) L_c  (lift at quarter chord)
+    drag = np.where(cla != 0, cda / np.where(cla != 0, cla, 1.0), 0.0)  # D = (Cd_a / Cl_a) L_c
+    for row, fac in ((0, 1.0), (1, mom_arm), (2, drag)):
+        Da[:, row, 0] += fac * circ * wd_h
+        Da[:, row, 1] += fac * circ * wd_a
+        Ka[:, row, 1] += fac * circ * wk_a
+    return Ma, Da, Ka
+
+
+def section_map(sections: AeroSections, flow: SectionFlow) -> sp.csr_matrix:
+    """Sparse (3 ns, n_dof) map from structural DOFs to ``(h, alpha, s)`` of every section."""
+    ns = sections.n_sections
+    rows = np.repeat(np.arange(3 * ns), 3)
+    cols = np.empty((ns, 3, 3), dtype=np.int64)
+    base = 6 * np.arange(ns)[:, None]
+    cols[:, 0, :] = base + np.arange(3)  # e1 . u
+    cols[:, 1, :] = base + 3 + np.arange(3)  # e2 . theta
+    cols[:, 2, :] = base + np.arange(3)  # e3 . u
+    vals = np.stack([flow.e1, flow.e2, flow.e3], axis=1)  # (ns, 3, 3)
+    E = sp.csr_matrix((vals.ravel(), (rows, cols.ravel())), shape=(3 * ns, 6 * ns))
+    mm = sp.csr_matrix(sections.motion_map)
+    if mm.shape[0] != 6 * ns:
+        raise InputError("sections.motion_map", mm.shape, f"{6 * ns} rows (6 per section)")
+    return (E @ mm).tocsr()
+
+
+def lift_drag_slopes(sections: AeroSections, options: AeroOptions):
+    """Per-section (Cl_alpha, Cd_alpha) for the chosen model (1/rad)."""
+    ns = sections.n_sections
+    if options.model == "potential":
+        cla = np.full(ns, 2 * np.pi) if options.lift_slope is None else np.broadcast_to(
+            np.asarray(options.lift_slope, float), (ns,)).copy()
+        return cla, np.zeros(ns)
+    from windflutter.aero.polars import fit_polar
+
+    fits = [fit_polar(p) for p in sections.polars] if sections.polars else []
+    idx = np.asarray(sections.airfoil, dtype=np.int64)
+    if options.lift_slope is not None:
+        cla = np.broadcast_to(np.asarray(options.lift_slope, float), (ns,)).copy()
+    elif fits:
+        cla = np.array([fits[i].cl_alpha for i in idx])
+    else:
+        raise InputError("sections.polars", "[]", "airfoil polars for the viscous model (or a lift_slope)")
+    if options.drag_slope is not None:
+        cda = np.broadcast_to(np.asarray(options.drag_slope, float), (ns,)).copy()
+    elif fits:
+        cda = np.array([fits[i].cd_alpha for i in idx])
+    else:
+        cda = np.zeros(ns)
+    return cla, cda
+
+
+@dataclass
+class StripAero:
+    """Precomputed strip geometry for one operating point; call :meth:`matrices` per frequency.
+
+    Attributes
+    ----------
+    flow : the section flow.  P : (3 ns, n_dof) section-motion map.  width : strip widths (m).
+    cla, cda : slopes used (1/rad).
+    """
+
+    sections: AeroSections
+    op: OperatingPoint
+    options: AeroOptions = field(default_factory=AeroOptions)
+
+    def __post_init__(self):
+        self.flow = section_flow(self.sections, self.op)
+        self.P = section_map(self.sections, self.flow)
+        self.PT = self.P.T.tocsr()
+        self.width = np.asarray(self.sections.width, float)
+        self.b = np.asarray(self.sections.semi_chord, float)
+        self.a = np.asarray(self.sections.elastic_axis, float)
+        self.cla, self.cda = lift_drag_slopes(self.sections, self.options)
+        if self.options.model == "viscous" and self.options.apparent_mass_scaling:
+            self.am = self.cla / (2 * np.pi)
+        else:
+            self.am = np.ones_like(self.cla)
+        ns = self.sections.n_sections
+        self._rows = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, :, None]) * np.ones((1, 1, 3), int)
+        self._cols = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, None, :]) * np.ones((1, 3, 1), int)
+
+    def reduced_frequency(self, omega: float) -> np.ndarray:
+        """``k_j = omega b_j / U_j`` (-)."""
+        return abs(omega) * self.b / self.flow.U
+
+    def section_blocks(self, omega: float):
+        """(ns, 3, 3) Ma, Da, Ka blocks (times strip width) at circular frequency ``omega`` (rad/s)."""
+        C = theodorsen_c(self.reduced_frequency(omega))
+        Ma, Da, Ka = section_matrices(self.b, self.a, self.flow.U, C, self.op.air_density,
+                                      self.cla, self.cda, self.am)
+        w = self.width[:, None, None]
+        return Ma * w, Da * w, Ka * w
+
+    def _assemble(self, blocks: np.ndarray) -> sp.csr_matrix:
+        n = 3 * self.sections.n_sections
+        B = sp.csr_matrix((blocks.ravel(), (self._rows.ravel(), self._cols.ravel())), shape=(n, n))
+        return (self.PT @ B @ self.P).tocsr()
+
+    def matrices(self, omega: float):
+        """Global ``(Ma, Da, Ka)``, sparse complex (n_dof, n_dof), at frequency ``omega`` (rad/s)."""
+        Ma, Da, Ka = self.section_blocks(omega)
+        return self._assemble(Ma), self._assemble(Da), self._assemble(Ka)
+
+    def projected(self, Phi: np.ndarray):
+        """Return a function ``omega -> (Ma, Da, Ka)`` projected on the basis ``Phi`` (n_dof, m).
+
+        ``Phi`` is in the unconstrained DOF numbering; cheap per call (dense m x m).
+        """
+        PPhi = self.P @ Phi  # (3 ns, m)
+        ns = self.sections.n_sections
+        R = PPhi.reshape(ns, 3, -1)
+
+        def f(omega: float):
+            out = []
+            for blk in self.section_blocks(omega):
+                out.append(np.einsum("jam,jab,jbn->mn", R, blk, R))
+            return tuple(out)
+
+        return f
+
+
+def aero_matrices(sections: AeroSections, op: OperatingPoint, omega: float,
+                  options: AeroOptions | None = None):
+    """Sparse complex ``(Ma, Da, Ka)`` (n_dof, n_dof) of all strips at frequency ``omega`` (rad/s).
+
+    Convenience wrapper of :class:`StripAero` (build that once when sweeping frequency).
+    """
+    return StripAero(sections, op, options or AeroOptions()).matrices(omega)

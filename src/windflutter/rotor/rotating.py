@@ -1,0 +1,144 @@
+"""Rotating-frame terms of the rotor (seed ch. 3.1.2-3.1.4; METHOD.md sec. 2).
+
+For the translational DOFs ``u`` of the rotating part with (consistent or lumped) mass matrix
+``Mt`` and constant rotor speed vector ``Omega``, the kinetic energy
+``T = 1/2 (u' + S (R + u))^T Mt (u' + S (R + u))`` with ``S = I (x) skew(Omega)`` gives
+
+* gyroscopic (Coriolis) matrix ``G = Mt S + S Mt`` (``= 2 m skew(Omega)`` for a point mass),
+  acting on velocities;
+* spin softening ``Kr = S^T Mt S`` (``= m (|Omega|^2 I - Omega Omega^T)``), subtracted from K;
+* centrifugal load ``Fr = Kr R`` (``= -m Omega x (Omega x R)``), R from the hub centre;
+
+so that ``Ms u'' + (Ds + G) u' + (Ks - Kr + Ksigma) u = F``.  ``Ksigma`` is the geometric
+(stress) stiffness of the static centrifugal prestress ``Ks u0 = Fr`` (a departure from the
+seed, which leaves it out; switch it off with ``prestress=False`` / ``thesis=True``).
+All three scale with Omega: G ~ Omega, Kr and Ksigma ~ Omega^2, which :class:`RotorTerms` uses
+to build them once per model.
+Rotary-inertia gyroscopic terms of the rotational DOFs are neglected (as in the seed).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from windflutter.aero.sections import RotorGeometry
+from windflutter.errors import InputError, ModelError
+from windflutter.structure.fem import FEModel
+
+
+def skew(v: np.ndarray) -> np.ndarray:
+    """``skew(v) @ x == cross(v, x)``."""
+    x, y, z = v
+    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
+
+
+def rotating_nodes(fe: FEModel, group: str = "rotor") -> np.ndarray:
+    """Node indices of the rotating part (``fe.node_groups[group]``)."""
+    if group not in fe.node_groups:
+        raise InputError("fe.node_groups", sorted(fe.node_groups), f"a '{group}' node group (the rotating part)")
+    return np.unique(np.asarray(fe.node_groups[group], dtype=np.int64))
+
+
+def translational_dofs(nodes: np.ndarray) -> np.ndarray:
+    """Global DOF indices (ux, uy, uz) of ``nodes``, node-major."""
+    return (6 * np.asarray(nodes)[:, None] + np.arange(3)[None, :]).ravel()
+
+
+def _spin_operator(n_nodes: int, omega_vec: np.ndarray) -> sp.csr_matrix:
+    return sp.kron(sp.identity(n_nodes, format="csr"), sp.csr_matrix(skew(omega_vec)), format="csr")
+
+
+def coriolis_and_softening(M: sp.spmatrix, dofs: np.ndarray, omega_vec: np.ndarray):
+    """G and Kr (n_dof x n_dof sparse) from the translational mass of the DOFs ``dofs``.
+
+    Parameters
+    ----------
+    M : (n_dof, n_dof) structural mass matrix (kg), unconstrained numbering.
+    dofs : translational DOFs of the rotating part, node-major triplets (ux, uy, uz).
+    omega_vec : rotor speed vector (rad/s).
+    """
+    n = M.shape[0]
+    dofs = np.asarray(dofs, dtype=np.int64)
+    if dofs.size % 3:
+        raise InputError("dofs", dofs.size, "triplets of translational DOFs")
+    Mt = sp.csr_matrix(M)[dofs][:, dofs]
+    S = _spin_operator(dofs.size // 3, np.asarray(omega_vec, float))
+    Gt = (Mt @ S + S @ Mt).tocoo()
+    Krt = (S.T @ Mt @ S).tocoo()
+
+    def expand(A):
+        return sp.csr_matrix((A.data, (dofs[A.row], dofs[A.col])), shape=(n, n))
+
+    return expand(Gt), expand(Krt)
+
+
+def centrifugal_load(M: sp.spmatrix, fe: FEModel, nodes: np.ndarray, omega_vec: np.ndarray,
+                     center: np.ndarray) -> np.ndarray:
+    """Centrifugal nodal forces ``Fr = S^T Mt S R`` (N), full DOF vector, R = x - center."""
+    dofs = translational_dofs(nodes)
+    Mt = sp.csr_matrix(M)[dofs][:, dofs]
+    S = _spin_operator(nodes.size, np.asarray(omega_vec, float))
+    R = (np.asarray(fe.nodes, float)[nodes] - np.asarray(center, float)).ravel()
+    f = np.zeros(M.shape[0])
+    f[dofs] = S.T @ (Mt @ (S @ R))
+    return f
+
+
+@dataclass
+class RotorTerms:
+    """Rotating-frame matrices per unit rotor speed, so that at speed ``omega`` (rad/s)
+    ``G = omega G1``, ``Kr = omega^2 Kr1``, ``Ksigma = omega^2 Ks1`` (unconstrained numbering).
+    """
+
+    G1: sp.csr_matrix
+    Kr1: sp.csr_matrix
+    Ksigma1: sp.csr_matrix | None
+
+    def at(self, omega: float):
+        """(G, Kr, Ksigma) at rotor speed ``omega`` (rad/s); Ksigma is zero without prestress."""
+        Ks = self.Ksigma1 * omega**2 if self.Ksigma1 is not None else sp.csr_matrix(self.Kr1.shape)
+        return self.G1 * omega, self.Kr1 * omega**2, Ks
+
+
+def _prestress(fe: FEModel, struct, Fr: np.ndarray, u0_solver=None) -> sp.csr_matrix:
+    """Geometric stiffness of the static solution of ``Ks u0 = Fr`` (structural engineer's API)."""
+    from windflutter.structure.prestress import geometric_stiffness, static_solve
+
+    u0 = static_solve(struct, Fr) if u0_solver is None else u0_solver(struct, Fr)
+    Kg = geometric_stiffness(fe, u0)
+    return sp.csr_matrix(Kg)
+
+
+def rotor_terms(fe: FEModel, struct, rotor_geometry: RotorGeometry, prestress: bool = True,
+                group: str = "rotor") -> RotorTerms:
+    """Build :class:`RotorTerms` once for a model (unit rotor speed)."""
+    axis = np.asarray(rotor_geometry.shaft_axis, float)
+    if not np.isclose(np.linalg.norm(axis), 1.0, atol=1e-6):
+        raise InputError("rotor.shaft_axis", axis.tolist(), "a unit vector")
+    nodes = rotating_nodes(fe, group)
+    M = struct.M
+    G1, Kr1 = coriolis_and_softening(M, translational_dofs(nodes), axis)
+    Ks1 = None
+    if prestress:
+        Fr = centrifugal_load(M, fe, nodes, axis, rotor_geometry.hub_center)
+        Ks1 = _prestress(fe, struct, Fr)
+    return RotorTerms(G1=G1.tocsr(), Kr1=Kr1.tocsr(), Ksigma1=Ks1)
+
+
+def rotor_matrices(fe: FEModel, struct, omega: float, rotor_geometry: RotorGeometry, prestress: bool = True,
+                   group: str = "rotor"):
+    """``(G, Kr, Ksigma)`` at rotor speed ``omega`` (rad/s), sparse (n_dof, n_dof), unconstrained.
+
+    ``struct`` is the assembled :class:`~windflutter.structure.assembly.Structural` (its ``M``
+    in the unconstrained numbering).  ``Ksigma`` is zero when ``prestress`` is False (the seed).
+    """
+    if not np.isfinite(omega):
+        raise InputError("omega", omega, "a finite rotor speed (rad/s)")
+    try:
+        terms = rotor_terms(fe, struct, rotor_geometry, prestress, group)
+    except ModelError:
+        raise
+    return terms.at(omega)

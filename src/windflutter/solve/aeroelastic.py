@@ -1,0 +1,205 @@
+"""The coupled aeroelastic system on a (modally) reduced basis.
+
+``Mt = Ms - Ma``, ``Dt = Ds + G - Da``, ``Kt = Ks - Kr + Ksigma - Ka`` (METHOD.md sec. 4), first
+reduced by the constraint map ``u = T q`` and then, by default, projected on a basis of
+structural modes (Galerkin, exact for the terms that live in that subspace): the union of the
+modes at rotor speed 0 and at the top of the analysed range, M-orthonormalized.  The projection
+keeps every p-k solve a small dense problem; ``n_modes=None`` keeps the full constrained
+system (sparse shift-invert Arnoldi for large models).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from windflutter.aero.sections import AeroSections, RotorGeometry
+from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero
+from windflutter.errors import InputError, ModelError
+from windflutter.rotor.rotating import RotorTerms
+
+
+@dataclass
+class StructuralMatrices:
+    """Structural matrices in the unconstrained numbering (n_dof) and the constraint map.
+
+    M, K, D : (n_dof, n_dof) sparse (kg, N/m, N s/m); D may be None.
+    T : (n_dof, n_red) sparse, ``u = T q``.
+    """
+
+    M: sp.csr_matrix
+    K: sp.csr_matrix
+    T: sp.csr_matrix
+    D: sp.csr_matrix | None = None
+
+    @staticmethod
+    def from_structural(struct) -> "StructuralMatrices":
+        """Adapter for the structural engineer's ``Structural`` (attributes M, K, T, optional D)."""
+        D = getattr(struct, "D", None)
+        return StructuralMatrices(M=sp.csr_matrix(struct.M), K=sp.csr_matrix(struct.K), T=sp.csr_matrix(struct.T),
+                                  D=None if D is None else sp.csr_matrix(D))
+
+    def reduce(self, A):
+        return (self.T.T @ A @ self.T).tocsr() if sp.issparse(A) else self.T.T @ A @ self.T
+
+
+def structural_modes(K, M, n: int, shift: float = -1.0):
+    """Lowest ``n`` eigenpairs of the symmetric pencil (K, M); dense for small problems."""
+    nn = K.shape[0]
+    if nn <= 800 or n >= nn - 1:
+        Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
+        Md = M.toarray() if sp.issparse(M) else np.asarray(M)
+        Kd = 0.5 * (Kd + Kd.T)
+        Md = 0.5 * (Md + Md.T)
+        w, V = sla.eigh(Kd, Md)
+        return w[:n], V[:, :n]
+    w, V = spla.eigsh(sp.csc_matrix(K), k=n, M=sp.csc_matrix(M), sigma=shift, which="LM")
+    o = np.argsort(w)
+    return w[o], V[:, o]
+
+
+@dataclass
+class AeroelasticModel:
+    """Everything needed to form the coupled matrices at (V, Omega, omega).
+
+    Parameters
+    ----------
+    structure : structural matrices and constraint map.
+    sections : aerodynamic strips (``motion_map`` in the unconstrained numbering).
+    rotor : rotating-frame terms per unit speed (None for a fixed wing).
+    rotor_geometry : hub centre, shaft axis, wind direction (None for a fixed wing).
+    aero : aerodynamic options.
+    air_density : kg/m^3.
+    n_modes : modes per reference speed in the projection basis, None = no projection.
+    omega_ref : rotor speeds (rad/s) whose structural modes build the basis.
+    pitch : blade pitch reported with the operating point (rad).
+    """
+
+    structure: StructuralMatrices
+    sections: AeroSections
+    rotor: RotorTerms | None = None
+    rotor_geometry: RotorGeometry | None = None
+    aero: AeroOptions = field(default_factory=AeroOptions)
+    air_density: float = 1.225
+    n_modes: int | None = 30
+    omega_ref: tuple[float, ...] = (0.0,)
+    pitch: float = 0.0
+
+    def __post_init__(self):
+        s = self.structure
+        self.Mr = s.reduce(s.M)
+        self.Kr0 = s.reduce(s.K)
+        n = self.Mr.shape[0]
+        self.Dr = s.reduce(s.D) if s.D is not None else sp.csr_matrix((n, n))
+        if self.rotor is not None:
+            self.G1 = s.reduce(self.rotor.G1)
+            self.Kr1 = s.reduce(self.rotor.Kr1)
+            self.Ks1 = s.reduce(self.rotor.Ksigma1) if self.rotor.Ksigma1 is not None else sp.csr_matrix((n, n))
+        else:
+            self.G1 = self.Kr1 = self.Ks1 = sp.csr_matrix((n, n))
+        self.Phi = None
+        if self.n_modes is not None and self.n_modes < n:
+            self.Phi = self._basis()
+            P = self.Phi
+            self.Mr, self.Kr0, self.Dr, self.G1, self.Kr1, self.Ks1 = (
+                P.T @ (A @ P) for A in (self.Mr, self.Kr0, self.Dr, self.G1, self.Kr1, self.Ks1))
+            self.TPhi = self.structure.T @ P
+        else:
+            self.TPhi = None
+
+    @property
+    def size(self) -> int:
+        return self.Mr.shape[0]
+
+    def structural_stiffness(self, omega_rot: float):
+        """``Ks - Kr(Omega) + Ksigma(Omega)`` in the working basis."""
+        return self.Kr0 - omega_rot**2 * self.Kr1 + omega_rot**2 * self.Ks1
+
+    def structural_damping(self, omega_rot: float):
+        return self.Dr + omega_rot * self.G1
+
+    def _basis(self) -> np.ndarray:
+        vecs = []
+        for om in self.omega_ref:
+            K = self.Kr0 - om**2 * self.Kr1 + om**2 * self.Ks1
+            _, V = structural_modes(K, self.Mr, self.n_modes)
+            vecs.append(V)
+        V = np.hstack(vecs)
+        if len(vecs) > 1:  # M-orthonormalize, dropping dependent vectors
+            Md = self.Mr.toarray() if sp.issparse(self.Mr) else self.Mr
+            G = V.T @ Md @ V
+            w, U = np.linalg.eigh(0.5 * (G + G.T))
+            keep = w > 1e-10 * w.max()
+            V = V @ (U[:, keep] / np.sqrt(w[keep]))
+        return V
+
+    def operating_point(self, wind_speed: float, omega_rot: float) -> OperatingPoint:
+        return OperatingPoint(wind_speed=wind_speed, omega=omega_rot, air_density=self.air_density,
+                              rotor=self.rotor_geometry, pitch=self.pitch)
+
+    def strip(self, wind_speed: float, omega_rot: float) -> StripAero:
+        return StripAero(self.sections, self.operating_point(wind_speed, omega_rot), self.aero)
+
+    def at(self, wind_speed: float, omega_rot: float) -> "OperatingSystem":
+        """The system at one operating point, ready for solves at any frequency."""
+        return OperatingSystem(self, wind_speed, omega_rot)
+
+
+class OperatingSystem:
+    """Coupled matrices at a fixed (V, Omega) as a function of the oscillation frequency."""
+
+    def __init__(self, model: AeroelasticModel, wind_speed: float, omega_rot: float):
+        self.model = model
+        self.wind_speed = wind_speed
+        self.omega_rot = omega_rot
+        self.strip = model.strip(wind_speed, omega_rot)
+        self.Ks = model.structural_stiffness(omega_rot)
+        self.Ds = model.structural_damping(omega_rot)
+        if model.TPhi is not None:
+            self._aero = self.strip.projected(model.TPhi)
+        else:
+            T = model.structure.T
+            TT = T.T.tocsr()
+
+            def f(om):
+                return tuple((TT @ A @ T).tocsr() for A in self.strip.matrices(om))
+
+            self._aero = f
+
+    def matrices(self, omega: float):
+        """``(Mt, Dt, Kt)`` with Theodorsen frozen at frequency ``omega`` (rad/s)."""
+        Ma, Da, Ka = self._aero(omega)
+        m = self.model
+        return m.Mr - Ma, self.Ds - Da, self.Ks - Ka
+
+    def reference(self, fraction: float = 0.75):
+        """(U, b) of the strip nearest ``fraction`` of the largest radius (the seed's 75 % span)."""
+        sec = self.model.sections
+        r = np.asarray(sec.radius, float)
+        if self.omega_rot == 0.0:  # fixed wing: spanwise station
+            r = np.linalg.norm(np.asarray(sec.origin) - np.asarray(sec.origin)[np.argmin(r)], axis=1)
+        target = fraction * r.max() if self.omega_rot == 0.0 else fraction * r.max()
+        j = int(np.argmin(np.abs(r - target)))
+        return float(self.strip.flow.U[j]), float(sec.semi_chord[j])
+
+    def expand(self, x: np.ndarray) -> np.ndarray:
+        """Working-basis vector -> unconstrained DOF vector."""
+        m = self.model
+        return m.TPhi @ x if m.TPhi is not None else m.structure.T @ x
+
+
+def check_positive(name: str, value, unit: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise InputError(name, value, f"a positive number ({unit})") from None
+    if not (np.isfinite(v) and v > 0):
+        raise InputError(name, value, f"a positive number ({unit})")
+    return v
+
+
+__all__ = ["StructuralMatrices", "AeroelasticModel", "OperatingSystem", "structural_modes", "ModelError"]

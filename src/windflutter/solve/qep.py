@@ -1,0 +1,174 @@
+"""Complex quadratic eigenproblem ``(lambda^2 M + lambda D + K) x = 0``.
+
+Two paths, same answer:
+
+* dense (small problems): the first-order companion pencil ``A z = lambda B z`` with
+  ``z = [x, lambda x]``, ``A = [[0, I], [-K, -D]]``, ``B = [[I, 0], [0, M]]``, solved by
+  :func:`scipy.linalg.eig` (LAPACK QZ);
+* sparse (large problems): shift-invert Arnoldi (ARPACK through :func:`scipy.sparse.linalg.eigs`)
+  on the same pencil, where the 2n x 2n operator ``(A - sigma B)^{-1} B`` is applied through a
+  single sparse LU of the n x n matrix ``Q(sigma) = sigma^2 M + sigma D + K`` (SuperLU with its
+  default COLAMD ordering):
+
+  ``y1 = -Q(sigma)^{-1} (M z2 + (D + sigma M) z1)``, ``y2 = z1 + sigma y1``,
+
+  and ``lambda = sigma + 1/nu`` for each Ritz value ``nu``.
+
+Eigenvalues ``lambda = s + i w`` (rad/s); damping ratio ``zeta = -s/|lambda|``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
+
+from windflutter.errors import ConvergenceError, InputError
+
+#: problems with at most this many DOFs go to the dense QZ path by default
+DENSE_LIMIT = 600
+
+
+@dataclass
+class Eigs:
+    """Eigenpairs of a quadratic eigenproblem.
+
+    Attributes
+    ----------
+    values : (m,) complex eigenvalues (rad/s), sorted by distance to the shift.
+    vectors : (n, m) complex mode shapes (columns), each scaled so that its largest component
+        is 1 (real, positive).
+    shift : complex shift used.
+    """
+
+    values: np.ndarray
+    vectors: np.ndarray
+    shift: complex = 0.0
+
+    @property
+    def frequency(self) -> np.ndarray:
+        """Damped frequency ``Im(lambda)`` (rad/s)."""
+        return self.values.imag
+
+    @property
+    def damping_ratio(self) -> np.ndarray:
+        """``zeta = -Re(lambda) / |lambda|`` (-); 0/0 gives 0."""
+        mod = np.abs(self.values)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            z = np.where(mod > 0, -self.values.real / np.where(mod > 0, mod, 1.0), 0.0)
+        return z
+
+
+def _normalize(vecs: np.ndarray) -> np.ndarray:
+    if vecs.size == 0:
+        return vecs
+    idx = np.argmax(np.abs(vecs), axis=0)
+    piv = vecs[idx, np.arange(vecs.shape[1])]
+    piv = np.where(piv == 0, 1.0, piv)
+    return vecs / piv[None, :]
+
+
+def _as_csc(A, n: int) -> sp.csc_matrix:
+    if A is None:
+        return sp.csc_matrix((n, n), dtype=complex)
+    return sp.csc_matrix(A, dtype=complex)
+
+
+def qep_residual(M, D, K, lam: complex, x: np.ndarray) -> float:
+    """Relative residual ``|Q(lam) x| / ((|lam|^2 |M| + |lam| |D| + |K|) |x|)`` (Frobenius norms)."""
+
+    def nrm(A):
+        return spla.norm(A) if sp.issparse(A) else np.linalg.norm(A)
+
+    r = lam**2 * (M @ x) + lam * (D @ x) + K @ x
+    scale = (abs(lam) ** 2 * nrm(M) + abs(lam) * nrm(D) + nrm(K)) * np.linalg.norm(x)
+    return float(np.linalg.norm(r) / scale) if scale > 0 else float(np.linalg.norm(r))
+
+
+def solve_qep_dense(M, D, K, shift: complex = 0.0, n_eig: int | None = None) -> Eigs:
+    """All finite eigenpairs by QZ on the companion pencil; keep the ``n_eig`` nearest ``shift``."""
+    M = M.toarray() if sp.issparse(M) else np.asarray(M)
+    K = K.toarray() if sp.issparse(K) else np.asarray(K)
+    n = K.shape[0]
+    D = np.zeros((n, n)) if D is None else (D.toarray() if sp.issparse(D) else np.asarray(D))
+    Z = np.zeros((n, n))
+    I = np.eye(n)
+    A = np.block([[Z, I], [-K, -D]]).astype(complex)
+    B = np.block([[I, Z], [Z, M]]).astype(complex)
+    w, v = sla.eig(A, B)
+    ok = np.isfinite(w) & (np.abs(w) < 1e12)
+    w, v = w[ok], v[:n, ok]
+    order = np.argsort(np.abs(w - shift), kind="stable")
+    if n_eig is not None:
+        order = order[:n_eig]
+    return Eigs(values=w[order], vectors=_normalize(v[:, order]), shift=complex(shift))
+
+
+def solve_qep_sparse(M, D, K, shift: complex = 0.0, n_eig: int = 20, tol: float = 0.0,
+                     maxiter: int | None = None) -> Eigs:
+    """``n_eig`` eigenpairs nearest ``shift`` by shift-invert Arnoldi through one LU of Q(shift)."""
+    n = K.shape[0]
+    M = _as_csc(M, n)
+    D = _as_csc(D, n)
+    K = _as_csc(K, n)
+    s = complex(shift)
+    Q = (s * s) * M + s * D + K
+    try:
+        lu = spla.splu(sp.csc_matrix(Q))
+    except RuntimeError as exc:  # exactly singular Q(shift)
+        raise ConvergenceError(f"Q(shift) is singular at shift {s}: choose another shift ({exc})") from exc
+    DsM = (D + s * M).tocsr()
+    Mr = M.tocsr()
+
+    def matvec(z):
+        z = np.asarray(z).ravel()
+        z1, z2 = z[:n], z[n:]
+        y1 = -lu.solve(Mr @ z2 + DsM @ z1)
+        y2 = z1 + s * y1
+        return np.concatenate([y1, y2])
+
+    op = spla.LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=complex)
+    k = min(n_eig, 2 * n - 2)
+    try:
+        nu, v = spla.eigs(op, k=k, which="LM", tol=tol, maxiter=maxiter)
+    except spla.ArpackNoConvergence as exc:
+        raise ConvergenceError(f"ARPACK did not converge for {k} eigenvalues near {s}") from exc
+    lam = s + 1.0 / nu
+    x = v[:n, :]
+    order = np.argsort(np.abs(lam - s), kind="stable")
+    return Eigs(values=lam[order], vectors=_normalize(x[:, order]), shift=s)
+
+
+def solve_qep(M, D, K, shift: complex = 0.0, n_eig: int = 20, method: str = "auto",
+              dense_limit: int = DENSE_LIMIT) -> Eigs:
+    """Eigenpairs of ``(lambda^2 M + lambda D + K) x = 0`` nearest ``shift``.
+
+    Parameters
+    ----------
+    M, D, K : (n, n) dense or sparse, real or complex (kg, N s/m, N/m in SI DOFs).
+        ``D`` may be ``None``.
+    shift : complex shift (rad/s); 0 gives the eigenvalues of smallest modulus (the seed's choice).
+    n_eig : number of eigenvalues wanted.
+    method : ``"auto"`` (dense up to ``dense_limit`` DOFs), ``"dense"`` or ``"sparse"``.
+
+    Returns
+    -------
+    Eigs
+        values sorted by distance to the shift, mode shapes as columns.
+    """
+    if K is None or K.shape[0] != K.shape[1]:
+        raise InputError("K", getattr(K, "shape", None), "a square stiffness matrix")
+    n = K.shape[0]
+    for name, A in (("M", M), ("D", D)):
+        if A is not None and A.shape != K.shape:
+            raise InputError(name, A.shape, f"the shape of K {K.shape}")
+    if n_eig < 1:
+        raise InputError("n_eig", n_eig, "a positive number of eigenvalues")
+    if method not in ("auto", "dense", "sparse"):
+        raise InputError("method", method, "'auto', 'dense' or 'sparse'")
+    if method == "dense" or (method == "auto" and (n <= dense_limit or 2 * n - 2 <= n_eig)):
+        return solve_qep_dense(M, D, K, shift, n_eig)
+    return solve_qep_sparse(M, D, K, shift, n_eig)

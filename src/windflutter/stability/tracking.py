@@ -1,0 +1,52 @@
+"""Mode tracking (MAC) and labels."""
+
+from __future__ import annotations
+
+import numpy as np
+
+
+def mac(a: np.ndarray, b: np.ndarray) -> float:
+    """Modal assurance criterion ``|a^H b|^2 / ((a^H a)(b^H b))`` (0..1)."""
+    num = abs(np.vdot(a, b)) ** 2
+    den = np.vdot(a, a).real * np.vdot(b, b).real
+    return float(num / den) if den > 0 else 0.0
+
+
+def mac_matrix(A: np.ndarray, B: np.ndarray) -> np.ndarray:
+    """MAC of every column of A against every column of B."""
+    num = np.abs(A.conj().T @ B) ** 2
+    den = np.outer(np.sum(np.abs(A) ** 2, axis=0), np.sum(np.abs(B) ** 2, axis=0))
+    return num / np.where(den > 0, den, 1.0)
+
+
+def label_mode(x_dof: np.ndarray, sections, P=None, tower_dofs: np.ndarray | None = None) -> str:
+    """Label a mode from its motion at the aerodynamic sections.
+
+    Parameters
+    ----------
+    x_dof : (n_dof,) mode shape, unconstrained numbering.
+    sections : :class:`~windflutter.aero.sections.AeroSections`.
+    P : (3 ns, n_dof) section-motion map (h, alpha, s) of a :class:`StripAero`; when None the
+        global translations/rotations of ``motion_map`` are used.
+    tower_dofs : translational DOFs of the tower, to detect tower modes.
+
+    Returns
+    -------
+    str like ``"flap b1 r/R=1.00"``, ``"torsion b2 r/R=0.80"``, ``"edge ..."``, ``"tower"``.
+    """
+    ns = sections.n_sections
+    b = np.asarray(sections.semi_chord, float)
+    q = (P @ x_dof).reshape(ns, 3)
+    h, al, s = np.abs(q[:, 0]), np.abs(q[:, 1]) * b, np.abs(q[:, 2])
+    energy = np.array([np.sum(h**2), np.sum(al**2), np.sum(s**2)])
+    blade_e = h**2 + al**2 + s**2
+    if tower_dofs is not None and tower_dofs.size:
+        t = np.max(np.abs(x_dof[tower_dofs]))
+        if t > np.sqrt(blade_e.max(initial=0.0)):
+            return "tower"
+    kind = ("flap", "torsion", "edge")[int(np.argmax(energy))]
+    j = int(np.argmax(blade_e))
+    r = np.asarray(sections.radius, float)
+    blade = np.asarray(sections.blade)[j]
+    rr = r[j] / r[np.asarray(sections.blade) == blade].max()
+    return f"{kind} b{int(blade) + 1} r/R={rr:.2f}"
