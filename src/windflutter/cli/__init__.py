@@ -15,7 +15,7 @@ from windflutter import __version__
 from windflutter.errors import InputError, ModelError, WindflutterError
 
 #: Sub-command modules, in the order shown by ``--help``.
-COMMANDS = ("section", "wing", "modes", "mesh", "stability", "run")
+COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "run")
 
 
 def build_parser() -> argparse.ArgumentParser:
