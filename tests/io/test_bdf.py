@@ -364,3 +364,16 @@ def test_round_trip_same_matrices_full_model(tmp_path):
     path = _write(fe, tmp_path / "m.bdf")
     _matrices_equal(fe, read_bdf(path))
     _matrices_equal(fe, read_bdf(_strip_meta(path)))
+
+
+@pytest.mark.nastran
+@pytest.mark.skipif(not HAVE_PYNASTRAN, reason="pyNastran not installed: run `make test-nastran`")
+def test_matrix_comparison_detects_a_one_degree_ply_error(tmp_path):
+    """The matrix check above must be able to fail: a 1-degree ply-angle error is detected."""
+    fe = mixed_model()
+    fe2 = read_bdf(_write(fe, tmp_path / "m.bdf"))
+    p = fe2.shell_properties[0]
+    plies = (dataclasses.replace(p.plies[0], angle=p.plies[0].angle + np.radians(1.0)),) + p.plies[1:]
+    fe2.shell_properties[0] = dataclasses.replace(p, plies=plies)
+    with pytest.raises(AssertionError):
+        _matrices_equal(fe, fe2)

@@ -1,0 +1,151 @@
+"""Animation of a (complex) mode shape as a VTK time series: one cycle, openable in ParaView.
+
+Frame k of n shows the real motion ``u_k = s * Re(phi * exp(i * 2 pi k / n))`` -- the physical
+displacement of an oscillation ``Re(phi e^{i omega t})`` at ``t = k T / n`` -- written as a
+VTU with the *deformed* node positions (so the animation plays without filters) plus the
+arrays ``displacement`` (m), ``rotation`` (rad) and the per-node peak amplitude
+``amplitude`` (m).  Cells carry the model's ``region_id`` / ``property_id`` / ``element_kind``
+(see :mod:`windflutter.structure.io_vtk`).  A ParaView ``.pvd`` collection lists the frames
+with their times (s if the frequency is given, else fractions of the period).
+
+The scale ``s`` makes the largest translation over the cycle (exact, not sampled) equal to
+``fraction`` times the model size (diagonal of the node bounding box).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from xml.sax.saxutils import quoteattr
+
+import numpy as np
+
+from windflutter.errors import InputError
+from windflutter.structure.fem import FEModel
+from windflutter.structure.io_vtk import model_cells, region_field_data, write_vtu
+
+__all__ = ["write_mode_animation", "peak_translation", "model_size", "animation_scale"]
+
+
+def model_size(fe: FEModel) -> float:
+    """Diagonal of the nodes' bounding box (m)."""
+    nodes = np.asarray(fe.nodes, float)
+    return float(np.linalg.norm(nodes.max(axis=0) - nodes.min(axis=0))) if len(nodes) else 0.0
+
+
+def peak_translation(fe: FEModel, mode: np.ndarray) -> np.ndarray:
+    """Per-node maximum over one cycle of ``|Re(phi_t e^{i theta})|`` (translations only).
+
+    With ``phi_t = a + i b`` the squared length ``|a cos t - b sin t|^2`` has the exact maximum
+    ``(|a|^2 + |b|^2)/2 + sqrt(((|a|^2 - |b|^2)/2)^2 + (a.b)^2)``.
+    """
+    u = np.asarray(mode).reshape(fe.n_nodes, 6)[:, :3]
+    a, b = u.real, np.imag(u)
+    A, B, C = (a * a).sum(1), (b * b).sum(1), (a * b).sum(1)
+    return np.sqrt(0.5 * (A + B) + np.sqrt((0.5 * (A - B)) ** 2 + C * C))
+
+
+def animation_scale(fe: FEModel, mode: np.ndarray, fraction: float = 0.1) -> float:
+    """Scale factor making the largest translation over a cycle ``fraction`` x model size."""
+    if not (np.isfinite(fraction) and fraction > 0):
+        raise InputError("fraction", fraction, "a positive fraction of the model size, e.g. 0.1")
+    peak = float(peak_translation(fe, mode).max(initial=0.0))
+    size = model_size(fe)
+    if not peak > 0:
+        raise InputError("mode", "zero translations", "a mode shape with non-zero translations")
+    if not size > 0:
+        raise InputError("fe.nodes", "all nodes coincide", "a model with a non-zero extent")
+    return fraction * size / peak
+
+
+def write_mode_animation(
+    fe: FEModel,
+    mode: np.ndarray,
+    out: str | Path,
+    n_frames: int = 24,
+    fraction: float = 0.1,
+    scale: float | None = None,
+    *,
+    name: str = "mode",
+    frequency_hz: float | None = None,
+    align_phase: bool = True,
+    rigid_links: bool = True,
+) -> Path:
+    """Write one cycle of a mode's motion as ``.pvd`` + one ``.vtu`` per frame.
+
+    Parameters
+    ----------
+    fe : the model.
+    mode : (n_dof,) real or complex mode shape, global numbering ``6*node + c`` (m, rad).
+    out : a directory (created; files ``<name>.pvd`` and ``<name>_0000.vtu``...) or a path
+        ending in ``.pvd`` (frames next to it, named after its stem).
+    n_frames : frames per cycle (>= 4; 24 by default, >= 16 recommended for a smooth loop).
+    fraction : largest translation over the cycle as a fraction of the model size (used
+        when ``scale`` is None).
+    scale : explicit scale factor on the mode (overrides ``fraction``).
+    name : base name of the files.
+    frequency_hz : if given, frame times are in seconds (one period ``1/f``); else fractions
+        of the period.
+    align_phase : shift the time origin so that the largest translation component is real
+        (frame 0 then shows the mode near its largest deflection); the motion is unchanged.
+    rigid_links : include rigid-link spokes in the cells.
+
+    Returns
+    -------
+    Path of the ``.pvd`` collection.
+    """
+    import meshio  # noqa: PLC0415
+
+    phi = np.asarray(mode)
+    if phi.shape != (fe.n_dof,):
+        raise InputError("mode", phi.shape, f"a ({fe.n_dof},) mode shape")
+    if not np.all(np.isfinite(phi)):
+        raise InputError("mode", "non-finite values", "a finite mode shape")
+    if int(n_frames) != n_frames or n_frames < 4:
+        raise InputError("n_frames", n_frames, "an integer >= 4 (>= 16 for a smooth animation)")
+    if frequency_hz is not None and not (np.isfinite(frequency_hz) and frequency_hz > 0):
+        raise InputError("frequency_hz", frequency_hz, "a positive frequency (Hz) or None")
+    if not name or any(c in name for c in "/\\"):
+        raise InputError("name", name, "a non-empty file base name without path separators")
+    phi = phi.astype(complex)
+    if align_phase:
+        trans = phi.reshape(fe.n_nodes, 6)[:, :3].ravel()
+        k = int(np.argmax(np.abs(trans)))
+        if abs(trans[k]) > 0:
+            phi = phi * np.exp(-1j * np.angle(trans[k]))
+    s = animation_scale(fe, phi, fraction) if scale is None else float(scale)
+    if not (np.isfinite(s) and s > 0):
+        raise InputError("scale", scale, "a positive scale factor")
+
+    out = Path(out)
+    if out.suffix.lower() == ".pvd":
+        pvd, stem = out, out.stem
+        out.parent.mkdir(parents=True, exist_ok=True)
+    else:
+        out.mkdir(parents=True, exist_ok=True)
+        pvd, stem = out / f"{name}.pvd", name
+    folder = pvd.parent
+
+    cells, cdata = model_cells(fe, rigid_links=rigid_links)
+    nodes = np.asarray(fe.nodes, float)
+    amp = s * peak_translation(fe, phi)
+    period = 1.0 / frequency_hz if frequency_hz is not None else 1.0
+    entries = []
+    n_frames = int(n_frames)
+    for k in range(n_frames):
+        theta = 2.0 * np.pi * k / n_frames
+        u = (s * (phi * np.exp(1j * theta)).real).reshape(fe.n_nodes, 6)
+        mesh = meshio.Mesh(nodes + u[:, :3], cells, cell_data=cdata,
+                           point_data={"displacement": u[:, :3], "rotation": u[:, 3:], "amplitude": amp})
+        fname = f"{stem}_{k:04d}.vtu"
+        write_vtu(folder / fname, mesh, region_field_data(fe.region_names))
+        entries.append((k * period / n_frames, fname))
+
+    lines = ['<?xml version="1.0"?>',
+             '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
+             "  <Collection>"]
+    lines += [f'    <DataSet timestep="{t!r}" group="" part="0" file={quoteattr(f)}/>' for t, f in entries]
+    lines += ["  </Collection>", "</VTKFile>", ""]
+    tmp = pvd.with_name(pvd.name + ".tmp")
+    tmp.write_text("\n".join(lines))
+    tmp.replace(pvd)
+    return pvd
