@@ -9,6 +9,7 @@ from __future__ import annotations
 import importlib.util
 import sys
 import dataclasses
+import os
 import warnings
 from pathlib import Path
 
@@ -24,6 +25,9 @@ from windflutter.structure.io_bdf import BdfApproximationWarning, _real16, read_
 
 # CI runs the nastran-marked tests in .venv-nastran (numpy < 2) via `make test-nastran`
 HAVE_PYNASTRAN = importlib.util.find_spec("pyNastran") is not None
+if os.environ.get("WINDFLUTTER_REQUIRE_NASTRAN") and not HAVE_PYNASTRAN:
+    raise RuntimeError("WINDFLUTTER_REQUIRE_NASTRAN is set but pyNastran is not importable "
+                       "(pip install 'windflutter[nastran]')")
 
 
 def _write(fe, path, **kw):
