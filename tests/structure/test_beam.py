@@ -32,9 +32,11 @@ def test_cantilever_bending_and_torsion_frequencies():
     # with 20 elements the 3rd mode is within 1e-4 (shear-rigid section: GA = 1e3 EA)
     for k, fb in enumerate(f_b):
         assert np.sum(np.abs(f - fb) / fb < 1e-4) == 2
-    # torsion: linear twist interpolation -> O(h^2): 1st mode error ~ (pi/2/20)^2/12 = 5e-4
-    for ft in f_t:
-        assert np.min(np.abs(f - ft)) / ft < 2e-3
+    # torsion: linear twist interpolation with consistent mass over-estimates the frequency by
+    # (k h)^2 / 24 (k = wave number, h = element length): 2.6e-4 and 2.3e-3; allow 1.5x that
+    for n_half, ft in zip((1, 3), f_t):
+        kh = n_half * np.pi / 2 / 20
+        assert 0 < np.min(np.abs(f - ft)) / ft < 1.5 * kh**2 / 24
 
 
 def test_static_tip_load_exact():

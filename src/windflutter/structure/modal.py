@@ -89,12 +89,16 @@ def modes(
     Mr = struct.Mr
     nq = struct.nq
     sigma = _default_shift(Kr, Mr) if shift is None else float(shift)
-    if nq <= max(n + 1, 12) or nq < 200:
+    if nq <= max(n + 2, 12) or nq < 200:
         from scipy.linalg import eigh
 
-        w, Q = eigh(Kr.toarray(), Mr.toarray() + 0.0)
-        order = np.argsort(np.abs(w - sigma))[: min(n, nq)]
-        order = order[np.argsort(w[order])]
+        # M may be singular (massless DOFs): solve M q = mu (K - sigma M) q, omega^2 = sigma + 1/mu
+        mu, Q = eigh(Mr.toarray(), (Kr - sigma * Mr).toarray())
+        pos = mu > 1e-14 * max(np.abs(mu).max(), 1e-300)
+        mu, Q = mu[pos], Q[:, pos]
+        order = np.argsort(-mu)[: min(n, mu.size)]
+        w, Q = sigma + 1.0 / mu[order], Q[:, order]
+        order = np.argsort(w)
         w, Q = w[order], Q[:, order]
     else:
         k = min(n, nq - 2)

@@ -1,0 +1,194 @@
+"""4-node shells: pyfe3d 0.11 ``Quad4`` stiffness/mass, our own full membrane geometric stiffness.
+
+What comes from pyfe3d (BSD-3, pinned ``>=0.11.0,<0.12``): the Quad4 element (FSDT, mixed
+integration after Hughes et al. 1977, physics-based Allman/Hughes-Brezzi drilling stiffness),
+its consistent/lumped mass, and the laminate ABD/transverse-shear stiffness
+(``shellprop_utils.laminated_plate``) with the ply angles measured from a per-element material
+direction.  What is ours: the mapping from :class:`ShellProperty` laminates, vectorised COO
+assembly, and the membrane geometric stiffness (pyfe3d's KG only uses the out-of-plane
+displacement gradient, which gives about half of the in-plane stiffening).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from windflutter.errors import InputError
+from windflutter.structure.fem import FEModel, IsotropicMaterial, OrthotropicMaterial, ShellProperty
+
+
+def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
+    """pyfe3d ``ShellProp`` of a laminate (ply angles in degrees from the material axis)."""
+    from pyfe3d.shellprop_utils import laminated_plate
+
+    if not p.plies:
+        raise InputError(f"shell_properties[{index}].plies", (), "at least one ply")
+    stack, plyts, props, rhos = [], [], [], []
+    for j, ply in enumerate(p.plies):
+        m = ply.material
+        if not (np.isfinite(ply.thickness) and ply.thickness > 0):
+            raise InputError(f"shell_properties[{index}].plies[{j}].thickness", ply.thickness, "a positive thickness (m)")
+        if isinstance(m, IsotropicMaterial):
+            if not (m.E > 0 and -1 < m.nu < 0.5 and m.rho >= 0):
+                raise InputError(f"shell_properties[{index}].plies[{j}].material", m, "E > 0, -1 < nu < 0.5, rho >= 0")
+            props.append((m.E, m.nu))
+        elif isinstance(m, OrthotropicMaterial):
+            if not (m.E1 > 0 and m.E2 > 0 and m.G12 > 0 and m.G13 > 0 and m.G23 > 0 and m.rho >= 0
+                    and m.nu12**2 < m.E1 / m.E2):
+                raise InputError(f"shell_properties[{index}].plies[{j}].material", m,
+                                 "positive moduli, rho >= 0 and nu12^2 < E1/E2")
+            props.append((m.E1, m.E2, m.nu12, m.G12, m.G13, m.G23))
+        else:
+            raise InputError(f"shell_properties[{index}].plies[{j}].material", type(m).__name__,
+                             "an IsotropicMaterial or OrthotropicMaterial")
+        stack.append(np.degrees(ply.angle))
+        plyts.append(ply.thickness)
+        rhos.append(m.rho)
+    return laminated_plate(stack=stack, plyts=plyts, laminaprops=props, rhos=rhos, offset=p.offset)
+
+
+def shell_coo(fe: FEModel, mass: str = "consistent"):
+    """COO triplets ((r, c, v) for K, (r, c, v) for M) of all shell elements (pyfe3d Quad4)."""
+    from pyfe3d import Quad4, Quad4Data, Quad4Probe
+
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    pid = np.asarray(fe.shell_prop, dtype=np.int64)
+    matdir = np.asarray(fe.shell_matdir, dtype=float)
+    ne = conn.shape[0]
+    props = [pyfe3d_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
+    data = Quad4Data()
+    nk, nm = data.KC0_SPARSE_SIZE, data.M_SPARSE_SIZE
+    mtype = 0 if mass == "consistent" else 1
+    Kr = np.zeros(ne * nk, dtype=np.int64)
+    Kc = np.zeros(ne * nk, dtype=np.int64)
+    Kv = np.zeros(ne * nk)
+    Mr = np.zeros(ne * nm, dtype=np.int64)
+    Mc = np.zeros(ne * nm, dtype=np.int64)
+    Mv = np.zeros(ne * nm)
+    x = np.ascontiguousarray(np.asarray(fe.nodes, dtype=float).ravel())
+    _check_quads(fe)
+    probe = Quad4Probe()
+    q = Quad4(probe)
+    c6 = 6 * conn
+    for e in range(ne):
+        q.c1, q.c2, q.c3, q.c4 = int(c6[e, 0]), int(c6[e, 1]), int(c6[e, 2]), int(c6[e, 3])
+        q.init_k_KC0 = e * nk
+        q.init_k_M = e * nm
+        q.m11, q.m12, q.m21, q.m22 = 1.0, 0.0, 0.0, 1.0
+        md = matdir[e]
+        q.update_rotation_matrix(x, md[0], md[1], md[2])
+        q.update_probe_xe(x)
+        prop = props[pid[e]]
+        q.update_KC0(Kr, Kc, Kv, prop)
+        q.update_M(Mr, Mc, Mv, prop, mtype)
+    if mtype == 1:  # lumped mass writes only the first 120 entries per element
+        keep = (np.arange(ne * nm) % nm) < 120
+        Mr, Mc, Mv = Mr[keep], Mc[keep], Mv[keep]
+    return (Kr, Kc, Kv), (Mr, Mc, Mv)
+
+
+def _check_quads(fe: FEModel) -> None:
+    """Reject degenerate quads (zero area or repeated nodes) with an InputError."""
+    X = np.asarray(fe.nodes, dtype=float)[np.asarray(fe.shell_conn, dtype=np.int64)]
+    nrm = np.cross(X[:, 2] - X[:, 0], X[:, 1] - X[:, 3])
+    a2 = np.linalg.norm(nrm, axis=1)
+    diag = np.maximum(np.linalg.norm(X[:, 2] - X[:, 0], axis=1), np.linalg.norm(X[:, 1] - X[:, 3], axis=1))
+    bad = np.nonzero(a2 <= 1e-10 * diag**2)[0]
+    if bad.size:
+        e = int(bad[0])
+        raise InputError(f"shell_conn[{e}]", np.asarray(fe.shell_conn)[e].tolist(), "a non-degenerate quadrilateral")
+
+
+_GP = np.array([-1.0, 1.0]) / np.sqrt(3.0)
+_XI = np.array([-1.0, 1.0, 1.0, -1.0])
+_ETA = np.array([-1.0, -1.0, 1.0, 1.0])
+
+
+def shell_frames(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Per-element local frame with x along the projected material direction.
+
+    Returns
+    -------
+    R : (ne, 3, 3) rows = local x, y, z (normal) in global axes.
+    xy : (ne, 4, 2) local in-plane node coordinates (m) relative to the centroid.
+    X : (ne, 4, 3) global node coordinates.
+    """
+    X = np.asarray(fe.nodes, dtype=float)[np.asarray(fe.shell_conn, dtype=np.int64)]
+    n = np.cross(X[:, 2] - X[:, 0], X[:, 3] - X[:, 1])
+    n /= np.linalg.norm(n, axis=1)[:, None]
+    md = np.asarray(fe.shell_matdir, dtype=float)
+    ex = md - np.sum(md * n, axis=1)[:, None] * n
+    nx = np.linalg.norm(ex, axis=1)
+    fallback = (X[:, 1] - X[:, 0]) + (X[:, 2] - X[:, 3])
+    fallback -= np.sum(fallback * n, axis=1)[:, None] * n
+    use_fb = nx <= 1e-8 * np.maximum(np.linalg.norm(md, axis=1), 1e-300)
+    ex[use_fb] = fallback[use_fb]
+    ex /= np.linalg.norm(ex, axis=1)[:, None]
+    ey = np.cross(n, ex)
+    R = np.stack([ex, ey, n], axis=1)
+    d = X - X.mean(axis=1, keepdims=True)
+    xy = np.einsum("eij,enj->eni", R[:, :2, :], d)
+    return R, xy, X
+
+
+def _grad(xy: np.ndarray, xi: float, eta: float) -> tuple[np.ndarray, np.ndarray]:
+    """Shape-function gradients (ne, 2, 4) in local x, y and det J (ne,) at (xi, eta)."""
+    dxi = 0.25 * _XI * (1 + eta * _ETA)
+    deta = 0.25 * _ETA * (1 + xi * _XI)
+    dN = np.stack([dxi, deta])  # (2, 4)
+    J = np.einsum("an,eni->eai", dN, xy)  # (ne, 2, 2): J[a, i] = d x_i / d xi_a
+    det = J[:, 0, 0] * J[:, 1, 1] - J[:, 0, 1] * J[:, 1, 0]
+    Jinv = np.stack([np.stack([J[:, 1, 1], -J[:, 0, 1]], -1), np.stack([-J[:, 1, 0], J[:, 0, 0]], -1)], 1) / det[:, None, None]
+    G = np.einsum("eia,an->ein", Jinv, dN)
+    return G, det
+
+
+def shell_membrane_resultants(fe: FEModel, u0: np.ndarray) -> np.ndarray:
+    """Membrane resultants (Nxx, Nyy, Nxy) (N/m) at element centroids, in the material frame.
+
+    ``N = A eps + B kappa`` with strains from the bilinear fields, kappa with pyfe3d's sign
+    convention (kxx = ry_x, kyy = -rx_y, kxy = ry_y - rx_x).
+    """
+    R, xy, _ = shell_frames(fe)
+    props = [pyfe3d_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
+    A = np.array([[[p.A11, p.A12, p.A16], [p.A12, p.A22, p.A26], [p.A16, p.A26, p.A66]] for p in props])
+    B = np.array([[[p.B11, p.B12, p.B16], [p.B12, p.B22, p.B26], [p.B16, p.B26, p.B66]] for p in props])
+    pid = np.asarray(fe.shell_prop, dtype=np.int64)
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    U = np.asarray(u0, dtype=float).reshape(-1, 6)[conn]  # (ne, 4, 6)
+    ut = np.einsum("eij,enj->eni", R, U[:, :, :3])
+    rt = np.einsum("eij,enj->eni", R, U[:, :, 3:])
+    G, _ = _grad(xy, 0.0, 0.0)
+    du = np.einsum("ean,eni->eia", G, ut)  # du[:, i, a] = d u_i / d x_a
+    dr = np.einsum("ean,eni->eia", G, rt)
+    eps = np.stack([du[:, 0, 0], du[:, 1, 1], du[:, 0, 1] + du[:, 1, 0]], axis=1)
+    kap = np.stack([dr[:, 1, 0], -dr[:, 0, 1], dr[:, 1, 1] - dr[:, 0, 0]], axis=1)
+    return np.einsum("eij,ej->ei", A[pid], eps) + np.einsum("eij,ej->ei", B[pid], kap)
+
+
+def shell_membrane_kg(fe: FEModel, u0: np.ndarray):
+    """COO triplets of the full membrane geometric stiffness of all shells.
+
+    ``KG_e = int G^T Nm G dA (x) I3`` on (ux, uy, uz) of the 4 nodes, with ``G`` the (2, 4)
+    in-plane shape-function gradients, ``Nm = [[Nxx, Nxy], [Nxy, Nyy]]`` (centroid, constant
+    per element), 2x2 Gauss.  ``I3`` is frame-invariant, so no rotation to global is needed.
+    """
+    Nres = shell_membrane_resultants(fe, u0)
+    _, xy, _ = shell_frames(fe)
+    Nm = np.stack([np.stack([Nres[:, 0], Nres[:, 2]], -1), np.stack([Nres[:, 2], Nres[:, 1]], -1)], 1)
+    ne = Nm.shape[0]
+    Ge = np.zeros((ne, 4, 4))
+    for xi in _GP:
+        for eta in _GP:
+            G, det = _grad(xy, xi, eta)
+            Ge += det[:, None, None] * np.einsum("ean,eab,ebm->enm", G, Nm, G)
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    # expand (4x4) (x) I3 -> rows/cols on translational DOFs
+    rn = np.repeat(conn, 4, axis=1)  # (ne, 16) node of row
+    cn = np.tile(conn, (1, 4))
+    v = Ge.reshape(ne, 16)
+    comp = np.arange(3)
+    r = (6 * rn[:, :, None] + comp[None, None, :]).ravel()
+    c = (6 * cn[:, :, None] + comp[None, None, :]).ravel()
+    vals = np.repeat(v[:, :, None], 3, axis=2).ravel()
+    return r, c, vals
