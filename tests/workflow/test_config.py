@@ -1,0 +1,100 @@
+"""Analysis config: defaults, merging, and one clear error per bad field."""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+
+import pytest
+import yaml
+
+from windflutter.cli import main
+from windflutter.config import AnalysisConfig, config_from_dict, default_config, load_config
+from windflutter.errors import InputError
+
+
+def test_bundled_default_equals_dataclass_defaults():
+    # the commented YAML shipped with the package and the dataclass must not drift apart
+    assert default_config() == AnalysisConfig()
+
+
+def test_partial_file_merges_over_defaults(tmp_path):
+    p = tmp_path / "a.yaml"
+    p.write_text("wind_speeds: {start: 4, stop: 8, step: 2}\nrotor_speed: {max_rpm: 30}\nmethod: thesis\n")
+    c = load_config(p)
+    assert c.wind_speeds == (4.0, 6.0, 8.0)
+    assert c.rotor_speed.max_rpm == 30.0 and c.rotor_speed.min_rpm == AnalysisConfig().rotor_speed.min_rpm
+    assert c.method == ("thesis",)
+    assert c.aero == ("potential", "viscous")
+    assert c.cases == [("potential", "thesis"), ("viscous", "thesis")]
+    # the resolved config survives a YAML round trip
+    assert config_from_dict(yaml.safe_load(c.to_yaml())) == c
+
+
+def test_fingerprint_ignores_output_only():
+    a = config_from_dict({"output": {"dpi": 50}})
+    b = config_from_dict({})
+    c = config_from_dict({"wind_speeds": [5]})
+    assert a.fingerprint() == b.fingerprint() != c.fingerprint()
+
+
+BAD = [
+    ({"wind_sped": [4]}, "wind_sped", "unknown key"),
+    ({"solver": {"nmodes": 4}}, "solver.nmodes", "unknown key"),
+    ({"wind_speeds": [4, -3]}, "wind_speeds[1]", "positive wind speed"),
+    ({"wind_speeds": [8, 6]}, "wind_speeds[1]", "increasing"),
+    ({"rotor_speed": {"min_rpm": 20, "max_rpm": 10}}, "rotor_speed.max_rpm", "reversed"),
+    ({"rotor_speed": {"max_rpm": -1}}, "rotor_speed.max_rpm", "non-negative"),
+    ({"method": ["pk", "newton"]}, "method[1]", "thesis, pk"),
+    ({"aero": "inviscid"}, "aero[0]", "potential, viscous"),
+    ({"model": {"type": "solid"}}, "model.type", "shell, beam"),
+    ({"damping": {"ratio": 1.5}}, "damping.ratio", "[0, 1)"),
+    ({"solver": {"n_modes": 0}}, "solver.n_modes", "integer >= 1"),
+    ({"solver": {"backend": "nonsense"}}, "solver.backend", "module:factory"),
+    ({"air_density": "heavy"}, "air_density", "positive number"),
+    ({"output": {"formats": ["gif"]}}, "output.formats[0]", "png"),
+    ({"rotor_speed": 5}, "rotor_speed", "mapping"),
+]
+
+
+@pytest.mark.parametrize("data, field, words", BAD)
+def test_bad_config_names_the_field(data, field, words):
+    with pytest.raises(InputError) as ei:
+        config_from_dict(data, "a.yaml")
+    msg = str(ei.value)
+    assert ei.value.field == field
+    assert msg.startswith(f"a.yaml: {field} = ")
+    assert words in msg
+    assert "\n" not in msg
+
+
+@pytest.mark.parametrize("text, field", [
+    ("wind_speeds: [4, -2]\n", "wind_speeds[1]"),
+    ("rotor_speed: {min_rpm: 30, max_rpm: 5}\n", "rotor_speed.max_rpm"),
+    ("method: [newton]\n", "method[0]"),
+    ("colour: red\n", "colour"),
+    ("wind_speeds: [4, 6\n", "config"),
+])
+def test_cli_bad_config_one_line_exit_2(tmp_path, capsys, text, field):
+    p = tmp_path / "bad.yaml"
+    p.write_text(text)
+    rc = main(["run", "nrel5mw", "-c", str(p), "-o", str(tmp_path / "out"), "-q"])
+    err = capsys.readouterr().err
+    assert rc == 2
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert len(lines) == 1, err
+    assert field in lines[0] and "Traceback" not in err
+    assert not (tmp_path / "out").exists()  # nothing is written for a bad config
+
+
+def test_cli_missing_config_file(tmp_path, capsys):
+    rc = main(["run", "nrel5mw", "-c", str(tmp_path / "none.yaml"), "-q"])
+    assert rc == 2
+    assert "config" in capsys.readouterr().err
+
+
+def test_print_default_config():
+    out = subprocess.run([sys.executable, "-m", "windflutter", "run", "x", "--print-default-config"],
+                         capture_output=True, text=True, timeout=60)
+    assert out.returncode == 0
+    assert config_from_dict(yaml.safe_load(out.stdout)) == AnalysisConfig()
