@@ -132,3 +132,32 @@ def spin_softening(struct: Structural, omega_vec, nodes: np.ndarray | None = Non
     v = np.broadcast_to(S, (sel.size, 3, 3))
     Q = sp.csr_matrix((v.ravel(), (r.ravel(), c.ravel())), shape=(6 * n, 6 * n))
     return (-(Q.T @ struct.M @ Q)).tocsr()
+
+
+def buckling_factors(struct: Structural, K_sigma: sp.spmatrix, n: int = 3) -> tuple[np.ndarray, np.ndarray]:
+    """Linear buckling load factors ``lam`` with ``(K + lam K_sigma) phi = 0``.
+
+    Parameters
+    ----------
+    struct : assembled structure.
+    K_sigma : full-numbering geometric stiffness of the reference load.
+    n : number of factors.
+
+    Returns
+    -------
+    lam : (m,) positive load factors, ascending (the reference load times ``lam`` buckles).
+    phi : (n_dof, m) buckling shapes (full numbering).
+    """
+    Kg = struct.reduce(sp.csr_matrix(K_sigma))
+    Kr = struct.Kr
+    if struct.nq < 400:
+        from scipy.linalg import eigh
+
+        mu, Q = eigh(-Kg.toarray(), Kr.toarray())
+    else:
+        mu, Q = spla.eigsh(-Kg, k=min(max(2 * n, n + 4), struct.nq - 2), M=Kr.tocsc(), which="LA")
+    pos = mu > 1e-12 * max(np.abs(mu).max(), 1e-300)
+    lam = 1.0 / mu[pos]
+    Q = Q[:, pos]
+    order = np.argsort(lam)[:n]
+    return lam[order], struct.expand(Q[:, order])
