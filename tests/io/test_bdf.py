@@ -183,7 +183,10 @@ def test_standard_cards_alone_carry_representable_model(tmp_path):
     fe.beam_sections = [consistent_section("a"), consistent_section("b")]
     fe2 = read_bdf(_strip_meta(_write(fe, tmp_path / "m.bdf")))
     _assert_same_model(fe, fe2, exact_sections=False)
-    assert fe2.region_names == [] and fe2.element_regions == {}
+    # without windflutter's data the regions are the NASTRAN properties
+    assert fe2.region_names == ["PID1", "PID2", "PID3", "PID4", "PID5"]
+    np.testing.assert_array_equal(fe2.element_regions["shell"], fe.shell_prop)
+    np.testing.assert_array_equal(fe2.element_regions["beam"], fe.beam_section + 3)
 
 
 @pytest.mark.nastran
@@ -381,3 +384,22 @@ def test_matrix_comparison_detects_a_one_degree_ply_error(tmp_path):
     fe2.shell_properties[0] = dataclasses.replace(p, plies=plies)
     with pytest.raises(AssertionError):
         _matrices_equal(fe, fe2)
+
+
+@pytest.mark.nastran
+@pytest.mark.skipif(not HAVE_PYNASTRAN, reason="pyNastran not installed: run `make test-nastran`")
+@pytest.mark.parametrize("old,new,field", [
+    ("PSHELL  1       7       .004    7\n", "PSHELL  1       7       .004    7               7               2.\n",
+     "NSM"),
+    ("CBAR    21      2       2       5       0.      0.      1.\n",
+     "CBAR    21      2       2       5       0.      0.      1.\n        1\n", "PA/PB"),
+    ("PSHELL  1       7       .004    7\n", "PSHELL  1       7       .004    7       0.5\n", "PSHELL 1"),
+])
+def test_unrepresentable_foreign_cards_are_refused(tmp_path, old, new, field):
+    """Non-structural shell mass, pin flags and non-homogeneous PSHELLs have no FEModel
+    equivalent: refuse with the card named rather than silently change the model."""
+    path = tmp_path / "bad.bdf"
+    assert old in HAND_DECK
+    path.write_text(HAND_DECK.replace(old, new))
+    with pytest.raises(InputError, match=field):
+        read_bdf(path)

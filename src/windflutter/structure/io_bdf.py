@@ -595,9 +595,15 @@ def read_bdf(path: str | Path) -> FEModel:
     base_props: dict[int, tuple[tuple[Ply, ...], float]] = {}
     for pid in shell_pids:
         p = model.properties[pid]
+        if float(p.nsm or 0.0) != 0.0:
+            raise InputError(f"{p.type} {pid}.NSM", p.nsm, "no non-structural mass on shells (add CONM2s)",
+                             source=str(path))
         if p.type == "PSHELL":
             if p.mid1 is None:
                 raise InputError(f"PSHELL {pid}.MID1", None, "a membrane material", source=str(path))
+            if p.mid2 not in (None, p.mid1) or float(p.twelveIt3 or 1.0) != 1.0:
+                raise InputError(f"PSHELL {pid}", (p.mid1, p.mid2, p.twelveIt3),
+                                 "a homogeneous shell (MID2 = MID1, 12I/T^3 = 1)", source=str(path))
             plies = (Ply(mats[p.mid1], float(p.t), 0.0),)
             z0 = -0.5 * float(p.t)
         else:
@@ -631,6 +637,12 @@ def read_bdf(path: str | Path) -> FEModel:
     for pid in beam_pids:
         p = model.properties[pid]
         mat = model.materials[p.mid]
+        n_off = [float(v or 0.0) for v in (*np.atleast_1d(getattr(p, "n1a", 0.0)), *np.atleast_1d(getattr(p, "n2a", 0.0)),
+                                            *np.atleast_1d(getattr(p, "n1b", 0.0) or 0.0),
+                                            *np.atleast_1d(getattr(p, "n2b", 0.0) or 0.0))]
+        if p.type == "PBEAM" and any(n_off):
+            raise InputError(f"PBEAM {pid} N1/N2", n_off, "zero neutral-axis offsets (not supported)",
+                             source=str(path))
         if p.type == "PBEAM":
             if len(np.atleast_1d(p.A)) > 2 or not np.allclose(np.atleast_1d(p.A), np.atleast_1d(p.A)[0]):
                 raise InputError(f"PBEAM {pid}", "tapered section", "a constant section", source=str(path))
@@ -654,6 +666,8 @@ def read_bdf(path: str | Path) -> FEModel:
                          dtype=np.int64).reshape(-1, 2)
     orient = []
     for i, b in enumerate(beams):
+        if int(b.pa or 0) or int(b.pb or 0):
+            raise InputError(f"{b.type} {b.eid} PA/PB", (b.pa, b.pb), "no pin flags (not supported)", source=str(path))
         wa = np.asarray(getattr(b, "wa", np.zeros(3)) if getattr(b, "wa", None) is not None else np.zeros(3), float)
         wb = np.asarray(getattr(b, "wb", np.zeros(3)) if getattr(b, "wb", None) is not None else np.zeros(3), float)
         if np.any(wa != 0) or np.any(wb != 0):
@@ -744,6 +758,11 @@ def read_bdf(path: str | Path) -> FEModel:
         expect = {"shell": n_sh, "beam": n_bm}.get(kind)
         if expect is None or len(ids) == expect:
             regions[kind] = np.asarray(ids, np.int64)
+    region_names = list(meta.get("region_names", []))
+    if not meta:
+        # a foreign deck: one region per property (shells first, then beams), named after the PID
+        regions = {"shell": shell_prop.copy(), "beam": beam_section + len(shell_properties)}
+        region_names = [p.name for p in shell_properties] + [f"PID{pid}" for pid in beam_pids]
     groups = {k: np.asarray(v, np.int64) for k, v in meta.get("node_groups", {}).items()
               if not v or max(v) < len(nodes)}
     if meta and (meta.get("n_shell") != n_sh or meta.get("n_beam") != n_bm):
@@ -755,7 +774,7 @@ def read_bdf(path: str | Path) -> FEModel:
         shell_properties=shell_properties, beam_conn=beam_conn, beam_section=beam_section,
         beam_orient=beam_orient, beam_sections=beam_sections, masses=masses, rigid_links=rigid,
         springs=springs, spc=spc_t, node_groups=groups, element_regions=regions,
-        region_names=list(meta.get("region_names", [])),
+        region_names=region_names,
     )
     fe.check()
     return fe
