@@ -85,6 +85,11 @@ class WingConfig:
                 raise InputError(k, None, "a value (required)", source)
         vals = {}
         for k, v in d.items():
+            if isinstance(v, str):  # YAML 1.1 reads 9.77e6 as a string
+                try:
+                    v = float(v)
+                except ValueError:
+                    raise InputError(k, v, "a number", source) from None
             if k in ("n_elements", "n_modes"):
                 if isinstance(v, float) and v.is_integer():
                     v = int(v)
