@@ -15,6 +15,7 @@ import scipy.sparse as sp
 
 from windflutter.aero.sections import Polar
 from windflutter.mesh.frames import skew
+from windflutter.mesh.loft import stack_weights
 
 
 def blend_polar(p0: Polar, p1: Polar, w: float, name: str) -> Polar:
@@ -39,13 +40,15 @@ def blend_polar(p0: Polar, p1: Polar, w: float, name: str) -> Polar:
 
 
 def strip_polars(blade, airfoils: dict, eta: np.ndarray) -> list[Polar]:
-    """One polar per strip, blended between the neighbouring airfoils of the stack like the shape."""
+    """One polar per strip, blended between the neighbouring airfoils of the stack with the same
+    thickness-matching weights as the shape (:func:`windflutter.mesh.loft.stack_weights`)."""
     pos = np.asarray(blade.airfoil_positions, dtype=float)
     names = blade.airfoil_names
+    tc = [airfoils[n].relative_thickness for n in names]
+    jj, ww = stack_weights(pos, tc, eta, blade.at("relative_thickness", eta))
     out = []
-    for e in eta:
-        j = int(np.clip(np.searchsorted(pos, e, side="right") - 1, 0, len(pos) - 2))
-        w = float(np.clip((e - pos[j]) / max(pos[j + 1] - pos[j], 1e-300), 0.0, 1.0))
+    for j, w in zip(jj, ww):
+        j, w = int(j), float(w)
         a0, a1 = airfoils[names[j]], airfoils[names[j + 1]]
         if not a0.polars or not a1.polars:
             out.append(Polar(np.array([-np.pi, np.pi]), np.zeros(2), np.zeros(2), np.zeros(2), name="none"))

@@ -154,8 +154,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     # --- sections: airfoil blend at each station on its own arc grid
     pos, shapes = _oriented_stack(blade, airfoils)
     arc = np.stack([lf.segmented_grid(key_arr[i], counts) for i in range(n_st)])
-    j = np.clip(np.searchsorted(pos, eta, side="right") - 1, 0, len(pos) - 2)
-    w = np.clip((eta - pos[j]) / np.maximum(pos[j + 1] - pos[j], 1e-300), 0.0, 1.0)
+    j, w = lf.stack_weights(pos, [lf.relative_thickness(x) for x in shapes], eta, blade.at("relative_thickness", eta))
     sec = np.stack(
         [(1 - w[i]) * lf.resample_airfoil(shapes[j[i]], arc[i]) + w[i] * lf.resample_airfoil(shapes[j[i] + 1], arc[i]) for i in range(n_st)]
     )

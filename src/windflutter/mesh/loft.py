@@ -213,3 +213,26 @@ def quad_grid(n_station: int, n_chord: int, offset: int = 0, closed: bool = True
     c = offset + (i + 1) * n_chord + jn
     d = offset + (i + 1) * n_chord + j
     return np.stack([a, d, c, b], axis=-1).reshape(-1, 4)
+
+
+def stack_weights(
+    eta_af: np.ndarray, tc_af: np.ndarray, eta: np.ndarray, tc_target: np.ndarray | None = None
+) -> tuple[np.ndarray, np.ndarray]:
+    """Neighbouring airfoils ``j, j+1`` and blend weights ``w`` for span positions ``eta``.
+
+    Where the two airfoils differ in relative thickness and a target thickness distribution is
+    given, ``w`` makes the blended thickness ``(1-w) tc_j + w tc_{j+1}`` equal the target
+    (clipped to [0, 1]); otherwise ``w`` is linear in span.  (Blending by thickness keeps the
+    blade's t/c distribution, as windIO tools do.)
+    """
+    eta_af = np.asarray(eta_af, dtype=float)
+    eta = np.asarray(eta, dtype=float)
+    j = np.clip(np.searchsorted(eta_af, eta, side="right") - 1, 0, len(eta_af) - 2)
+    w = np.clip((eta - eta_af[j]) / np.maximum(eta_af[j + 1] - eta_af[j], 1e-300), 0.0, 1.0)
+    if tc_target is not None:
+        tc_af = np.asarray(tc_af, dtype=float)
+        d = tc_af[j + 1] - tc_af[j]
+        ok = np.abs(d) > 1e-4
+        wt = np.clip((np.asarray(tc_target, dtype=float) - tc_af[j]) / np.where(ok, d, 1.0), 0.0, 1.0)
+        w = np.where(ok, wt, w)
+    return j, w

@@ -14,7 +14,8 @@ For each mode shape ``phi`` (full numbering):
    coupling makes collective modes uneven) or ``asymmetric``; a mode confined to one blade is
    labelled with that blade.
 3. Tower modes: the tower nodes' kinetic energy in x (fore-aft), y (side-side) and rz
-   (torsion).
+   (torsion); for shell towers torsion is recognised by the tangential share of the wall
+   nodes' horizontal motion (> 3/4; bending gives 1/2).
 
 Ordinals count modes of the same kind in frequency order; with ``B`` blades each order is a
 family of ``B`` modes (one collective and ``B - 1`` asymmetric), so the order is
@@ -102,7 +103,7 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
             ex = e[dofs(tn, (0,))].sum(axis=0)[m]
             ey = e[dofs(tn, (1,))].sum(axis=0)[m]
             rz = e[dofs(tn, (5,))].sum(axis=0)[m]
-            if rz > max(ex, ey):
+            if _tangential_share(fe.nodes[tn], shapes[:, m], tn) > 0.75 or rz > max(ex, ey):
                 kind = "tower torsion"
             else:
                 kind = "tower fore-aft" if ex >= ey else "tower side-side"
@@ -111,3 +112,19 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
         else:
             labels.append("other")
     return labels
+
+
+def _tangential_share(xyz: np.ndarray, phi: np.ndarray, nodes: np.ndarray) -> float:
+    """Share of the horizontal displacement (squared) of off-axis tower nodes that is tangential
+    about the vertical axis through x = y = 0: 1 for torsion, 1/2 for bending of a shell tower,
+    0 when all nodes are on the axis (beam tower; torsion then shows in rz)."""
+    r = xyz[:, :2]
+    rn = np.linalg.norm(r, axis=1)
+    off = rn > 1e-6
+    if not np.any(off):
+        return 0.0
+    u = np.stack([phi[6 * nodes[off]], phi[6 * nodes[off] + 1]], axis=1)
+    t = np.stack([-r[off, 1], r[off, 0]], axis=1) / rn[off, None]
+    ut = np.sum(u * t, axis=1)
+    tot = np.sum(u * u)
+    return float(np.sum(ut**2) / tot) if tot > 0 else 0.0
