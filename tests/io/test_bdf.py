@@ -97,6 +97,10 @@ def test_bad_input_is_named(tmp_path):
     with pytest.raises(InputError, match=r"shell_matdir\[2\]"):
         write_bdf(fe, tmp_path / "x.bdf")
     fe = mixed_model()
+    fe.beam_orient[1] = fe.nodes[fe.beam_conn[1, 1]] - fe.nodes[fe.beam_conn[1, 0]]
+    with pytest.raises(InputError, match=r"beam_orient\[1\]"):
+        write_bdf(fe, tmp_path / "x.bdf")
+    fe = mixed_model()
     fe.shell_conn[0, 0] = 999
     with pytest.raises(InputError, match="shell_conn"):
         write_bdf(fe, tmp_path / "x.bdf")

@@ -234,6 +234,8 @@ def _unique_directions(dirs: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Normalise the material axes and group equal ones (to 1e-12). Returns (unique, inverse)."""
     if len(dirs) == 0:
         return np.zeros((0, 3)), np.zeros(0, dtype=np.int64)
+    if dirs.ndim != 2 or dirs.shape[1] != 3:
+        raise InputError("shell_matdir", dirs.shape, "an (ns, 3) array of material axis vectors")
     nrm = np.linalg.norm(dirs, axis=1)
     if np.any(~np.isfinite(nrm)) or np.any(nrm <= 0):
         bad = int(np.flatnonzero(~(nrm > 0))[0])
@@ -354,6 +356,15 @@ def _bdf_text(fe: FEModel, title: str, full_deck: bool, n_modes: int) -> str:
     bconn = np.asarray(fe.beam_conn, dtype=np.int64)
     borient = np.asarray(fe.beam_orient, float)
     meta["beam_eid0"] = eid
+    if len(bconn):
+        if borient.shape != (len(bconn), 3):
+            raise InputError("beam_orient", borient.shape, f"an ({len(bconn)}, 3) array of orientation vectors")
+        axis = nodes[bconn[:, 1]] - nodes[bconn[:, 0]]
+        cross = np.linalg.norm(np.cross(axis, borient), axis=1)
+        bad = np.flatnonzero(~(cross > 1e-9 * np.linalg.norm(axis, axis=1) * np.linalg.norm(borient, axis=1)))
+        if bad.size:
+            raise InputError(f"beam_orient[{int(bad[0])}]", borient[bad[0]].tolist(),
+                             "a vector not parallel to its beam (and beams of non-zero length)")
     for e in range(len(bconn)):
         eid += 1
         out.append(_card("CBEAM", [eid, beam_pid0 + int(fe.beam_section[e]) + 1, *(bconn[e] + 1).tolist(),
