@@ -188,7 +188,7 @@ def beam_global_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarra
 
 def element_dofs(conn: np.ndarray) -> np.ndarray:
     """(ne, 6*nn) global DOF numbers of elements with connectivity ``conn`` (ne, nn)."""
-    return (6 * conn[:, :, None] + np.arange(6)[None, None, :]).reshape(conn.shape[0], -1)
+    return (6 * conn[:, :, None] + np.arange(6)[None, None, :]).reshape(conn.shape[0], 6 * conn.shape[1])
 
 
 def beam_axial_force(fe: FEModel, u0: np.ndarray) -> np.ndarray:
