@@ -596,12 +596,6 @@ def pk_eigen(
     raise ConvergenceError(f"p-k iteration did not converge at U = {U:.6g} m/s (lambda ~ {lam:.6g})")
 
 
-@dataclass
-class _Track:
-    lam: list
-    vec: list
-
-
 def _pk_track(sec_at: Callable[[float], tuple[TypicalSection, float]], params: np.ndarray,
               lam0: np.ndarray, **kw) -> tuple[np.ndarray, list[list[np.ndarray]]]:
     """Follow each mode of ``lam0`` along a parameter path; returns lam (n_modes, n)."""
@@ -806,14 +800,12 @@ def k_method(
                 if best is None or uf < best[0]:
                     best = (uf, w, kr, V[:, j])
                 break
-    order = np.argsort(U, axis=1)
     curves = StabilityCurves(
         speed=U,  # per-branch speeds (n_modes, nk): the k-method has no common speed grid
         frequency=omega,
         damping=g,
         damping_kind="g",
     )
-    del order
     if best is None:
         res = SectionResult("k", None, None, None, None, divergence_speed(sec),
                             divergence_speed_numerical(sec), curves,
@@ -874,7 +866,7 @@ def p_method(
     wscale = float(natural_frequencies(sec).max())
     nm = 2
 
-    def modes(U: float) -> tuple[np.ndarray, np.ndarray]:
+    def modes(U: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
         lam, V = np.linalg.eig(rfa_state_matrix(sec, U, rfa))
         osc = np.where(lam.imag > 1e-6 * wscale)[0]
         return lam, V, osc
