@@ -222,3 +222,34 @@ def tower_beam_sections(turbine: Turbine) -> BeamProperties:
         outside = outside + lay.thickness
     return BeamProperties(s=tw.s, stiffness=K, mass=M, twist=np.zeros(n), length=tw.height,
                           source="thin-walled tube from outer_diameter/layers")
+
+
+def read_elastodyn_tower(path: str | Path, height: float) -> BeamProperties:
+    """ElastoDyn tower file -> uncoupled sections (mass per length x AdjTwMa, fore-aft and
+    side-to-side EI x AdjFASt/AdjSSSt; EA, GJ and shear rigid placeholders).  Section frame as
+    :func:`tower_beam_sections`: y = fore-aft direction (global x), so bending about z is fore-aft.
+    """
+    p = Path(path)
+    lines = p.read_text().splitlines()
+    adj = {"AdjTwMa": 1.0, "AdjFASt": 1.0, "AdjSSSt": 1.0}
+    n_st = None
+    for ln in lines:
+        tok = ln.split()
+        if len(tok) >= 2 and tok[1] in adj:
+            adj[tok[1]] = float(tok[0])
+        if len(tok) >= 2 and tok[1] == "NTwInpSt":
+            n_st = int(tok[0])
+    i0 = next(i for i, ln in enumerate(lines) if "HtFract" in ln) + 2
+    tab = np.array([_numbers(ln)[:4] for ln in lines[i0:i0 + n_st]])
+    frac, mden, fa, ss = tab.T
+    m = mden * adj["AdjTwMa"]
+    EIfa, EIss = fa * adj["AdjFASt"], ss * adj["AdjSSSt"]
+    big = 1e3 * EIfa.max()
+    n = m.size
+    K = np.zeros((n, 6, 6))
+    M = np.zeros((n, 6, 6))
+    for j in range(n):
+        K[j] = np.diag([big, big, big, big, EIss[j], EIfa[j]])
+        M[j] = np.diag([m[j], m[j], m[j], 0.0, 0.0, 0.0])
+    return BeamProperties(s=frac, stiffness=K, mass=M, twist=np.zeros(n), length=float(height),
+                          source=f"ElastoDyn {p.name}; EA/GJ/shear rigid placeholders")

@@ -121,8 +121,9 @@ def apply_supplement(turbine: Turbine, raw: dict, supp: dict | None, base_dir: P
                 tower_to_shaft=r.number(n, q, "tower_to_shaft", default=nac.tower_to_shaft),
                 generator_inertia=r.number(n, q, "generator_inertia", default=nac.generator_inertia, nonneg=True),
                 gear_ratio=r.number(n, q, "gear_ratio", default=nac.gear_ratio, positive=True),
-                drivetrain_torsional_stiffness=r.number(n, q, "drivetrain_torsional_stiffness",
-                                                        default=nac.drivetrain_torsional_stiffness, positive=True),
+                drivetrain_torsional_stiffness=(
+                    r.number(n, q, "drivetrain_torsional_stiffness", positive=True)
+                    if "drivetrain_torsional_stiffness" in n else nac.drivetrain_torsional_stiffness),
                 yaw_bearing_mass=r.number(n, q, "yaw_bearing_mass", default=nac.yaw_bearing_mass, nonneg=True),
             )
         if "rated_rotor_speed_rpm" in supp:
@@ -130,6 +131,9 @@ def apply_supplement(turbine: Turbine, raw: dict, supp: dict | None, base_dir: P
         oc = r.mapping(supp, p, "operating_curve", default=None)
         if oc is not None:
             curve = _curve(oc, r, f"{p}.operating_curve", fdir)
+        tw = r.mapping(supp, p, "tower", default=None)
+        if tw is not None:
+            turbine = _tower_override(turbine, tw, r, f"{p}.tower")
         bb = r.mapping(supp, p, "blade_beam", default=None)
         if bb is not None:
             blade = dataclasses.replace(blade, beam=_beam(bb, r, f"{p}.blade_beam", fdir, blade.length))
@@ -156,6 +160,29 @@ def apply_supplement(turbine: Turbine, raw: dict, supp: dict | None, base_dir: P
         notes.append("hub inertia not given: zero (point mass)")
     return dataclasses.replace(turbine, hub=hub, nacelle=nac, rated_rotor_speed=float(rated),
                                operating_curve=curve, blade=blade, notes=tuple(notes))
+
+
+def _tower_override(turbine: Turbine, tw: dict, r: Reader, q: str) -> Turbine:
+    """Replace the tower by a linear-taper tube: ``{height, base_z, outer_diameter: [base, top],
+    wall_thickness: [base, top], n_stations, material: {name, E, G, rho}}``."""
+    from windflutter.model.turbine import IsotropicMaterial, Tower, TowerLayer
+
+    h = r.number(tw, q, "height", positive=True)
+    z0 = r.number(tw, q, "base_z", default=0.0)
+    d = r.array(r.get(tw, q, "outer_diameter"), f"{q}.outer_diameter", min_len=2, positive=True)
+    t = r.array(r.get(tw, q, "wall_thickness"), f"{q}.wall_thickness", min_len=2, positive=True)
+    n = int(r.number(tw, q, "n_stations", default=11, positive=True))
+    m = r.mapping(tw, q, "material")
+    E = r.number(m, f"{q}.material", "E", positive=True)
+    G = r.number(m, f"{q}.material", "G", positive=True)
+    name = r.string(m, f"{q}.material", "name", default="tower_material")
+    mat = IsotropicMaterial(E=E, nu=E / (2 * G) - 1.0, rho=r.number(m, f"{q}.material", "rho", positive=True),
+                            name=name)
+    s = np.linspace(0.0, 1.0, n)
+    tower = Tower(s=s, z=z0 + h * s, outer_diameter=d[0] + (d[-1] - d[0]) * s,
+                  layers=(TowerLayer(name="wall", material=name, thickness=t[0] + (t[-1] - t[0]) * s),),
+                  outfitting_factor=1.0)
+    return dataclasses.replace(turbine, tower=tower, materials={**turbine.materials, name: mat})
 
 
 def _inertia6(r: Reader, d: dict, q: str) -> np.ndarray:
@@ -190,14 +217,19 @@ def _beam(bb: dict, r: Reader, q: str, fdir: Path, length: float):
 
     f = _file(bb, r, q, fdir)
     fmt = r.string(bb, q, "format", default="beamdyn")
+    factor = r.number(bb, q, "mass_factor", default=1.0, positive=True)
     if fmt == "beamdyn":
         tw = None
         if "main" in bb:
             tw = _beamdyn_twist(_file(bb, r, q, fdir, "main"))
-        return read_beamdyn_blade(f, tw, length)
-    if fmt == "elastodyn":
-        return read_elastodyn_blade(f, length)
-    raise InputError(f"{q}.format", fmt, "'beamdyn' or 'elastodyn'", r.source)
+        bp = read_beamdyn_blade(f, tw, length)
+    elif fmt == "elastodyn":
+        bp = read_elastodyn_blade(f, length)
+    else:
+        raise InputError(f"{q}.format", fmt, "'beamdyn' or 'elastodyn'", r.source)
+    if factor != 1.0:
+        bp = dataclasses.replace(bp, mass=bp.mass * factor, source=f"{bp.source} x mass_factor {factor}")
+    return bp
 
 
 def _beamdyn_twist(main: Path) -> tuple[np.ndarray, np.ndarray]:

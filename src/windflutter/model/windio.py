@@ -73,6 +73,8 @@ def validate_windio_v2(data: dict, source: str | None = None) -> None:
     import jsonschema
 
     validator = _v2_validator()
+    # the 'windflutter' supplement block is our extension (the schema forbids unknown top-level keys)
+    data = {k: v for k, v in data.items() if k != "windflutter"}
     errors = list(validator.iter_errors(data))
     if not errors:
         return
