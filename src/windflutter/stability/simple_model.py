@@ -202,11 +202,12 @@ def first_unstable(
     *,
     frozen_k: bool = False,
     rpm_max: float = 100.0,
-    n_grid: int = 50,
+    n_grid: int = 40,
 ) -> OnsetPoint:
     """First unstable rotor speed at wind speed ``V`` (m/s) for rotor speeds up to ``rpm_max``.
 
-    The two modes are followed from ``rpm_max / n_grid`` upwards on ``n_grid`` rotor speeds
+    The two modes are followed upwards on ``n_grid`` rotor speeds up to ``rpm_max`` (or 1.5 x
+    the divergence rotor speed)
     (p-k with k iterated to each mode's frequency, or with k frozen), the first crossing of a
     mode's real part through 0 is refined by Brent's method (rotor speed to 1e-10 rad/s).
     Divergence: closed form ``U_D`` converted with ``Omega = sqrt(U_D^2 - V^2) / r``.
@@ -218,10 +219,12 @@ def first_unstable(
     d_rpm = float("nan")
     if ud is not None and ud > V:
         d_rpm = math.sqrt(ud * ud - V * V) / rs.radius / RPM
-    # flutter is searched below divergence only (beyond it the section is statically unstable)
-    top = rpm_max if not (d_rpm < rpm_max) else (1.0 - 1e-6) * d_rpm
     if d_rpm > rpm_max:
         d_rpm = float("nan")
+    # flutter is searched up to min(rpm_max, 1.5 x divergence), i.e. also beyond divergence
+    # (reported for information; the first instability is then the divergence).  p-k tracking
+    # stops where the iteration has no oscillatory solution any more (real root pairs).
+    top = min(rpm_max, 1.5 * d_rpm) if math.isfinite(d_rpm) else rpm_max
     omegas = np.linspace(top / n_grid, top, n_grid) * RPM
     lam0 = 1j * natural_frequencies(sec0)
     kw = {"frozen_omega": 2 * math.pi * rs.frozen_frequency_hz} if frozen_k else {}
@@ -241,7 +244,7 @@ def run_simple_model(
     *,
     frozen_k: bool = False,
     rpm_max: float = 100.0,
-    n_grid: int = 50,
+    n_grid: int = 40,
 ) -> SimpleModelResult:
     """First unstable rotor speed for each wind speed (default 4, 5, ..., 25 m/s)."""
     if wind_speeds is None:
