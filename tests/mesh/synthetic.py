@@ -41,7 +41,8 @@ def tube_blade(length=40.0, chord=2.0, thick=1.0, t=0.01, webs=False, beam=None)
 
 
 def tube_beam_props(length, chord, thick, t, E=70e9, nu=0.3, rho=2700.0) -> BeamProperties:
-    """Thin-walled ellipse beam properties (numerical contour integration), section y = flap."""
+    """Thin-walled elliptical tube (numerical contour integration; Bredt-Batho torsion constant
+    ``J = 4 A_enc^2 t / perimeter``), section y = flap, z = edge."""
     x, y = ellipse(thick, 2001)
     X, Y = (x - 0.5) * chord, y * chord  # X edgewise (to TE), Y flapwise
     dl = np.hypot(np.diff(np.append(X, X[0])), np.diff(np.append(Y, Y[0])))
@@ -53,9 +54,9 @@ def tube_beam_props(length, chord, thick, t, E=70e9, nu=0.3, rho=2700.0) -> Beam
     G = E / (2 * (1 + nu))
     Aenc = 0.5 * abs(np.sum(Xm * np.diff(np.append(Y, Y[0])) - Ym * np.diff(np.append(X, X[0]))))
     J = 4 * Aenc**2 * t / np.sum(dl)
-    K = np.diag([E * A, 0.5 * G * A, 0.5 * G * A, G * J, E * Iedge * 0 + E * Iflap, E * Iedge])
-    # section (x span, y flap, z edge): bending about y (My) is edgewise motion -> uses Iedge?  See note.
-    K[4, 4], K[5, 5] = E * Iedge, E * Iflap
+    # section frame (x span, y flap, z edge): bending about y moves the section edgewise and
+    # uses the second moment of the edgewise coordinate (Iedge), bending about z uses Iflap.
+    K = np.diag([E * A, 0.5 * G * A, 0.5 * G * A, G * J, E * Iedge, E * Iflap])
     M = np.diag([rho * A] * 3 + [rho * (Iflap + Iedge), rho * Iedge, rho * Iflap])
     n = 2
     return BeamProperties(s=np.array([0.0, 1.0]), stiffness=np.repeat(K[None], n, 0), mass=np.repeat(M[None], n, 0),
@@ -63,8 +64,8 @@ def tube_beam_props(length, chord, thick, t, E=70e9, nu=0.3, rho=2700.0) -> Beam
 
 
 def synthetic_turbine(blade: Blade | None = None, n_blades: int = 3) -> Turbine:
-    x, y = ellipse(1.0)
     blade = blade or tube_blade()
+    x, y = ellipse(float(blade.relative_thickness[0]))
     tower = Tower(s=np.array([0.0, 1.0]), z=np.array([0.0, 80.0]), outer_diameter=np.array([6.0, 4.0]),
                   layers=(TowerLayer("wall", "steel", np.array([0.03, 0.02])),))
     hub = Hub(mass=50e3, inertia=np.diag([1e5, 5e4, 5e4]), diameter=3.0, precone=np.radians(2.5))

@@ -19,6 +19,7 @@ from windflutter.mesh.layup import group_laminates, layer_tables
 from windflutter.mesh.settings import MeshSettings
 from windflutter.structure.fem import ShellProperty
 
+MATDIR_NUDGE = 1e-5  # rad, see blade_shell_mesh
 MIN_KEY_GAP = 0.004  # minimum arc gap between two key arcs anywhere on the span (-)
 
 
@@ -154,10 +155,9 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     # --- sections: airfoil blend at each station on its own arc grid
     pos, shapes = _oriented_stack(blade, airfoils)
     arc = np.stack([lf.segmented_grid(key_arr[i], counts) for i in range(n_st)])
-    j, w = lf.stack_weights(pos, [lf.relative_thickness(x) for x in shapes], eta, blade.at("relative_thickness", eta))
-    sec = np.stack(
-        [(1 - w[i]) * lf.resample_airfoil(shapes[j[i]], arc[i]) + w[i] * lf.resample_airfoil(shapes[j[i] + 1], arc[i]) for i in range(n_st)]
-    )
+    tc_target = blade.at("relative_thickness", eta)
+    j, w = lf.stack_weights(pos, [lf.relative_thickness(x) for x in shapes], eta, tc_target)
+    sec = np.stack([_blend_to_thickness(shapes[j[i]], shapes[j[i] + 1], arc[i], w[i], tc_target[i]) for i in range(n_st)])
     ref = np.column_stack([np.interp(eta, blade.s, blade.ref_axis[:, c]) for c in range(3)])
     chord = blade.at("chord", eta)
     twist = blade.at("twist", eta)
@@ -208,7 +208,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
             continue
         i = np.repeat(on, nw)
         k = np.tile(np.arange(nw), on.size)
-        cw = np.stack([cols[i, k], cols[i, k + 1], cols[i + 1, k + 1], cols[i + 1, k]], axis=1)
+        cw = np.stack([cols[i, k], cols[i + 1, k], cols[i + 1, k + 1], cols[i, k + 1]], axis=1)
         sw = np.repeat(se[on], nw)
         Tw, Aw = layer_tables(wl, sw, None)
         if np.any(Tw.sum(axis=1) <= 0):
@@ -224,9 +224,15 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     conn = np.vstack(conns)
     all_nodes, conn, station_nodes = _compact(all_nodes, conn, station_nodes)
     p = all_nodes[conn]
-    matdir = (p[:, 3] + p[:, 2] - p[:, 0] - p[:, 1])
-    # webs: columns along the web height, stations along the span; the span edge for web quads
-    # (cols[i,k], cols[i,k+1], cols[i+1,k+1], cols[i+1,k]) is p3 + p2 - p0 - p1 as for the skin.
+    # every quad is (station i, station i+1, station i+1, station i) -> span edge p1 + p2 - p0 - p3
+    matdir = p[:, 1] + p[:, 2] - p[:, 0] - p[:, 3]
+    matdir /= np.linalg.norm(matdir, axis=1, keepdims=True)
+    # turn by MATDIR_NUDGE rad in the element plane: pyfe3d 0.11 Quad4.update_rotation_matrix
+    # fails (complex sqrt of a round-off negative) when the material axis is exactly its element
+    # x axis, as on straight rectangular quads; 1e-5 rad is physically irrelevant.
+    cross = p[:, 3] + p[:, 2] - p[:, 0] - p[:, 1]
+    cross -= np.sum(cross * matdir, axis=1, keepdims=True) * matdir
+    matdir += MATDIR_NUDGE * cross / np.maximum(np.linalg.norm(cross, axis=1, keepdims=True), 1e-300)
     matdir /= np.linalg.norm(matdir, axis=1, keepdims=True)
     return BladeShellMesh(
         nodes=all_nodes,
@@ -244,6 +250,26 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
         twist=twist,
         pitch_axis=pa,
     )
+
+
+def _blend_to_thickness(a: np.ndarray, b: np.ndarray, arc: np.ndarray, w0: float, tc: float) -> np.ndarray:
+    """Blend ``(1-w) a + w b`` resampled at ``arc``; if the two differ in thickness, ``w`` is
+    refined by bisection so that the blended section's t/c equals ``tc`` (the blend's thickness
+    is not linear in ``w`` when the thickest points are at different chord positions)."""
+    ra, rb = lf.resample_airfoil(a, arc), lf.resample_airfoil(b, arc)
+    ta, tb = lf.relative_thickness(ra), lf.relative_thickness(rb)
+    if abs(tb - ta) < 1e-4 or not (min(ta, tb) <= tc <= max(ta, tb)):
+        return (1 - w0) * ra + w0 * rb
+    lo, hi = 0.0, 1.0
+    for _ in range(30):
+        w = 0.5 * (lo + hi)
+        t = lf.relative_thickness((1 - w) * ra + w * rb)
+        if (t - tc) * (tb - ta) < 0:
+            lo = w
+        else:
+            hi = w
+    w = 0.5 * (lo + hi)
+    return (1 - w) * ra + w * rb
 
 
 def _center_arc_rows(arc: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:

@@ -75,11 +75,10 @@ def tower_shell_mesh(tower, materials: dict, n_circ: int, n_axial: int, offset: 
     te = 0.5 * (t[:-1] + t[1:])
     props = [ShellProperty(plies=(Ply(mat, float(ti), 0.0),), name=f"tower_{k}") for k, ti in enumerate(te)]
     prop = np.repeat(np.arange(n_axial), n_circ)
-    # material axis: the tower axis tilted by 1e-2 rad towards the circumference.  The wall is
-    # isotropic, so the axis has no physical effect; the tilt keeps it off the element x axis,
-    # which pyfe3d 0.11 Quad4.update_rotation_matrix cannot handle when exactly parallel.
+    # material axis: the tower axis tilted by 1e-5 rad towards the circumference (isotropic wall,
+    # no physical effect); exactly parallel to the element x axis pyfe3d 0.11 fails.
     thc = np.repeat(0.5 * (th + np.roll(th, -1) + np.where(np.arange(n_circ) == n_circ - 1, -2 * np.pi, 0.0))[None, :], n_axial, 0).ravel()
-    matdir = np.column_stack([-1e-2 * np.sin(thc), 1e-2 * np.cos(thc), np.ones_like(thc)])
+    matdir = np.column_stack([-1e-5 * np.sin(thc), 1e-5 * np.cos(thc), np.ones_like(thc)])
     ring = offset + np.arange(len(s) * n_circ).reshape(len(s), n_circ)
     return TowerMesh(nodes.reshape(-1, 3), ring, conn, prop, props, matdir, s)
 
