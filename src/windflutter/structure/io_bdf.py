@@ -298,6 +298,7 @@ def _bdf_text(fe: FEModel, title: str, full_deck: bool, n_modes: int) -> str:
     # beam sections (PBEAM + one unit-modulus MAT1 shared by all)
     beam_pid0 = len(fe.shell_properties)
     beam_meta = []
+    lossy: list[str] = []
     if fe.beam_sections:
         beam_mid = None
         for k, sec in enumerate(fe.beam_sections):
@@ -310,10 +311,7 @@ def _bdf_text(fe: FEModel, title: str, full_deck: bool, n_modes: int) -> str:
                 raise InputError(f"beam_sections[{k}].stiffness", np.diag(K).tolist(), "a positive diagonal")
             dropped = _dropped_terms(sec, cv.section())
             if dropped:
-                warnings.warn(
-                    f"beam section {k} ({sec.name or 'unnamed'}): PBEAM cannot carry {dropped}; "
-                    "NASTRAN will see the section without them (windflutter's read_bdf restores them "
-                    "from the $WF comments)", BdfApproximationWarning, stacklevel=3)
+                lossy.append(f"section {k} ({sec.name or 'unnamed'}): {dropped}")
             if beam_mid is None:
                 beam_mid = len(materials) + 1 + 10_000  # kept clear of ply materials
             A = cv.EA / _BEAM_E
@@ -328,6 +326,12 @@ def _bdf_text(fe: FEModel, title: str, full_deck: bool, n_modes: int) -> str:
             beam_meta.append({"pid": beam_pid0 + k + 1, "name": sec.name, "card": cv.as_list(),
                               "K": K.tolist(), "M": M.tolist()})
         out.append(_card("MAT1", [beam_mid, _BEAM_E, _BEAM_G, _BEAM_NU, 0.0]))
+    if lossy:
+        shown = "; ".join(lossy[:3]) + (f"; ... ({len(lossy) - 3} more)" if len(lossy) > 3 else "")
+        warnings.warn(
+            f"{len(lossy)} of {len(fe.beam_sections)} beam sections have terms PBEAM cannot carry, "
+            f"NASTRAN will see the sections without them (windflutter's read_bdf restores them from "
+            f"the $WF comments): {shown}", BdfApproximationWarning, stacklevel=3)
     meta["beam_sections"] = beam_meta
 
     for mat in materials:
