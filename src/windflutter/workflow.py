@@ -171,22 +171,81 @@ def make_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
 
 
 def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
-    """ADAPTER POINT to the stability solver (issue 5).
-
-    The solver is expected to provide ``windflutter.stability.turbine.make_point_analyser
-    (turbine, config) -> analyse`` following the interface of this module.  Until it exists, a
-    clear :class:`~windflutter.errors.ModelError` is raised.
-    """
+    """The built-in turbine stability solver (:mod:`windflutter.stability.turbine`) behind the
+    per-point interface, with the flutter mode shape and aero-work diagnostic added."""
     try:
         from windflutter.stability import turbine as _st  # noqa: PLC0415
-    except ImportError:
-        _st = None
-    factory = getattr(_st, "make_point_analyser", None) if _st is not None else None
-    if factory is None:
-        raise ModelError("the built-in turbine stability solver is not available in this version "
-                         "(windflutter.stability.turbine.make_point_analyser); use solver.backend "
-                         "'package.module:factory' for your own analyser")
-    return factory(turbine, config)
+    except ImportError as exc:
+        raise ModelError(f"the built-in turbine stability solver is not available ({exc}); use "
+                         "solver.backend 'package.module:factory' for your own analyser") from None
+    if config.model.type not in ("beam", "shell"):
+        raise InputError("model.type", config.model.type, "'beam' or 'shell' for the built-in turbine solver")
+    return TurbinePointAnalyser(turbine, config, _st)
+
+
+class TurbinePointAnalyser:
+    """Adapter: :class:`windflutter.stability.turbine.TurbineStability` -> ``analyse(point)``.
+
+    One ``TurbineStability`` per (aero, method) case, so FE models are built once per blade
+    pitch and reused across wind speeds.
+    """
+
+    def __init__(self, turbine: Any, config: AnalysisConfig, module: Any):
+        self.turbine = turbine
+        self.config = config
+        self._st = module
+        self._cases: dict[tuple[str, str], Any] = {}
+        self._size: dict[str, Any] = {}
+        # validate the options now, so a bad combination fails before the first point
+        for aero, method in config.cases:
+            module.options_from_config(config, aero, method)
+
+    def _stability(self, aero: str, method: str):
+        key = (aero, method)
+        if key not in self._cases:
+            opts = self._st.options_from_config(self.config, aero, method)
+            self._cases[key] = self._st.TurbineStability(self.turbine, opts)
+        return self._cases[key]
+
+    def describe(self) -> dict[str, Any]:
+        info: dict[str, Any] = {"model_type": self.config.model.type,
+                                "mesh_density": self.config.model.mesh_density}
+        info.update(self._size)
+        return info
+
+    def __call__(self, point: OperatingPoint, progress: ProgressCallback | None = None) -> PointResult:
+        ts = self._stability(point.aero, point.method)
+        if progress is not None:
+            progress(0.02, f"{point.label}: model and search")
+        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=np.asarray(point.sweep_rpm, float))
+        pitch = ts.pitch_at(point.wind_speed)
+        fe, sections, am = ts.model(pitch)
+        if not self._size:
+            self._size = {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
+                          "n_aero_sections": int(sections.n_sections),
+                          "n_reduced_dof": int(am.size)}
+        nan = float("nan")
+        res = PointResult(
+            flutter_rpm=nan if s.flutter_rpm is None else float(s.flutter_rpm),
+            flutter_frequency_hz=nan if s.flutter_frequency_hz is None else float(s.flutter_frequency_hz),
+            flutter_mode=s.flutter_mode or "",
+            divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
+            sweep_rpm=np.asarray(s.sweep_rpm, float), frequency_hz=np.asarray(s.frequency_hz, float),
+            damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
+            info={"pitch_deg": float(s.pitch_deg)})
+        on = s.onset
+        if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
+            if progress is not None:
+                progress(0.95, f"{point.label}: flutter mode")
+            from windflutter.post.aerowork import flutter_mode_diagnostics  # noqa: PLC0415
+
+            sys_on = am.at(point.wind_speed, float(s.flutter_rpm) * math.pi / 30.0)
+            u = sys_on.expand(on.flutter_vector)
+            omega = float(on.flutter_frequency) if on.flutter_frequency else 2 * math.pi * res.flutter_frequency_hz
+            d = flutter_mode_diagnostics(u, sys_on.strip, sections, omega)
+            res.station_radius, res.flutter_shape, res.aero_work = d.radius, d.shape, d.work
+            res.info["aero_work_rotor_total_J"] = d.work_total
+        return res
 
 
 def _accepts_progress(fn: Callable) -> bool:
@@ -422,6 +481,7 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
                                           outdir / store.RESULTS_FILE)
             raise RunInterrupted(len(done), len(points), outdir) from None
 
+    info = describe_run(turbine, config, analyser)
     ds = assemble_dataset(done, config, info, len(points))
     ds.attrs["finished_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)

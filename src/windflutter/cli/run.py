@@ -103,4 +103,7 @@ def run(args: argparse.Namespace) -> int:
     report = outdir / "report.html"
     if report.is_file():
         print(f"report: {report.resolve()}")
+    if status and n_failed == len(status):
+        print("windflutter run: every operating point failed (see the reasons above)", file=sys.stderr)
+        return 1
     return 0

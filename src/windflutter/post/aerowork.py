@@ -36,6 +36,8 @@ Everything here is plain NumPy; no solver is needed.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
+
 import numpy as np
 from numpy.typing import ArrayLike
 
@@ -46,6 +48,8 @@ __all__ = [
     "to_section_dofs",
     "section_work",
     "normalise_mode",
+    "ModeDiagnostics",
+    "flutter_mode_diagnostics",
 ]
 
 
@@ -133,3 +137,81 @@ def normalise_mode(phi: ArrayLike, reference: ArrayLike | None = None) -> np.nda
         return p
     j = idx[np.argmax(np.abs(flat[idx]))]
     return p / flat[j]
+
+
+@dataclass
+class ModeDiagnostics:
+    """Flutter-mode pictures along one blade.
+
+    Attributes
+    ----------
+    blade : index of the blade shown (largest modal amplitude).
+    radius : (nb,) radii of its strips (m).
+    shape : (nb, 3) complex flap (m, along chord x span: suction side), edge (m, along the
+        chord towards the trailing edge) and torsion (rad, about the span axis) at the strips'
+        elastic-axis points; the mode is scaled so that the largest |flap| or |edge| of the
+        shown blade is 1 m with zero phase.
+    work : (nb, 3) aero work per cycle (J) on plunge, pitch and edgewise, summed over all
+        blades at the same strip position (all blades' strips when counts differ: shown blade
+        only), for that scaling.
+    work_total : total over every strip of the rotor (J).
+    """
+
+    blade: int
+    radius: np.ndarray
+    shape: np.ndarray
+    work: np.ndarray
+    work_total: float
+
+
+def flutter_mode_diagnostics(u: ArrayLike, strip, sections, omega: float) -> ModeDiagnostics:
+    """Mode shape and aero work of a structural mode ``u`` on a turbine's strips.
+
+    Parameters
+    ----------
+    u : (n_dof,) complex mode in the unconstrained DOF numbering (``6 node + c``).
+    strip : :class:`windflutter.aero.strip.StripAero` of the operating point (gives the section
+        motion map ``P`` (3 ns, n_dof) onto (h, α, s) and the per-strip matrices
+        ``section_blocks(omega)`` already multiplied by the strip widths).
+    sections : the :class:`~windflutter.aero.sections.AeroSections`.
+    omega : frequency of the mode (rad/s); the aero forces are the harmonic ones at ``omega``.
+    """
+    u = np.asarray(u, complex).ravel()
+    ns = sections.n_sections
+    m6 = np.asarray(sections.motion_map @ u).reshape(ns, 6)
+    span = np.asarray(sections.e_span, float)
+    chord = np.asarray(sections.e_chord, float)
+    span = span / np.linalg.norm(span, axis=1, keepdims=True)
+    chord = chord / np.linalg.norm(chord, axis=1, keepdims=True)
+    flapdir = np.cross(chord, span)
+    shape = np.stack([np.einsum("ij,ij->i", m6[:, :3], flapdir),
+                      np.einsum("ij,ij->i", m6[:, :3], chord),
+                      np.einsum("ij,ij->i", m6[:, 3:], span)], axis=1)
+    blade_of = np.asarray(sections.blade, dtype=np.int64)
+    blades = np.unique(blade_of)
+    amp = [np.abs(shape[blade_of == b, :2]).max(initial=0.0) for b in blades]
+    b_show = int(blades[int(np.argmax(amp))])
+    sel = np.where(blade_of == b_show)[0]
+    trans = shape[sel, :2].ravel()
+    ref = trans[np.argmax(np.abs(trans))] if trans.size and np.abs(trans).max() > 0 else 1.0
+    scale = 1.0 / ref
+    u = u * scale
+    shape = shape * scale
+    q = np.asarray(strip.P @ u).reshape(ns, 3)
+    Ma, Da, Ka = strip.section_blocks(omega)
+    A = -omega**2 * Ma + 1j * omega * Da + Ka
+    f = np.einsum("jab,jb->ja", A, q)
+    w = section_work(q, f)
+    counts = [np.sum(blade_of == b) for b in blades]
+    if len(set(counts)) == 1:
+        order = np.argsort(np.asarray(sections.radius)[sel], kind="stable")
+        w_sum = np.zeros((sel.size, 3))
+        for b in blades:
+            idx = np.where(blade_of == b)[0]
+            idx = idx[np.argsort(np.asarray(sections.radius)[idx], kind="stable")]
+            w_sum[order] += w[idx]
+        work = w_sum
+    else:
+        work = w[sel]
+    r = np.asarray(sections.radius, float)[sel]
+    return ModeDiagnostics(b_show, r, shape[sel], work, float(w.sum()))
