@@ -270,27 +270,26 @@ def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent") ->
 def check_constrained(st: Structural, max_ratio: float = 1e10) -> None:
     """Raise :class:`ModelError` if the reduced stiffness is singular (rigid-body motion).
 
-    Uses the pivots of a symmetric-ordering LU factorisation of ``Kr`` without numerical
-    pivoting (LDL^T-like): a rigid-body mode shows as a pivot that is zero, negative or
-    ``max_ratio`` times smaller than the matrix diagonal entry it came from (NASTRAN's
-    MAXRATIO check; a genuine elastic structure gives ratios far below 1e10 in double precision).
+    Uses the pivots of a Cholesky factorisation (CHOLMOD, or SuperLU with diagonal pivoting as
+    fallback) of ``Kr``: a rigid-body mode shows as a pivot that is zero, negative or
+    ``max_ratio`` times smaller than the matrix diagonal entry of its DOF (NASTRAN's MAXRATIO
+    check; a genuine elastic structure gives ratios far below 1e10 in double precision).
     """
+    from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
+
     Kr = st.Kr.tocsc()
     diag = Kr.diagonal()
     zero_k = np.nonzero(diag <= 0)[0]
     if zero_k.size:
         _raise_rbm(st, zero_k[:5], "have no stiffness")
     try:
-        lu = spla.splu(Kr, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.0,
-                       options=dict(SymmetricMode=True))
-    except RuntimeError:
-        _raise_rbm(st, np.zeros(0, dtype=np.int64), "make the stiffness matrix exactly singular")
-    piv = lu.U.diagonal()
-    orig = diag[lu.perm_c]
-    ratio = np.where(piv > 0, orig / np.where(piv > 0, piv, 1.0), np.inf)
+        fac = SPDFactor(Kr)
+    except NotPositiveDefinite:
+        _raise_rbm(st, np.zeros(0, dtype=np.int64), "make the stiffness matrix singular or indefinite")
+    ratio = diag[fac.pivot_dofs] / fac.pivots
     bad = np.nonzero(ratio > max_ratio)[0]
     if bad.size:
-        _raise_rbm(st, lu.perm_c[bad[:5]], f"give pivot ratios up to {ratio[bad].max():.3g} (> {max_ratio:g})")
+        _raise_rbm(st, fac.pivot_dofs[bad[:5]], f"give pivot ratios up to {ratio[bad].max():.3g} (> {max_ratio:g})")
 
 
 def _raise_rbm(st: Structural, q_idx: np.ndarray, what: str) -> None:

@@ -43,8 +43,12 @@ def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None 
     K = struct.Kr
     if K_extra is not None:
         K = (K + struct.reduce(sp.csr_matrix(K_extra))).tocsr()
-    lu = spla.splu(K.tocsc())
-    q = lu.solve(struct.reduce_vector(F))
+    from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
+
+    try:
+        q = SPDFactor(K.tocsc()).solve(struct.reduce_vector(F))
+    except NotPositiveDefinite:
+        q = spla.splu(K.tocsc()).solve(struct.reduce_vector(F))
     return struct.expand(q)
 
 
