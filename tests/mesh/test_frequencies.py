@@ -1,0 +1,226 @@
+"""Natural frequencies of the generated models against independent references.
+
+References
+----------
+* Euler-Bernoulli cantilever (1.8751^2, 4.6941^2) and Bredt-Batho torsion (f = sqrt(GJ/I_p)/(4L))
+  for thin-walled elliptical tubes (analytic).
+* Jonkman, Butterfield, Musial, Scott (2009), NREL/TP-500-38060, table 9-1: NREL 5 MW isolated
+  blade and full-system natural frequencies (FAST / ADAMS).
+* pyBmodes 1.19 (Apache-2.0, independent Python BModes port) on the NREL 5 MW ElastoDyn decks it
+  ships (not our data files), parked and at 12.1 rpm.
+* Gaertner et al. (2020), NREL/TP-5000-75698, IEA 15 MW RWT: blade 1st flap 0.555 Hz, 1st edge
+  0.642 Hz.
+"""
+
+import dataclasses
+import glob
+import os
+import warnings
+
+import numpy as np
+import pytest
+
+from synthetic import STEEL, synthetic_turbine, tube_beam_props, tube_blade
+from windflutter.mesh.analysis import turbine_modes
+from windflutter.mesh.settings import MeshSettings
+from windflutter.model.turbine import IsotropicMaterial, Tower, TowerLayer
+from windflutter.structure.fem import OrthotropicMaterial
+
+B1, B2 = 1.8751041**2, 4.6940911**2
+
+
+def tube_reference(L, c, th, t, E=70e9, nu=0.3, rho=2700.0):
+    bp = tube_beam_props(L, c, th, t, E, nu, rho)
+    K, M = bp.stiffness[0], bp.mass[0]
+    m = M[0, 0]
+    f = lambda b, EI: b / (2 * np.pi) * np.sqrt(EI / (m * L**4))  # noqa: E731
+    return {
+        "flap1": f(B1, K[5, 5]), "edge1": f(B1, K[4, 4]), "flap2": f(B2, K[5, 5]),
+        "torsion1": np.sqrt(K[3, 3] / M[3, 3]) / (4 * L),
+    }, bp
+
+
+def first(res, label):
+    return float(res.frequencies_hz[res.labels.index(label)])
+
+
+@pytest.mark.parametrize("model", ["shell", "beam"])
+def test_elliptic_tube_blade_vs_analytic(model):
+    """Straight isotropic elliptical tube (t/c 0.4, wall 10 mm) clamped at the root: bending.
+
+    Tolerance 1.5 % (24x20 shell mesh; shear deformation and the discrete contour make up
+    < 1 %)."""
+    L, c, th, t = 40.0, 2.0, 0.4, 0.01
+    ref, bp = tube_reference(L, c, th, t)
+    tb = synthetic_turbine(tube_blade(L, c, th, t, beam=bp))
+    res = turbine_modes(tb, MeshSettings(model=model, part="blade", n_chord=24, n_span=20), n_modes=5)
+    assert first(res, "1st flap") == pytest.approx(ref["flap1"], rel=0.015)
+    assert first(res, "1st edge") == pytest.approx(ref["edge1"], rel=0.015)
+    assert first(res, "2nd flap") == pytest.approx(ref["flap2"], rel=0.015)
+
+
+@pytest.mark.parametrize("model", ["shell", "beam"])
+def test_circular_tube_torsion_vs_bredt(model):
+    """Circular tube (R 1 m, wall 50 mm): 1st torsion sqrt(GJ/I_p)/(4L) = 19.74 Hz, 1 %.  (A
+    thinner unstiffened wall has n=2 ovalisation shell modes below the torsion mode: ring
+    frequency ~6.6 Hz for 10 mm; they are physical, not labelled torsion reliably.)"""
+    L, c, th, t = 40.0, 2.0, 1.0, 0.05
+    ref, bp = tube_reference(L, c, th, t)
+    tb = synthetic_turbine(tube_blade(L, c, th, t, beam=bp))
+    res = turbine_modes(tb, MeshSettings(model=model, part="blade", n_chord=24, n_span=20), n_modes=7)
+    assert first(res, "1st torsion") == pytest.approx(ref["torsion1"], rel=0.01)
+
+
+def test_orthotropic_plies_follow_span_direction():
+    """Fibres along the span (ply angle 0 from the per-element span axis): the bending frequency
+    uses E1; with 90 deg plies it uses E2 (ratio sqrt(E1/E2) = sqrt(10)).  1.5 %."""
+    L, c, th, t = 40.0, 2.0, 1.0, 0.01
+    ref, _ = tube_reference(L, c, th, t)
+    ortho = OrthotropicMaterial(70e9, 7e9, 0.3, 26.9e9, 26.9e9, 26.9e9, 2700.0, "alu")
+    blade = tube_blade(L, c, th, t)
+    for angle, E in ((0.0, 70e9), (np.pi / 2, 7e9)):
+        lay = dataclasses.replace(blade.layup.layers[0], orientation=np.full(2, angle))
+        b2 = dataclasses.replace(blade, layup=dataclasses.replace(blade.layup, layers=(lay,)))
+        tb = dataclasses.replace(synthetic_turbine(b2), materials={"alu": ortho, "steel": STEEL})
+        res = turbine_modes(tb, MeshSettings(model="shell", part="blade", n_chord=24, n_span=16), n_modes=2)
+        assert res.frequencies_hz[0] == pytest.approx(ref["flap1"] * np.sqrt(E / 70e9), rel=0.015)
+
+
+def _pybmodes_nrel5mw(rpm):
+    import pybmodes
+    from pybmodes.models import RotatingBlade
+
+    d = os.path.join(os.path.dirname(pybmodes.__file__), "_examples", "reference_decks", "nrel5mw_oc3monopile")
+    main = glob.glob(os.path.join(d, "*ElastoDyn.dat"))[0]
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        b = RotatingBlade.from_elastodyn(main)
+        b._bmi.rot_rpm = rpm
+        return b.run(4, check_model=False).frequencies
+
+
+def shear_rigid(turbine):
+    """The turbine with the blade 6x6 shear stiffnesses x 1e3 (Euler-Bernoulli, like BModes)."""
+    bp = turbine.blade.beam
+    K = bp.stiffness.copy()
+    K[:, 1, 1] *= 1e3
+    K[:, 2, 2] *= 1e3
+    return dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, beam=dataclasses.replace(bp, stiffness=K)))
+
+
+@pytest.mark.parametrize("rpm", [0.0, 12.1])
+def test_nrel5mw_beam_blade_vs_pybmodes(nrel5mw, rpm):
+    """Beam blade from the windIO/BeamDyn 6x6 vs pyBmodes on the ElastoDyn blade tables (same
+    NREL 5 MW blade, different source tables and code).  pyBmodes modes 1-3 are flap 1, edge 1,
+    flap 2.  pyBmodes (like BModes/ElastoDyn) is an Euler-Bernoulli beam, so it is compared with
+    our model made shear-rigid: 1.5 % (mass 17.61 vs 17.74 t, Simpson-averaged 30 elements).
+    The Timoshenko model with the BeamDyn shear stiffness is 1-3 % lower (edge most): 4 %."""
+    ref = _pybmodes_nrel5mw(rpm)
+    eb = turbine_modes(shear_rigid(nrel5mw), MeshSettings(model="beam", part="blade", n_span=30), n_modes=6, rpm=rpm)
+    ts = turbine_modes(nrel5mw, MeshSettings(model="beam", part="blade", n_span=30), n_modes=6, rpm=rpm)
+    print(f"rpm {rpm}: EB {eb.frequencies_hz[:3]}, Timoshenko {ts.frequencies_hz[:3]}, pyBmodes {ref[:3]}")
+    for res, tol in ((eb, 0.015), (ts, 0.04)):
+        assert first(res, "1st flap") == pytest.approx(ref[0], rel=tol)
+        assert first(res, "1st edge") == pytest.approx(ref[1], rel=tol)
+        assert first(res, "2nd flap") == pytest.approx(ref[2], rel=tol)
+
+
+def test_nrel5mw_beam_blade_vs_jonkman_and_rotating_shift(nrel5mw):
+    """Jonkman 2009 table 9-1 / BModes ranges (Euler-Bernoulli codes): flap 1 0.65-0.70,
+    edge 1 1.07-1.09, flap 2 1.90-2.02 Hz, checked on the shear-rigid model.  Rotating at
+    12.1 rpm raises flap 1 by centrifugal stiffening: pyBmodes gives +7.7 % (0.676 -> 0.729); we
+    require +5..+10 %, and an edgewise change below 2 %."""
+    p = turbine_modes(shear_rigid(nrel5mw), MeshSettings(model="beam", part="blade"), n_modes=6)
+    r = turbine_modes(shear_rigid(nrel5mw), MeshSettings(model="beam", part="blade"), n_modes=6, rpm=12.1)
+    assert 0.65 <= first(p, "1st flap") <= 0.70
+    assert 1.07 <= first(p, "1st edge") <= 1.09
+    assert 1.90 <= first(p, "2nd flap") <= 2.02
+    shift = first(r, "1st flap") / first(p, "1st flap") - 1
+    assert 0.05 < shift < 0.10
+    assert abs(first(r, "1st edge") / first(p, "1st edge") - 1) < 0.02
+    assert first(p, "1st torsion") > 4.0  # Jonkman's blade is torsionally stiff (BModes ~5.6 Hz)
+
+
+def jonkman_tower(turbine):
+    """The seed's / Jonkman's tower (seed fig. 4.1, table 4.2): D 6 -> 3.87 m, t 35.1 -> 24.7 mm,
+    E 210 GPa, G 80.8 GPa, effective density 8500 kg/m^3, 87.6 m."""
+    tw = Tower(s=np.array([0.0, 1.0]), z=np.array([0.0, 87.6]), outer_diameter=np.array([6.0, 3.87]),
+               layers=(TowerLayer("wall", "tower_steel", np.array([0.0351, 0.0247])),))
+    mats = dict(turbine.materials)
+    mats["tower_steel"] = IsotropicMaterial(210e9, 210 / (2 * 80.8) - 1, 8500.0, "tower_steel")
+    return dataclasses.replace(turbine, tower=tw, materials=mats)
+
+
+@pytest.mark.parametrize("model", ["beam", "shell"])
+def test_nrel5mw_tower_with_top_mass(nrel5mw_fixed, model):
+    """Tower with the rotor-nacelle assembly lumped at the top: 1st fore-aft and side-side
+    0.312-0.324 Hz (Jonkman 2009 table 9-1, FAST/ADAMS); seed range 0.32-0.34.  We accept
+    0.31-0.34 Hz (our blades lack the 4.5 % ElastoDyn mass adjustment)."""
+    tb = jonkman_tower(nrel5mw_fixed)
+    res = turbine_modes(tb, MeshSettings(model=model, part="tower", n_span=10, n_tower_circ=16, n_tower_axial=16), n_modes=4)
+    fa, ss = first(res, "1st tower fore-aft"), first(res, "1st tower side-side")
+    print(model, res.frequencies_hz, res.labels)
+    assert 0.31 <= fa <= 0.34 and 0.31 <= ss <= 0.34
+
+
+def test_nrel5mw_beam_turbine_labels(nrel5mw_fixed):
+    """Whole beam turbine: tower modes first, then the 1st flap family (1 collective + 2
+    asymmetric) between 0.6 and 0.75 Hz and the 1st edge family ~1.0-1.1 Hz (Jonkman 2009
+    table 9-1: 1st tower FA/SS 0.324/0.312, 1st flap yaw/tilt 0.666/0.668, collective 0.700,
+    1st edge 1.079/1.089 Hz).  Bounds +-5 %."""
+    tb = jonkman_tower(nrel5mw_fixed)
+    res = turbine_modes(tb, MeshSettings(model="beam", part="turbine"), n_modes=8)
+    f = dict(zip(res.labels, res.frequencies_hz))
+    assert res.labels[:2] == ["1st tower side-side", "1st tower fore-aft"] or set(res.labels[:2]) == {"1st tower side-side", "1st tower fore-aft"}
+    assert res.labels.count("1st flap asymmetric") == 2 and "1st flap collective" in res.labels
+    assert f["1st flap collective"] == pytest.approx(0.700, rel=0.05)
+    assert f["1st tower fore-aft"] == pytest.approx(0.324, rel=0.05)
+    assert res.labels.count("1st edge asymmetric") == 2
+
+
+def test_iea15mw_beam_blade(request):
+    """IEA 15 MW blade (windIO v2 6x6): Gaertner 2020 flap 1 0.555 Hz, edge 1 0.642 Hz.  The
+    WISDEM-example windIO file is a later revision of the blade (tapered-chord tip); pyBmodes on
+    the ElastoDyn deck it ships gives 0.538 / 0.729 Hz.  We bound the gap to 12 % (reported in
+    docs/mesh.md)."""
+    from windflutter.model.windio import load_turbine
+
+    tb = load_turbine("iea15mw")
+    res = turbine_modes(tb, MeshSettings(model="beam", part="blade"), n_modes=4)
+    print(res.frequencies_hz, res.labels)
+    assert first(res, "1st flap") == pytest.approx(0.555, rel=0.12)
+    assert first(res, "1st edge") == pytest.approx(0.642, rel=0.12)
+
+
+MESHES = ((32, 16), (48, 24), (64, 32), (96, 48))
+
+
+def _bending(turbine, nc, ns):
+    r = turbine_modes(turbine, MeshSettings(model="shell", part="blade", n_chord=nc, n_span=ns), n_modes=6)
+    return np.array([first(r, "1st flap"), first(r, "1st edge"), first(r, "2nd flap")]), r
+
+
+def test_blade_mesh_convergence_reduced(nrel5mw):
+    """Shell blade (windIO layup), 24x12 vs 48x24: flap 1, edge 1, flap 2 agree within 3 %
+    (the slow test shows the spread of all meshes from 32x16 up is ~1 %)."""
+    a, _ = _bending(nrel5mw, 24, 12)
+    b, _ = _bending(nrel5mw, 48, 24)
+    print(a, b)
+    assert np.allclose(a, b, rtol=0.03)
+
+
+@pytest.mark.slow
+def test_blade_mesh_convergence_full(nrel5mw):
+    """Shell blade on 32x16 .. 96x48: bending frequencies within 1.5 % of the finest mesh
+    (non-monotone at the 1 % level: layer edges snap to element edges), the 1st torsion
+    frequency decreases monotonically with refinement (shell stiffening at coarse meshes)."""
+    fs, tors = [], []
+    for nc, ns in MESHES:
+        f, r = _bending(nrel5mw, nc, ns)
+        fs.append(f)
+        tors.append(first(r, "1st torsion") if "1st torsion" in r.labels else np.nan)
+    fs = np.array(fs)
+    print(fs, tors)
+    assert np.allclose(fs, fs[-1], rtol=0.015)
+    t = np.array(tors)
+    assert np.all(np.diff(t[np.isfinite(t)]) < 0)
