@@ -2,12 +2,11 @@
 
 from __future__ import annotations
 
-import functools
 
 import numpy as np
 import pytest
 
-from windflutter.model import blade_beam_sections, load_turbine, tower_beam_sections
+from windflutter.model import blade_beam_sections, tower_beam_sections
 from windflutter.model.beamprops import (
     beamdyn_to_section,
     read_beamdyn_blade,
@@ -23,9 +22,6 @@ from windflutter.model.yamlio import load_yaml_file
 N5 = DATA_DIR / "nrel5mw"
 
 
-@functools.lru_cache(maxsize=None)
-def turbine(name):
-    return load_turbine(name)
 
 
 def _cm(bp):
@@ -34,7 +30,7 @@ def _cm(bp):
     return float(np.trapezoid(m * r, r) / np.trapezoid(m, r))
 
 
-def test_nrel5mw_blade_mass_elastodyn_and_beamdyn():
+def test_nrel5mw_blade_mass_elastodyn_and_beamdyn(turbine):
     """Jonkman et al. 2009, table 2-1: blade mass 17,740 kg, CM 20.475 m from the root (with the
     AdjBlMs = 1.04536 mass factor).  Trapezoidal integration of the 49 tabulated stations gives
     17,609 kg (-0.74 %): the stations are sparse at the root build-up where the mass density
@@ -81,7 +77,7 @@ def test_windio_v2_6x6_equals_beamdyn():
         np.testing.assert_allclose(wb.mass[:, k, k], bd.mass[:, k, k], rtol=1e-4)
 
 
-def test_iea15_coupled_mass_matrix_layout():
+def test_iea15_coupled_mass_matrix_layout(turbine):
     """IEA 15 MW v2 inertia columns -> BeamDyn mass matrix; spot values from
     IEA-15-240-RWT_BeamDyn_blade.dat at eta = 0.5 (M16 = -272.9, M26 = 7.816, M45 = -13.64,
     M44 = 735.4, M55 = 66.52), mapped to the section order (P = [2, 0, 1, 5, 3, 4])."""
@@ -104,7 +100,7 @@ def test_iea15_coupled_mass_matrix_layout():
     assert K[inv[2], inv[3]] == pytest.approx(5.511e9, rel=2e-3)  # BeamDyn K34: axial-bending coupling
 
 
-def test_iea15_blade_mass():
+def test_iea15_blade_mass(turbine):
     """Gaertner et al. 2020 (NREL/TP-5000-75698) table 2-1: blade mass 65,250 kg; the WISDEM
     tabular export gives 67.89 t.  The windIO 6x6 mass integrates to 67.0 t: within 3 % of the
     report (the WISDEM file was re-optimised after the report) and 2 % of the tabular value."""
@@ -126,7 +122,7 @@ def test_tube_section_formulas():
 
 
 @pytest.mark.parametrize("name", ["nrel5mw", "seed5mw"])
-def test_nrel5mw_tower_against_elastodyn(name):
+def test_nrel5mw_tower_against_elastodyn(name, turbine):
     """Jonkman 2009 sec. 6 tower (D 6 -> 3.87 m, wall 35.1 -> 24.7 mm, 8500 kg/m^3, E 210 GPa):
     tube formulas reproduce the ElastoDyn tower table (independently tabulated TMassDen, TwFAStif)
     station by station, and the mass 347,460 kg (table 6-1).  Tolerance 1e-5: the table has 6
@@ -139,14 +135,14 @@ def test_nrel5mw_tower_against_elastodyn(name):
     assert ed.total_mass == pytest.approx(347460.0, rel=1e-4)
 
 
-def test_iea15_tower_mass():
+def test_iea15_tower_mass(turbine):
     """IEA 15 MW tabular overview: tower mass 853.46 t (WISDEM, with outfitting factor 1.07);
     tube formulas on the windIO tower give the same within 0.5 % (linear interpolation of the
     wall between stations)."""
     assert tower_beam_sections(turbine("iea15mw")).total_mass == pytest.approx(853463.2, rel=0.005)
 
 
-def test_nrel5mw_lumped_masses():
+def test_nrel5mw_lumped_masses(turbine):
     t = turbine("nrel5mw")
     assert t.hub.mass == pytest.approx(56780.0)
     assert t.hub.inertia[0, 0] == pytest.approx(115926.0)

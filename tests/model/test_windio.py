@@ -2,25 +2,20 @@
 
 from __future__ import annotations
 
-import functools
 
 import numpy as np
 import pytest
 
-from windflutter.model import load_turbine
+
 from windflutter.model.bundled import bundled_turbines
 
 RPM = np.pi / 30.0
 
 
-@functools.lru_cache(maxsize=None)
-def turbine(name: str):
-    """Parsed once per test session (IEA-22 v2 takes ~1 s to validate)."""
-    return load_turbine(name)
 
 
 @pytest.mark.parametrize("name", sorted(bundled_turbines()))
-def test_bundled_turbine_loads(name):
+def test_bundled_turbine_loads(name, turbine):
     t = turbine(name)
     b = t.blade
     assert t.n_blades == 3
@@ -44,7 +39,7 @@ def test_bundled_turbine_loads(name):
 
 
 @pytest.mark.parametrize("name", ["nrel5mw", "iea15mw", "iea22mw", "iea10mw", "seed5mw", "seed20mw"])
-def test_v2_anchors_resolve_to_arcs(name):
+def test_v2_anchors_resolve_to_arcs(name, turbine):
     lay = turbine(name).blade.layup
     for layer in lay.layers:
         assert np.all(np.isfinite(layer.start_arc)) and np.all(np.isfinite(layer.end_arc)), layer.name
@@ -55,7 +50,7 @@ def test_v2_anchors_resolve_to_arcs(name):
 
 
 @pytest.mark.parametrize("name", ["nrel5mw", "iea15mw"])
-def test_airfoil_contours_oriented_suction_side_first(name):
+def test_airfoil_contours_oriented_suction_side_first(name, turbine):
     # readers reorder contours TE -> suction (upper, y > 0) -> LE -> pressure: positive signed area
     for af in turbine(name).airfoils.values():
         area = 0.5 * np.sum(af.x[:-1] * af.y[1:] - af.x[1:] * af.y[:-1])
@@ -65,7 +60,7 @@ def test_airfoil_contours_oriented_suction_side_first(name):
 
 
 @pytest.mark.parametrize("stem", ["iea15mw", "iea22mw", "iea10mw"])
-def test_v1_and_v2_files_agree_after_unit_conversion(stem):
+def test_v1_and_v2_files_agree_after_unit_conversion(stem, turbine):
     """v2 gives twist/cone/tilt/polar angles in deg and control speeds in rpm, v1 in rad and rad/s:
     after conversion both versions of the same turbine must agree (an independent check of the unit
     handling; the two files come from different upstream commits, hence the tolerances)."""
@@ -85,7 +80,7 @@ def test_v1_and_v2_files_agree_after_unit_conversion(stem):
     assert a1.alpha.min() == pytest.approx(-np.pi, abs=0.02) and a2.alpha.min() == pytest.approx(-np.pi, abs=0.02)
 
 
-def test_iea15_control_units():
+def test_iea15_control_units(turbine):
     # /work/shared/data/README.md: IEA-15 v2 VS_minspd=5.0, VS_maxspd=7.56 rpm; v1 0.5236, 0.7917 rad/s
     for name in ("iea15mw", "iea15mw_v1"):
         c = turbine(name).control
@@ -93,7 +88,7 @@ def test_iea15_control_units():
         assert c.max_rotor_speed == pytest.approx(7.56 * RPM, rel=1e-3)
 
 
-def test_nrel5mw_geometry_against_jonkman_2009():
+def test_nrel5mw_geometry_against_jonkman_2009(turbine):
     """Jonkman et al. 2009 (NREL/TP-500-38060) table 1-1 and 2-1: 61.5 m blade, 63 m rotor radius,
     3 m hub diameter, precone 2.5 deg, tilt 5 deg, hub height 90 m, root chord 3.542 m, max chord
     4.652 m, root twist 13.308 deg."""
@@ -111,7 +106,7 @@ def test_nrel5mw_geometry_against_jonkman_2009():
     assert np.degrees(t.blade.twist[0]) == pytest.approx(13.308, abs=1e-3)
 
 
-def test_polars_in_radians_and_default_re():
+def test_polars_in_radians_and_default_re(turbine):
     t = turbine("iea22mw")
     for af in t.airfoils.values():
         p = af.polar

@@ -78,10 +78,15 @@ def validate_windio_v2(data: dict, source: str | None = None) -> None:
     errors = list(validator.iter_errors(data))
     if not errors:
         return
-    err = jsonschema.exceptions.best_match(errors)
-    # descend into oneOf/anyOf contexts to the most specific error
+    err = max(errors, key=jsonschema.exceptions.relevance)
+    # descend into oneOf/anyOf contexts: take the alternative (schema branch) with the fewest
+    # errors - the one the user most likely meant - and its deepest error
     while err.context:
-        err = jsonschema.exceptions.best_match(err.context)
+        branches: dict = {}
+        for c in err.context:
+            branches.setdefault(c.schema_path[0] if c.schema_path else 0, []).append(c)
+        fewest = min(branches.values(), key=len)
+        err = max(fewest, key=lambda c: len(c.absolute_path))
     path = _json_path(err.absolute_path)
     raise InputError(path or "<top level>", err.instance, f"windIO schema: {err.message}", source)
 
