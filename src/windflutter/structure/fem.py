@@ -144,8 +144,9 @@ class BeamSection:
     ) -> "BeamSection":
         """Uncoupled section from classic properties; shear-rigid if GA not given.
 
-        ``Ixx_mass`` is the polar mass moment of inertia per length about the reference axis
-        (kg·m²/m); defaults to ``Iyy_mass + Izz_mass``.  ``cg`` is the mass-centre offset
+        ``Ixx_mass``, ``Iyy_mass``, ``Izz_mass`` are mass moments of inertia per length about the
+        reference axis (kg·m²/m), not about the mass centre; ``Ixx_mass`` defaults to
+        ``Iyy_mass + Izz_mass``.  A set that makes the section mass indefinite is rejected.  ``cg`` is the mass-centre offset
         (y, z) in the section frame (m).
         """
         big = 1e3 * max(EA, 1.0)
@@ -159,6 +160,15 @@ class BeamSection:
         Ms[3:, :3] = m * S
         Ms[:3, 3:] = (m * S).T
         Ms[3:, 3:] = J
+        ev = np.linalg.eigvalsh(0.5 * (Ms + Ms.T))
+        if ev.min() < -1e-10 * max(ev.max(), 1e-300):
+            raise InputError(
+                "BeamSection.mass",
+                f"min eigenvalue {ev.min():.3g}",
+                "a positive semi-definite section mass: all mass moments are about the reference "
+                "axis, so with a mass-centre offset (cy, cz) need Iyy_mass >= m*cz**2, "
+                "Izz_mass >= m*cy**2 and Ixx_mass >= m*(cy**2 + cz**2)",
+            )
         return BeamSection(stiffness=Ks, mass=Ms, name=name)
 
 
