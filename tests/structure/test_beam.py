@@ -87,7 +87,7 @@ def coupled_bt_freqs(EI, GJ, m, Ixx, cy, L, n=3):
         P = expm(A * L)
         return np.linalg.det(P[np.ix_([2, 3, 5], [2, 3, 5])])
 
-    grid = np.linspace(0.1, 2 * np.pi * 120.0, 3000)
+    grid = np.linspace(0.1, 2 * np.pi * 40.0, 500)  # first three roots lie below 40 Hz
     d = np.array([det(o) for o in grid])
     roots = []
     for k in np.nonzero(np.sign(d[:-1]) != np.sign(d[1:]))[0][:n]:
