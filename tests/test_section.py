@@ -261,3 +261,30 @@ def test_config_nondimensional_errors():
         section_from_config({**good, "mass_ratio": -3.0})
     with pytest.raises(InputError):
         section_from_config([1, 2, 3])
+
+
+# Regression: frequency coalescence and p-k root-order swap within one grid cell (found by a
+# randomised k vs p-k comparison); the bracket must be subdivided, not root-found on the jump.
+SWAP = dict(semi_chord=1.0, elastic_axis=-0.3049935571944805, mass_ratio=158.091632056407,
+            x_alpha=0.2843858799545832, r_alpha_squared=0.36141555579513257,
+            omega_h=0.30866723271899754, omega_alpha=1.0)
+
+
+@pytest.mark.parametrize("seed", [0, 1])
+def test_k_and_pk_agree_on_random_sections(seed):
+    rng = np.random.default_rng(seed)
+    cases = [SWAP]
+    for _ in range(3):
+        xa = rng.uniform(-0.1, 0.4)
+        cases.append(dict(semi_chord=1.0, elastic_axis=rng.uniform(-0.45, 0.3),
+                          mass_ratio=rng.uniform(5, 200), x_alpha=xa,
+                          r_alpha_squared=rng.uniform(max(1.2 * xa**2, 0.05), 0.6),
+                          omega_h=rng.uniform(0.1, 1.5), omega_alpha=1.0))
+    for case in cases:
+        sec = _sec(**case)
+        rk, rpk = k_method(sec), pk_method(sec)
+        if rpk.flutter_speed is None:
+            # p-k grid stops at 3 U_D: k may only find flutter beyond it
+            assert rk.flutter_speed is None or rk.flutter_speed > rpk.max_speed
+            continue
+        assert rk.flutter_speed == pytest.approx(rpk.flutter_speed, rel=1e-7)

@@ -533,6 +533,7 @@ def pk_eigen(
     c_func: Callable[[np.ndarray], np.ndarray] = theodorsen,
     tol: float = 1e-10,
     max_iter: int = 200,
+    mode_index: int | None = None,
 ) -> tuple[complex, np.ndarray, float]:
     """p-k eigenvalue of one mode at speed U: iterate ``k = |Im lam| b / U`` to convergence.
 
@@ -547,6 +548,10 @@ def pk_eigen(
         If given, k is frozen at ``frozen_omega b / U`` (the seed's assumption); no iteration.
     c_func
         Circulation function (default exact Theodorsen; e.g. ``lambda k: 1`` for quasi-steady).
+    mode_index
+        If given and both roots of the eigenproblem (at the mode's k) are oscillatory, the mode
+        is the ``mode_index``-th root in ascending frequency (the usual p-k root ordering,
+        robust near frequency coalescence); otherwise the root nearest the estimate.
 
     Returns
     -------
@@ -560,7 +565,11 @@ def pk_eigen(
         k = omega * b / U
         lams, V = np.linalg.eig(base + _c_scalar(c_func, k) * dC)
         cand = np.where(lams.imag >= -1e-12 * np.abs(lams))[0]
-        j = cand[np.argmin(np.abs(lams[cand] - ref))]
+        if mode_index is not None and cand.size == n and np.all(
+                lams[cand].imag > 1e-9 * np.abs(lams[cand])):
+            j = cand[np.argsort(lams[cand].imag)[mode_index]]
+        else:
+            j = cand[np.argmin(np.abs(lams[cand] - ref))]
         return lams[j], V[:n, j], k
 
     lam = complex(lam_guess)
@@ -607,7 +616,7 @@ def _pk_track(sec_at: Callable[[float], tuple[TypicalSection, float]], params: n
             for m in range(len(lam0)):
                 guess = lam0[m] if i == 0 else (lam[m, i - 1] if i < 2 else
                                                  2 * lam[m, i - 1] - lam[m, i - 2])
-                l, v, _ = pk_eigen(sec, U, guess, **kw)
+                l, v, _ = pk_eigen(sec, U, guess, mode_index=m, **kw)
                 lam[m, i] = l
                 vecs[m].append(v)
         except ConvergenceError:
@@ -618,18 +627,6 @@ def _pk_track(sec_at: Callable[[float], tuple[TypicalSection, float]], params: n
     return lam, vecs
 
 
-def _first_crossing(sigma: np.ndarray, omega: np.ndarray, omega_min: float) -> list[tuple[int, int]]:
-    """(mode, index i) with sigma[i] < 0 <= sigma[i+1] and oscillatory (omega > omega_min)."""
-    out = []
-    for m in range(sigma.shape[0]):
-        s = sigma[m]
-        idx = np.where((s[:-1] < 0) & (s[1:] >= 0) & (omega[m, :-1] > omega_min)
-                       & (omega[m, 1:] > omega_min))[0]
-        if idx.size:
-            out.append((m, int(idx[0])))
-    return out
-
-
 def locate_pk_onset(
     sec_at: Callable[[float], tuple[TypicalSection, float]],
     params: np.ndarray,
@@ -637,6 +634,7 @@ def locate_pk_onset(
     *,
     omega_min_ratio: float = 1e-3,
     xtol: float = 1e-10,
+    max_depth: int = 5,
     **kw,
 ) -> dict:
     """Track p-k modes along a parameter path and locate the first flutter crossing.
@@ -644,34 +642,63 @@ def locate_pk_onset(
     ``sec_at(x)`` returns ``(section, U)`` for the path parameter ``x`` (the airspeed for a plain
     section, the rotor speed for the rotor model).  Flutter is bracketed on the grid (a mode's
     ``sigma`` goes from < 0 to >= 0 while oscillating) and refined by Brent's method on the
-    tracked mode's ``sigma``.  Returns a dict with the curves and, if found, ``x``, ``lam``,
-    ``vec``, ``k``, ``U``, ``mode``.
+    tracked mode's ``sigma``.  A root is accepted only if ``|sigma| <= 1e-6 |lambda|`` there;
+    otherwise (e.g. the p-k root ordering swapped inside the cell, making ``sigma``
+    discontinuous) the cell is subdivided and re-tracked, up to ``max_depth`` times.  Returns a
+    dict with the curves and, if found, ``x``, ``lam_f``, ``vec``, ``k``, ``U``, ``mode``.
     """
-    lam, vecs = _pk_track(sec_at, params, lam0, **kw)
+    lam, _ = _pk_track(sec_at, params, lam0, **kw)
     params = params[: lam.shape[1]]
     scale = float(np.max(np.abs(lam0.imag))) if np.max(np.abs(lam0.imag)) > 0 else 1.0
+    omega_min = omega_min_ratio * scale
     out = {"params": params, "lam": lam, "x": None, "n_tracked": lam.shape[1]}
-    crossings = _first_crossing(lam.real, np.abs(lam.imag), omega_min_ratio * scale)
-    best = None
-    for m, i in crossings:
-        start = lam[m, i]
 
-        def sig(x: float, start=start) -> float:
-            sec, U = sec_at(x)
-            return pk_eigen(sec, U, start, **kw)[0].real
+    def in_cell(xs: np.ndarray, lams: np.ndarray, depth: int):
+        """First confirmed root in the cells of ``xs`` (modes ``lams`` tracked on ``xs``)."""
+        sig, om = lams.real, np.abs(lams.imag)
+        for i in range(len(xs) - 1):
+            modes = [m for m in range(lams.shape[0])
+                     if sig[m, i] < 0 <= sig[m, i + 1] and om[m, i] > omega_min
+                     and om[m, i + 1] > omega_min]
+            if not modes:
+                continue
+            best = None
+            for m in modes:
+                start = lams[m, i]
 
-        a, b_ = params[i], params[i + 1]
-        fa, fb = sig(a), sig(b_)
-        if not (fa < 0 <= fb):  # tracking ambiguity: fall back to the grid values
-            fa, fb = lam[m, i].real, lam[m, i + 1].real
-        xr = optimize.brentq(sig, a, b_, xtol=xtol, rtol=4 * np.finfo(float).eps) if fa * fb < 0 else b_
-        if best is None or xr < best[0]:
-            best = (xr, m, start)
-    if best is not None:
-        xr, m, start = best
-        sec, U = sec_at(xr)
-        l, v, k = pk_eigen(sec, U, start, **kw)
-        out.update(x=xr, lam=lam, lam_f=l, vec=v, k=k, U=U, mode=m, sec=sec)
+                def f(x: float, start=start, m=m) -> float:
+                    sec, U = sec_at(x)
+                    return pk_eigen(sec, U, start, mode_index=m, **kw)[0].real
+
+                a, b_ = xs[i], xs[i + 1]
+                try:
+                    fa, fb = f(a), f(b_)
+                    if not (fa < 0 <= fb):
+                        continue
+                    xr = optimize.brentq(f, a, b_, xtol=xtol, rtol=4 * np.finfo(float).eps)
+                    sec, U = sec_at(xr)
+                    l, v, k = pk_eigen(sec, U, start, mode_index=m, **kw)
+                except ConvergenceError:
+                    continue
+                if abs(l.real) <= 1e-6 * abs(l) + 1e-12 and (best is None or xr < best[0]):
+                    best = (xr, m, l, v, k, U)
+            if best is not None:
+                return best
+            if depth < max_depth:  # unconfirmed: subdivide this cell and look again
+                sub = np.linspace(xs[i], xs[i + 1], 7)
+                try:
+                    sub_lam, _ = _pk_track(sec_at, sub, lams[:, i], **kw)
+                except ConvergenceError:
+                    continue
+                found = in_cell(sub[: sub_lam.shape[1]], sub_lam, depth + 1)
+                if found is not None:
+                    return found
+        return None
+
+    found = in_cell(params, lam, 0)
+    if found is not None:
+        xr, m, l, v, k, U = found
+        out.update(x=xr, lam_f=l, vec=v, k=k, U=U, mode=m)
     return out
 
 
@@ -784,17 +811,20 @@ def k_method(
     best = None
     for m in range(2):
         for i in range(nk - 1):
-            if np.isfinite(g[m, i]) and np.isfinite(g[m, i + 1]) and g[m, i] < 0 <= g[m, i + 1]:
+            if (Z.real[m, i] > 0 and Z.real[m, i + 1] > 0 and np.isfinite(g[m, i])
+                    and np.isfinite(g[m, i + 1]) and g[m, i] < 0 <= g[m, i + 1]):
                 ref = Z[m, i]
 
                 def gfun(k: float, ref=ref) -> float:
+                    # Im Z has the sign of g while Re Z > 0 and no poles: safer for Brent
                     z, _ = _k_eig(sec, k, Kinv, M, c_func)
-                    zz = z[np.argmin(np.abs(z - ref))]
-                    return zz.imag / zz.real
+                    return z[np.argmin(np.abs(z - ref))].imag
 
                 kr = optimize.brentq(gfun, k_values[i + 1], k_values[i], xtol=1e-13)
                 z, V = _k_eig(sec, kr, Kinv, M, c_func)
                 j = int(np.argmin(np.abs(z - ref)))
+                if z[j].real <= 0:
+                    continue
                 w = 1.0 / math.sqrt(z[j].real)
                 uf = w * sec.semi_chord / kr
                 if best is None or uf < best[0]:
