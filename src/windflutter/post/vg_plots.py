@@ -85,14 +85,19 @@ def plot_simple_model(results: Sequence, path: str | Path, extra: Sequence | Non
         ax = axes[0, i]
         rs = res.turbine
         sets = [res] + ([extra[i]] if extra else [])
+        colours = ("tab:blue", "tab:orange")
         for j, r in enumerate(sets):
             ws = [pt.wind_speed for pt in r.points]
             name = "frozen k (thesis)" if r.frozen_k else "p-k (k matched)"
-            ax.plot(ws, r.first_unstable_rpm, "o-" if j == 0 else "s--", ms=3,
+            ax.plot(ws, r.first_unstable_rpm, "o-" if j == 0 else "s--", ms=3, color=colours[j],
                     label=f"first unstable, {name}")
+            flut = np.array([pt.flutter_rpm for pt in r.points])
+            if np.any(np.isfinite(flut)):
+                ax.plot(ws, flut, "x:", ms=4, lw=0.8, color=colours[j],
+                        label=f"flutter onset, {name}")
             div = np.array([pt.divergence_rpm for pt in r.points])
             if j == 0 and np.any(np.isfinite(div)):
-                ax.plot(ws, div, ":", color="gray", label="divergence (static)")
+                ax.plot(ws, div, "-", lw=3, alpha=0.3, color="gray", label="divergence (static)")
         if rs.reported_rpm:
             lo, hi = rs.reported_rpm
             ax.axhspan(lo, hi, color="orange", alpha=0.3, label=f"thesis fig. 4.7: {lo}-{hi} RPM")
