@@ -180,3 +180,28 @@ def test_material_direction_equals_ply_angle():
     assert abs(K1 - K2).max() < 1e-9 * abs(K1).max()
     fe3 = ss_plate(6, prop=ShellProperty(plies=(Ply(MAT, 0.01, -th),)))
     assert abs(assemble(fe3).K - K1).max() > 1e-3 * abs(K1).max()  # the check can fail
+
+
+def test_free_shell_tube_raises_and_lumped_mass_total():
+    from windflutter.errors import ModelError
+
+    R, L, t, E, nu, rho = 0.25, 2.0, 0.005, 210e9, 0.3, 7850.0
+    fe, idx = tube(16, 8, R, L, iso(E, nu, rho, t))
+    with pytest.raises(ModelError, match="not sufficiently constrained"):
+        assemble(fe)
+    m_exact = rho * t * L * 16 * 2 * R * np.sin(np.pi / 16)  # facetted (polygonal) tube area
+    for kind in ("consistent", "lumped"):
+        st = assemble(fe, check=False, shell_mass=kind)
+        assert st.total_mass() == pytest.approx(m_exact, rel=1e-10)
+
+
+def test_modes_interior_shift_and_reduce_complex():
+    fe = ss_plate(8, a=1.0, b=0.7)
+    st = assemble(fe)
+    low = modes(st, n=6).freq
+    # shift just above mode 4 (K - sigma M indefinite): the mode nearest the shift is returned
+    mid = modes(st, n=1, shift=(2 * np.pi * low[3]) ** 2 * 1.01).freq
+    np.testing.assert_allclose(mid, low[3], rtol=1e-8)
+    A = (st.K + 1j * st.M).toarray()
+    R = st.reduce(A)
+    np.testing.assert_allclose(R, (st.Kr + 1j * st.Mr).toarray(), rtol=1e-12, atol=1e-9 * abs(R).max())

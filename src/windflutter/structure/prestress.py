@@ -94,14 +94,14 @@ def _omega(omega_vec) -> np.ndarray:
     return w
 
 
-def centrifugal_load(fe: FEModel, struct: Structural, omega_vec, center=(0.0, 0.0, 0.0),
+def centrifugal_load(fe: FEModel, struct: Structural | sp.spmatrix, omega_vec, center=(0.0, 0.0, 0.0),
                      nodes: np.ndarray | None = None) -> np.ndarray:
     """Centrifugal nodal loads ``F = -M a`` with ``a = Omega x (Omega x (x - center))``.
 
     Parameters
     ----------
     fe : the model (node positions).
-    struct : assembled structure (mass matrix).
+    struct : assembled structure, or directly its full-numbering mass matrix ``M``.
     omega_vec : (3,) angular velocity (rad/s), global axes.
     center : (3,) a point on the rotation axis (m).
     nodes : optional node indices that rotate (default all), e.g. ``fe.node_groups["rotor"]``.
@@ -117,7 +117,10 @@ def centrifugal_load(fe: FEModel, struct: Structural, omega_vec, center=(0.0, 0.
     a = np.zeros((fe.n_nodes, 6))
     sel = np.arange(fe.n_nodes) if nodes is None else np.asarray(nodes, dtype=np.int64)
     a[sel, :3] = acc[sel]
-    return -(struct.M @ a.reshape(-1))
+    M = struct.M if hasattr(struct, "M") else struct
+    if M.shape != (fe.n_dof, fe.n_dof):
+        raise InputError("M", M.shape, f"a ({fe.n_dof}, {fe.n_dof}) full-numbering mass matrix")
+    return -(M @ a.reshape(-1))
 
 
 def spin_softening(struct: Structural, omega_vec, nodes: np.ndarray | None = None) -> sp.csr_matrix:

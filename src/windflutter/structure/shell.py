@@ -166,15 +166,21 @@ def shell_membrane_resultants(fe: FEModel, u0: np.ndarray) -> np.ndarray:
     return np.einsum("eij,ej->ei", A[pid], eps) + np.einsum("eij,ej->ei", B[pid], kap)
 
 
-def shell_membrane_kg(fe: FEModel, u0: np.ndarray):
+def shell_membrane_kg(fe: FEModel, u0: np.ndarray, directions: str = "all"):
     """COO triplets of the full membrane geometric stiffness of all shells.
+
+    ``directions="normal"`` keeps only the element-normal translation (``(x) n n^T`` instead of
+    ``(x) I3``), i.e. a plate-type KG like pyfe3d's; it exists to demonstrate (tests, docs) how
+    much in-plane stiffening that misses.
 
     ``KG_e = int G^T Nm G dA (x) I3`` on (ux, uy, uz) of the 4 nodes, with ``G`` the (2, 4)
     in-plane shape-function gradients, ``Nm = [[Nxx, Nxy], [Nxy, Nyy]]`` (centroid, constant
     per element), 2x2 Gauss.  ``I3`` is frame-invariant, so no rotation to global is needed.
     """
+    if directions not in ("all", "normal"):
+        raise InputError("directions", directions, "'all' or 'normal'")
     Nres = shell_membrane_resultants(fe, u0)
-    _, xy, _ = shell_frames(fe)
+    Rf, xy, _ = shell_frames(fe)
     Nm = np.stack([np.stack([Nres[:, 0], Nres[:, 2]], -1), np.stack([Nres[:, 2], Nres[:, 1]], -1)], 1)
     ne = Nm.shape[0]
     Ge = np.zeros((ne, 4, 4))
@@ -188,7 +194,8 @@ def shell_membrane_kg(fe: FEModel, u0: np.ndarray):
     cn = np.tile(conn, (1, 4))
     v = Ge.reshape(ne, 16)
     comp = np.arange(3)
-    r = (6 * rn[:, :, None] + comp[None, None, :]).ravel()
-    c = (6 * cn[:, :, None] + comp[None, None, :]).ravel()
-    vals = np.repeat(v[:, :, None], 3, axis=2).ravel()
-    return r, c, vals
+    P = np.broadcast_to(np.eye(3), (ne, 3, 3)) if directions == "all" else np.einsum("ei,ej->eij", Rf[:, 2], Rf[:, 2])
+    r = (6 * rn[:, :, None, None] + comp[None, None, :, None]) + 0 * comp[None, None, None, :]
+    c = (6 * cn[:, :, None, None] + comp[None, None, None, :]) + 0 * comp[None, None, :, None]
+    vals = v[:, :, None, None] * P[:, None, :, :]
+    return r.ravel(), c.ravel(), vals.ravel()
