@@ -131,3 +131,12 @@ def test_simple_command_plot(tmp_path, capsys):
     assert main(["simple", "--turbine", "nrel5mw", "--plot", str(png)]) == 0
     assert "NREL 5 MW" in capsys.readouterr().out
     assert png.stat().st_size > 1000
+
+
+def test_unwritable_plot_location(tmp_path, capsys):
+    cfg = write(tmp_path, HP_YAML)
+    blocker = tmp_path / "afile"
+    blocker.write_text("x")
+    assert main(["section", cfg, "--plot", str(blocker / "sub" / "vg.png")]) == 2
+    err = capsys.readouterr().err
+    assert "--plot" in err and len(err.strip().splitlines()) == 1

@@ -21,9 +21,20 @@ def _check_out(path: str | Path) -> Path:
     p = Path(path)
     if p.suffix.lower() != ".png":
         raise InputError("--plot", str(path), "a file name ending in .png")
-    if p.parent and not p.parent.exists():
+    try:
         p.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError("--plot", str(path), f"a writable location ({exc.strerror})") from None
     return p
+
+
+def _save(fig, p: Path) -> None:
+    try:
+        fig.savefig(p, dpi=110)
+    except OSError as exc:
+        raise InputError("--plot", str(p), f"a writable file ({exc.strerror})") from None
+    finally:
+        plt.close(fig)
 
 
 def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
@@ -66,8 +77,7 @@ def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
             ax1.set_ylim(-1.0, 1.0)
     fig.suptitle(title or f"Typical section, {result.method} method")
     fig.tight_layout()
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
+    _save(fig, p)
     return p
 
 
@@ -108,6 +118,5 @@ def plot_simple_model(results: Sequence, path: str | Path, extra: Sequence | Non
         ax.legend(fontsize=7)
     fig.suptitle("Seed simple model (Castillo Capponi 2010, ch. 4.1.8)")
     fig.tight_layout()
-    fig.savefig(p, dpi=110)
-    plt.close(fig)
+    _save(fig, p)
     return p

@@ -438,7 +438,10 @@ class SectionResult:
     extra: dict = field(default_factory=dict)
 
     def to_dict(self) -> dict:
-        """JSON-friendly summary (the ``windflutter section --json`` object)."""
+        """JSON-friendly summary (the ``windflutter section --json`` object; NaN -> None)."""
+        def fin(x: float | None) -> float | None:
+            return None if x is None or not math.isfinite(x) else float(x)
+
         return {
             "method": self.method,
             "flutter_speed": self.flutter_speed,
@@ -453,7 +456,7 @@ class SectionResult:
                               "h_im": float(self.flutter_mode[0].imag),
                               "alpha_re": float(self.flutter_mode[1].real),
                               "alpha_im": float(self.flutter_mode[1].imag)}),
-            "max_speed_analysed": self.max_speed,
+            "max_speed_analysed": fin(self.max_speed),
         }
 
 
