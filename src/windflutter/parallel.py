@@ -103,8 +103,15 @@ def _execute(fn: Callable, index: int, task: Any, where: str) -> TaskResult:
 _WORKER_FN: Callable | None = None
 
 
-def _init_worker(fn_bytes: bytes) -> None:
+def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
     global _WORKER_FN
+    if blas_threads is not None:
+        try:  # for the life of the worker process; see windflutter.solve.linsolve on why
+            from threadpoolctl import threadpool_limits
+
+            threadpool_limits(limits=int(blas_threads), user_api="blas")
+        except ImportError:  # pragma: no cover - optional
+            pass
     _WORKER_FN = _cp.loads(fn_bytes)
 
 
@@ -133,7 +140,7 @@ def _dumps_task(index: int, task: Any) -> tuple[bytes | None, TaskResult | None]
                                 traceback.format_exc(), 0.0, "local")
 
 
-def _iter_pool(fn, tasks, workers, start_method) -> Iterator[TaskResult]:
+def _iter_pool(fn, tasks, workers, start_method, blas_threads) -> Iterator[TaskResult]:
     import multiprocessing as mp
 
     try:
@@ -143,7 +150,7 @@ def _iter_pool(fn, tasks, workers, start_method) -> Iterator[TaskResult]:
     ctx = mp.get_context(start_method) if start_method else None
     n_workers = max(1, min(workers, len(tasks)))
     ex = ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx, initializer=_init_worker,
-                             initargs=(fn_bytes,))
+                             initargs=(fn_bytes, blas_threads))
     futures = {}
     try:
         for i, t in enumerate(tasks):
@@ -170,17 +177,20 @@ def _iter_pool(fn, tasks, workers, start_method) -> Iterator[TaskResult]:
 
 
 # --- Dask ---------------------------------------------------------------------------------
-def _dask_execute(fn: Callable, index: int, task: Any) -> TaskResult:
+def _dask_execute(fn: Callable, index: int, task: Any, blas_threads: int | None) -> TaskResult:
+    from windflutter.solve.linsolve import blas_limit
+
     try:
         from distributed import get_worker
 
         where = get_worker().address
     except Exception:  # noqa: BLE001
         where = "dask"
-    return _execute(fn, index, task, where)
+    with blas_limit(blas_threads):
+        return _execute(fn, index, task, where)
 
 
-def _iter_dask(fn, tasks, scheduler, connect_timeout: float) -> Iterator[TaskResult]:
+def _iter_dask(fn, tasks, scheduler, connect_timeout: float, blas_threads) -> Iterator[TaskResult]:
     try:
         from distributed import Client, as_completed
     except ImportError as exc:  # pragma: no cover - depends on the environment
@@ -199,7 +209,7 @@ def _iter_dask(fn, tasks, scheduler, connect_timeout: float) -> Iterator[TaskRes
         own = True
     try:
         fn_future = client.scatter(fn, broadcast=True, hash=False) if len(tasks) > 1 else fn
-        futs = [client.submit(_dask_execute, fn_future, i, t, pure=False) for i, t in enumerate(tasks)]
+        futs = [client.submit(_dask_execute, fn_future, i, t, blas_threads, pure=False) for i, t in enumerate(tasks)]
         index_of = {f.key: i for i, f in enumerate(futs)}
         for fut in as_completed(futs, loop=client.loop):
             i = index_of[fut.key]
@@ -223,6 +233,7 @@ def iter_tasks(
     scheduler: Any = None,
     start_method: str | None = None,
     connect_timeout: float = 10.0,
+    blas_threads: int | None = 1,
 ) -> Iterator[TaskResult]:
     """Run ``fn(task)`` for every task; yield :class:`TaskResult` objects as they complete.
 
@@ -234,17 +245,21 @@ def iter_tasks(
         if hasattr(scheduler, "scheduler_address") and not hasattr(scheduler, "submit"):
             scheduler = scheduler.scheduler_address
     if scheduler is not None:
-        yield from _iter_dask(fn, tasks, scheduler, connect_timeout)
+        yield from _iter_dask(fn, tasks, scheduler, connect_timeout, blas_threads)
         return
     if workers is None:
         workers = default_workers()
     if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
         raise InputError("workers", workers, "a positive integer (1 = serial, in this process)")
     if workers == 1 or len(tasks) <= 1:
+        from windflutter.solve.linsolve import blas_limit
+
         for i, t in enumerate(tasks):
-            yield _execute(fn, i, t, "local")
+            with blas_limit(blas_threads):  # same BLAS threading as the workers: same rounding
+                res = _execute(fn, i, t, "local")
+            yield res
         return
-    yield from _iter_pool(fn, tasks, workers, start_method)
+    yield from _iter_pool(fn, tasks, workers, start_method, blas_threads)
 
 
 def run_tasks(
@@ -256,6 +271,7 @@ def run_tasks(
     progress: ProgressCallback | None = None,
     start_method: str | None = None,
     connect_timeout: float = 10.0,
+    blas_threads: int | None = 1,
 ) -> list[TaskResult]:
     """Run ``fn(task)`` for every task and return the results in input order.
 
@@ -279,6 +295,10 @@ def run_tasks(
         ``"spawn"``); default: the platform's.
     connect_timeout
         Seconds to wait for the Dask scheduler at ``scheduler`` (an address).
+    blas_threads
+        BLAS threads per local worker process / per Dask task (``None``: library default).
+        1 avoids oversubscribing the cores (several workers x multi-threaded OpenBLAS), which
+        was measured to slow sparse factorizations by 30x or more.
 
     Returns
     -------
@@ -289,7 +309,7 @@ def run_tasks(
     out: list[TaskResult | None] = [None] * len(tasks)
     n_done = 0
     for res in iter_tasks(fn, tasks, workers=workers, scheduler=scheduler, start_method=start_method,
-                          connect_timeout=connect_timeout):
+                          connect_timeout=connect_timeout, blas_threads=blas_threads):
         out[res.index] = res
         n_done += 1
         if progress is not None:

@@ -15,15 +15,26 @@ This module hides *which* sparse LU does that:
     sparsity pattern and can be reused across shifts, reduced frequencies and rotor speeds: see
     :class:`Factorizer`.
 
-Which one is faster depends on how often the factor is used. Measured here on a complex
-25k-DOF shell-like system (``benchmarks/bench_linsolve.py``, ``docs/performance.md``): UMFPACK
-factorizes about 1.5-2x faster than SuperLU, but each kvxopt UMFPACK solve costs about 4x a
-SuperLU solve (kvxopt runs UMFPACK's default iterative refinement and offers no switch to turn
-it off). So ``backend="auto"`` picks UMFPACK only when few solves per factorization are expected
-(``n_solves <= AUTO_UMFPACK_MAX_SOLVES``: static solves, static-correction modes, a direct
-determinant-type check) and SuperLU otherwise (shift-invert Arnoldi needs tens to hundreds of
-solves per factor). Force a backend with ``backend="superlu"`` / ``"umfpack"`` or, without
-touching code, with the environment variable ``WINDFLUTTER_LU_BACKEND``.
+Two measured facts decide the defaults (``benchmarks/bench_linsolve.py``, ``docs/performance.md``,
+complex 25k-DOF shell-like system, 2 cores shared with other jobs):
+
+* **BLAS threads.** SciPy's SuperLU calls the multi-threaded OpenBLAS that NumPy/SciPy bundle.
+  When the cores are busy (other jobs, or our own parallel sweep) its spinning threads contend
+  and one factorization took 70-90 s instead of 1.3-2.5 s. Factorizations and solves therefore
+  run with BLAS limited to ``blas_threads=1`` (via ``threadpoolctl`` when installed). kvxopt
+  ships a single-threaded OpenBLAS and is unaffected.
+* **Ordering.** FE matrices (and the element- or section-local aero coupling) are structurally
+  symmetric. For such patterns SuperLU runs in "symmetric mode" (minimum degree on ``A^T + A``,
+  ``SymmetricMode=True``, diagonal pivoting preferred with threshold 0.1): 38 % less fill than
+  COLAMD and about half the factorization time. Unsymmetric patterns use COLAMD. (Minimum degree
+  *without* symmetric mode and with full partial pivoting is the slow combination reported in
+  issue 5.)
+
+With these settings SuperLU factorizes as fast as kvxopt's UMFPACK and solves 4-5x faster
+(kvxopt always runs UMFPACK's iterative refinement), so ``backend="auto"`` is SuperLU; UMFPACK
+stays available (``backend="umfpack"``) as an independent second implementation and for
+unsymmetric patterns. Force a backend without touching code with the environment variable
+``WINDFLUTTER_LU_BACKEND``.
 
 Examples
 --------
@@ -36,6 +47,7 @@ True
 
 from __future__ import annotations
 
+import contextlib
 import os
 from dataclasses import dataclass, field
 from typing import Any
@@ -54,14 +66,18 @@ __all__ = [
     "default_backend",
     "factorize",
     "as_operator",
+    "blas_limit",
+    "is_structurally_symmetric",
 ]
 
-#: Backend names. Order = preference when few solves per factorization are expected.
-BACKENDS: tuple[str, ...] = ("umfpack", "superlu")
+#: Backend names, fastest first as measured by ``bench_linsolve.py``.
+BACKENDS: tuple[str, ...] = ("superlu", "umfpack")
 
-#: Break-even number of solves per factorization below which UMFPACK beats SuperLU overall
-#: (measured: factor 0.85 s vs 1.3 s, solve 0.11 s vs 0.027 s on the 25k-DOF complex system).
-AUTO_UMFPACK_MAX_SOLVES = 5
+#: SuperLU options for structurally symmetric matrices (see the module docstring).
+SUPERLU_SYMMETRIC = dict(permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
+                         options=dict(SymmetricMode=True))
+#: SuperLU options otherwise (SciPy's default ordering).
+SUPERLU_GENERAL = dict(permc_spec="COLAMD")
 
 _ENV_VAR = "WINDFLUTTER_LU_BACKEND"
 
@@ -88,30 +104,38 @@ def available_backends() -> list[str]:
     return out
 
 
-def default_backend(n_solves: int | None = None) -> str:
-    """The backend :func:`factorize` uses for ``backend="auto"``.
-
-    Parameters
-    ----------
-    n_solves
-        Expected number of right-hand sides solved per factorization; ``None`` = many
-        (iterative eigen-solver use).
+def default_backend() -> str:
+    """The backend :func:`factorize` uses for ``backend="auto"`` (SuperLU, see module doc).
 
     ``WINDFLUTTER_LU_BACKEND`` (``superlu`` or ``umfpack``) overrides the automatic choice.
     """
     forced = os.environ.get(_ENV_VAR, "").strip().lower()
     if forced and forced != "auto":
         return _check_backend(forced, field_name=_ENV_VAR)
-    avail = available_backends()
-    if "umfpack" in avail and n_solves is not None and n_solves <= AUTO_UMFPACK_MAX_SOLVES:
-        return "umfpack"
-    return "superlu"
+    return available_backends()[0]
 
 
-def _check_backend(name: str, field_name: str = "backend", n_solves: int | None = None) -> str:
+def blas_limit(n_threads: int | None):
+    """Context manager limiting BLAS threads (no-op without ``threadpoolctl`` or for ``None``)."""
+    if n_threads is None:
+        return contextlib.nullcontext()
+    try:
+        from threadpoolctl import threadpool_limits
+    except ImportError:  # pragma: no cover - optional
+        return contextlib.nullcontext()
+    return threadpool_limits(limits=int(n_threads), user_api="blas")
+
+
+def is_structurally_symmetric(A: sp.csc_matrix) -> bool:
+    """True if the sparsity pattern of the square CSC matrix ``A`` equals that of ``A^T``."""
+    P = sp.csc_matrix((np.ones(A.nnz, dtype=np.int8), A.indices, A.indptr), shape=A.shape)
+    return (P != P.T).nnz == 0
+
+
+def _check_backend(name: str, field_name: str = "backend") -> str:
     name = str(name).strip().lower()
     if name == "auto":
-        return default_backend(n_solves)
+        return default_backend()
     if name not in BACKENDS:
         raise InputError(field_name, name, f"one of {('auto',) + BACKENDS}")
     if name not in available_backends():
@@ -157,6 +181,8 @@ class Factor:
     dtype: np.dtype
     _lu: Any = field(repr=False)
     _A_kvx: Any = field(default=None, repr=False)  # the kvxopt matrix (UMFPACK needs A at solve)
+    blas_threads: int | None = 1
+    ordering: str = ""
 
     @property
     def n(self) -> int:
@@ -193,7 +219,8 @@ class Factor:
 
     def _solve(self, b: np.ndarray, trans: str) -> np.ndarray:
         if self.backend == "superlu":
-            return self._lu.solve(b, trans=trans)
+            with blas_limit(self.blas_threads):
+                return self._lu.solve(b, trans=trans)
         from kvxopt import matrix, umfpack
 
         # kvxopt dense matrices are column-major; Fortran-order copy keeps the columns intact.
@@ -227,7 +254,7 @@ def _singular(A_shape, backend: str, err: Exception) -> ModelError:
 
 
 def factorize(
-    A: Any, backend: str = "auto", *, n_solves: int | None = None, permc_spec: str = "COLAMD"
+    A: Any, backend: str = "auto", *, ordering: str = "auto", blas_threads: int | None = 1
 ) -> Factor:
     """LU-factorize a square sparse matrix.
 
@@ -236,12 +263,15 @@ def factorize(
     A
         Square SciPy sparse matrix (any format) or dense array, real or complex.
     backend
-        ``"auto"`` (fastest installed for the expected use, see :func:`default_backend`),
-        ``"superlu"`` or ``"umfpack"``.
-    n_solves
-        Expected solves per factorization, used by ``"auto"`` only (``None`` = many).
-    permc_spec
-        SuperLU column ordering (ignored by UMFPACK, which chooses its own). COLAMD default.
+        ``"auto"`` (fastest installed, see :func:`default_backend`), ``"superlu"`` or
+        ``"umfpack"``.
+    ordering
+        SuperLU only: ``"auto"`` (symmetric mode for structurally symmetric patterns, else
+        COLAMD), ``"symmetric"``, or a SciPy ``permc_spec`` (``"COLAMD"``, ``"MMD_ATA"``,
+        ``"MMD_AT_PLUS_A"``, ``"NATURAL"``) with SciPy's default pivoting. UMFPACK chooses its own.
+    blas_threads
+        BLAS threads during factorization and solves (``None``: leave as is). 1 is fastest on
+        busy machines and in parallel sweeps (see module doc).
 
     Returns
     -------
@@ -255,7 +285,7 @@ def factorize(
     ModelError
         ``A`` is singular.
     """
-    return Factorizer(backend=backend, n_solves=n_solves, permc_spec=permc_spec).factorize(A)
+    return Factorizer(backend=backend, ordering=ordering, blas_threads=blas_threads).factorize(A)
 
 
 class Factorizer:
@@ -269,17 +299,18 @@ class Factorizer:
 
     Parameters
     ----------
-    backend, n_solves
+    backend, ordering, blas_threads
         As for :func:`factorize`.
-    permc_spec
-        SuperLU column ordering.
     """
 
-    def __init__(
-        self, backend: str = "auto", n_solves: int | None = None, permc_spec: str = "COLAMD"
-    ):
-        self.backend = _check_backend(backend, n_solves=n_solves)
-        self.permc_spec = permc_spec
+    _ORDERINGS = ("auto", "symmetric", "COLAMD", "MMD_ATA", "MMD_AT_PLUS_A", "NATURAL")
+
+    def __init__(self, backend: str = "auto", ordering: str = "auto", blas_threads: int | None = 1):
+        self.backend = _check_backend(backend)
+        if ordering not in self._ORDERINGS:
+            raise InputError("ordering", ordering, f"one of {self._ORDERINGS}")
+        self.ordering = ordering
+        self.blas_threads = blas_threads
         self._pattern: tuple[tuple[int, int], str, np.ndarray, np.ndarray] | None = None
         self._symbolic: Any = None
         self.n_symbolic = 0  #: number of symbolic analyses done (diagnostics)
@@ -289,12 +320,17 @@ class Factorizer:
         """Factorize ``A``; see :func:`factorize`."""
         A = _as_square_csc(A)
         if self.backend == "superlu":
+            ordering = self.ordering
+            if ordering == "auto":
+                ordering = "symmetric" if is_structurally_symmetric(A) else "COLAMD"
+            opts = SUPERLU_SYMMETRIC if ordering == "symmetric" else dict(permc_spec=ordering)
             try:
-                lu = spla.splu(A, permc_spec=self.permc_spec)
+                with blas_limit(self.blas_threads):
+                    lu = spla.splu(A, **opts)
             except RuntimeError as err:  # "Factor is exactly singular"
                 raise _singular(A.shape, "superlu", err) from err
             self.n_numeric += 1
-            return Factor("superlu", A.shape, A.dtype, lu)
+            return Factor("superlu", A.shape, A.dtype, lu, None, self.blas_threads, ordering)
 
         from kvxopt import umfpack
 
@@ -316,7 +352,7 @@ class Factorizer:
         except ArithmeticError as err:
             raise _singular(A.shape, "umfpack", err) from err
         self.n_numeric += 1
-        return Factor("umfpack", A.shape, A.dtype, num, Ak)
+        return Factor("umfpack", A.shape, A.dtype, num, Ak, self.blas_threads, "umfpack")
 
 
 def as_operator(factor: Factor) -> spla.LinearOperator:

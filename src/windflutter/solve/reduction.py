@@ -225,7 +225,7 @@ def static_correction_modes(
     F = F[:, np.linalg.norm(F, axis=0) > 0]
     if F.shape[1] == 0:
         return np.zeros((Phi.shape[0], 0))
-    X = factorize(sp.csc_matrix(K), backend, n_solves=1).solve(F)
+    X = factorize(sp.csc_matrix(K), backend).solve(F)
     X = np.real(X)
     for _ in range(2):  # two passes of M-orthogonal deflation (re-orthogonalisation)
         X = X - Phi @ (Phi.T @ (M @ X))

@@ -1,0 +1,98 @@
+"""Shared helpers for windflutter benchmarks: timing, peak memory, isolated runs, tables.
+
+Peak memory is measured two ways:
+* ``tracemalloc`` peak: Python-level and NumPy allocations only (NumPy reports to tracemalloc),
+  NOT the C allocations inside SuperLU / UMFPACK / ARPACK;
+* ``ru_maxrss`` of a forked child that runs only the measured case: the whole process peak
+  (includes the interpreter and imported libraries, ~100-200 MB), the honest number for the
+  "< 4 GB" target.
+"""
+
+from __future__ import annotations
+
+import multiprocessing as mp
+import os
+import platform
+import resource
+import sys
+import time
+import traceback
+import tracemalloc
+from typing import Any, Callable
+
+QUICK = os.environ.get("WINDFLUTTER_BENCH_QUICK", "") not in ("", "0") or "--quick" in sys.argv
+
+
+def maxrss_mb() -> float:
+    """Peak resident set size of this process so far (MB; Linux reports KiB)."""
+    return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss / 1024.0
+
+
+def timed(fn: Callable, *args, **kw) -> tuple[Any, float, float]:
+    """Run ``fn`` once: (result, wall seconds, tracemalloc peak MB)."""
+    tracemalloc.start()
+    t0 = time.perf_counter()
+    try:
+        out = fn(*args, **kw)
+    finally:
+        dt = time.perf_counter() - t0
+        _, peak = tracemalloc.get_traced_memory()
+        tracemalloc.stop()
+    return out, dt, peak / 2**20
+
+
+def _child(conn, fn, args, kw):
+    try:
+        t0 = time.perf_counter()
+        out = fn(*args, **kw)
+        dt = time.perf_counter() - t0
+        conn.send(("ok", out, dt, maxrss_mb()))
+    except BaseException:  # noqa: BLE001
+        conn.send(("error", traceback.format_exc(), 0.0, maxrss_mb()))
+    finally:
+        conn.close()
+
+
+def isolated(fn: Callable, *args, **kw) -> tuple[Any, float, float]:
+    """Run ``fn`` in a forked child: (result, wall seconds, child's peak RSS MB).
+
+    The result must be picklable. Falls back to in-process when fork is unavailable.
+    """
+    try:
+        ctx = mp.get_context("fork")
+    except ValueError:  # pragma: no cover
+        out, dt, _ = timed(fn, *args, **kw)
+        return out, dt, maxrss_mb()
+    a, b = ctx.Pipe(duplex=False)
+    p = ctx.Process(target=_child, args=(b, fn, args, kw))
+    p.start()
+    b.close()
+    status, out, dt, rss = a.recv()
+    p.join()
+    if status != "ok":
+        raise RuntimeError(f"benchmark case failed in child:\n{out}")
+    return out, dt, rss
+
+
+def header(title: str, **info) -> None:
+    print(f"\n=== {title} ===")
+    print(f"python {platform.python_version()}, {os.cpu_count()} cores "
+          f"(usable {len(os.sched_getaffinity(0))}), load avg {os.getloadavg()[0]:.2f}"
+          + (", QUICK mode" if QUICK else ""))
+    for k, v in info.items():
+        print(f"{k}: {v}")
+
+
+def table(rows: list[dict], cols: list[str]) -> None:
+    """Print rows as an aligned text table (floats with 3 significant digits)."""
+    def fmt(v):
+        if isinstance(v, float):
+            return f"{v:.3g}"
+        return str(v)
+
+    cells = [[fmt(r.get(c, "")) for c in cols] for r in rows]
+    w = [max(len(c), *(len(x[i]) for x in cells)) for i, c in enumerate(cols)]
+    print("  ".join(c.ljust(w[i]) for i, c in enumerate(cols)))
+    print("  ".join("-" * w[i] for i in range(len(cols))))
+    for x in cells:
+        print("  ".join(x[i].ljust(w[i]) for i in range(len(cols))))
