@@ -288,3 +288,19 @@ def test_k_and_pk_agree_on_random_sections(seed):
             assert rk.flutter_speed is None or rk.flutter_speed > rpk.max_speed
             continue
         assert rk.flutter_speed == pytest.approx(rpk.flutter_speed, rel=1e-7)
+
+
+def test_apparent_mass_scaling_option():
+    base = dict(semi_chord=0.5, elastic_axis=-0.3, mass=10.0, static_moment=0.4, inertia=0.3,
+                plunge_stiffness=4000.0, pitch_stiffness=900.0, lift_slope=5.7)
+    plain = TypicalSection(**base)
+    scaled = TypicalSection(**base, scale_apparent_mass=True)
+    Ma0, Da0, Ka0 = aero_matrices(plain, 30.0, C=1.0)
+    Ma1, Da1, Ka1 = aero_matrices(scaled, 30.0, C=1.0)
+    # apparent mass scales by Cla/2pi; stiffness (circulatory only) is unchanged
+    assert np.allclose(Ma1, Ma0 * 5.7 / (2 * math.pi), rtol=1e-14)
+    assert np.allclose(Ka1, Ka0, rtol=1e-14)
+    # with Cla = 2 pi the option changes nothing
+    b2 = {**base, "lift_slope": 2 * math.pi}
+    assert np.allclose(aero_matrices(TypicalSection(**b2, scale_apparent_mass=True), 30.0, k=0.3)[1],
+                       aero_matrices(TypicalSection(**b2), 30.0, k=0.3)[1], rtol=1e-14)

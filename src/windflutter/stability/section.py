@@ -98,6 +98,9 @@ class TypicalSection:
         Cla (1/rad), replaces 2 pi in the circulatory terms.
     plunge_angle
         Angle (rad) between the plunge DOF and the lift direction (0 for the classic section).
+    scale_apparent_mass
+        If True the non-circulatory (apparent-mass) terms are scaled by ``Cla / 2 pi`` too, as
+        in the seed thesis's "viscous" variant (METHOD.md section 3); default False.
     """
 
     semi_chord: float
@@ -110,6 +113,7 @@ class TypicalSection:
     air_density: float = 1.225
     lift_slope: float = TWO_PI
     plunge_angle: float = 0.0
+    scale_apparent_mass: bool = False
 
     def __post_init__(self) -> None:
         _check_positive("semi_chord", self.semi_chord)
@@ -330,6 +334,8 @@ def _aero_parts(sec: TypicalSection, U: float):
     c = math.cos(sec.plunge_angle)
     T = np.diag([c, 1.0])
     pr = math.pi * rho * b * b
+    if sec.scale_apparent_mass:
+        pr *= sec.lift_slope / TWO_PI
     A2 = pr * np.array([[-1.0, b * a], [b * a, -b * b * (0.125 + a * a)]])
     A1 = pr * np.array([[0.0, -U], [0.0, -U * b * (0.5 - a)]])
     A2 = T @ A2 @ T
