@@ -260,6 +260,8 @@ def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent") ->
     if auto.size:
         T, free = constraint_map(fe, extra_fixed=auto)
     st = Structural(fe=fe, M=M, K=K, T=T, free_dofs=free, auto_spc=auto)
+    if not auto.size:  # reuse the reduced matrices (cached_property storage)
+        st.__dict__["Kr"], st.__dict__["Mr"] = Kr, Mr
     if st.nq == 0:
         raise ModelError("the model has no free degrees of freedom after constraints")
     if check:

@@ -82,7 +82,7 @@ def _section_arrays(fe: FEModel) -> tuple[np.ndarray, np.ndarray]:
         except np.linalg.LinAlgError:
             raise InputError(f"beam_sections[{i}].stiffness", "not positive definite",
                              "a symmetric positive-definite 6x6 section stiffness") from None
-        if np.any(np.linalg.eigvalsh(0.5 * (M + M.T)) < -1e-9 * max(np.abs(M).max(), 1e-300)):
+        if np.any(np.linalg.eigvalsh(0.5 * (M + M.T)) < -1e-7 * max(np.abs(M).max(), 1e-300)):
             raise InputError(f"beam_sections[{i}].mass", "not positive semi-definite",
                              "a symmetric positive semi-definite 6x6 section mass")
         C_inv.append(np.linalg.inv(Cs))
