@@ -140,6 +140,10 @@ class OutputConfig:
     formats : figure file formats.
     dpi : raster resolution of the figures.
     mode_shapes : store the flutter mode shape and the aero-work diagnostic per point.
+    animations : write the flutter mode of every point with flutter as a VTK time series
+        (``OUTDIR/animations/*.pvd``, one cycle, openable in ParaView) when the analyser gives
+        the full mode and its FE model.
+    animation_frames : frames per cycle (>= 16 recommended for a smooth loop).
     """
 
     plots: bool = True
@@ -147,6 +151,8 @@ class OutputConfig:
     formats: tuple[str, ...] = ("png",)
     dpi: int = 110
     mode_shapes: bool = True
+    animations: bool = True
+    animation_frames: int = 24
 
 
 @dataclass(frozen=True)
@@ -422,13 +428,15 @@ def config_from_dict(data: dict | None, source: str | None = None,
     # output
     d = _section("output", data.get("output"), OutputConfig, src)
     out = asdict(base.output)
-    for k in ("plots", "report", "mode_shapes"):
+    for k in ("plots", "report", "mode_shapes", "animations"):
         if k in d:
             out[k] = _boolean(f"output.{k}", d[k], src)
     if "formats" in d:
         out["formats"] = _choices("output.formats", d["formats"], PLOT_FORMATS, src)
     if "dpi" in d:
         out["dpi"] = _integer("output.dpi", d["dpi"], src, 20)
+    if "animation_frames" in d:
+        out["animation_frames"] = _integer("output.animation_frames", d["animation_frames"], src, 4)
     out["formats"] = tuple(out["formats"])
 
     kw = {f.name: getattr(base, f.name) for f in fields(AnalysisConfig)}

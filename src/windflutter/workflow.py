@@ -105,6 +105,8 @@ class PointResult:
         into plunge, pitch and edgewise (J, same normalisation as ``flutter_shape``); see
         :mod:`windflutter.post.aerowork`.
     info : extra scalars stored as attributes of the point (e.g. iterations, pitch).
+    flutter_dof_vector : (n_dof,) complex flutter mode in the FE model's DOF numbering, for the
+        VTK animation (not stored in the dataset); needs ``analyser.fe_model(point)``.
     status, reason : ``ok`` / ``failed`` and why (set by the workflow on an exception).
     elapsed : wall-clock time (s), set by the workflow.
     """
@@ -121,6 +123,7 @@ class PointResult:
     flutter_shape: np.ndarray | None = None
     aero_work: np.ndarray | None = None
     info: dict[str, Any] = field(default_factory=dict)
+    flutter_dof_vector: np.ndarray | None = None
     status: str = "ok"
     reason: str = ""
     elapsed: float = float("nan")
@@ -207,6 +210,11 @@ class TurbinePointAnalyser:
             self._cases[key] = self._st.TurbineStability(self.turbine, opts)
         return self._cases[key]
 
+    def fe_model(self, point: OperatingPoint):
+        """The FE model of ``point`` (its blade pitch), for the mode animation."""
+        ts = self._stability(point.aero, point.method)
+        return ts.model(ts.pitch_at(point.wind_speed))[0]
+
     def describe(self) -> dict[str, Any]:
         info: dict[str, Any] = {"model_type": self.config.model.type,
                                 "mesh_density": self.config.model.mesh_density}
@@ -245,6 +253,7 @@ class TurbinePointAnalyser:
             d = flutter_mode_diagnostics(u, sys_on.strip, sections, omega)
             res.station_radius, res.flutter_shape, res.aero_work = d.radius, d.shape, d.work
             res.info["aero_work_rotor_total_J"] = d.work_total
+            res.flutter_dof_vector = u
         return res
 
 
@@ -467,6 +476,7 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
                 prog.start_point(p.label)
                 res = _analyse_one(analyser, p, prog, with_progress)
                 ds = store.point_dataset(p, res, point_attrs)
+                _write_animation(analyser, p, res, config, outdir)
                 store.write_point(outdir, ds)
                 done[p.index] = ds
                 store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
@@ -487,6 +497,28 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)
     write_outputs(ds, config, outdir)
     return ds
+
+
+def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, config: AnalysisConfig,
+                     outdir: Path) -> Path | None:
+    """``OUTDIR/animations/flutter_pNNNN.pvd``: one cycle of the flutter mode (before the point
+    is stored, so a resumed run has every animation of its stored points)."""
+    if not config.output.animations or res.flutter_dof_vector is None or res.status != "ok":
+        return None
+    fe_model = getattr(analyser, "fe_model", None)
+    if not callable(fe_model):
+        return None
+    try:
+        from windflutter.post.animation import write_mode_animation  # noqa: PLC0415
+
+        fe = fe_model(point)
+        f = res.flutter_frequency_hz
+        return write_mode_animation(fe, res.flutter_dof_vector, outdir / "animations" / f"flutter_p{point.index:04d}.pvd",
+                                    n_frames=config.output.animation_frames, name=f"flutter_p{point.index:04d}",
+                                    frequency_hz=float(f) if np.isfinite(f) and f > 0 else None)
+    except Exception as exc:  # a picture must not cost the point
+        res.info["animation_error"] = f"{type(exc).__name__}: {exc}"[:300]
+        return None
 
 
 def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path) -> dict[str, Path]:

@@ -139,3 +139,23 @@ def test_progress_bars_draw(toy_config, tmp_path):
     run(None, toy_config(wind_speeds=[4, 10], aero=["potential"]), tmp_path, progress=True, stream=buf)
     out = buf.getvalue()
     assert "2/2" in out and "run" in out
+
+
+def test_flutter_mode_animation_series(toy_config, tmp_path):
+    import xml.etree.ElementTree as ET
+
+    import meshio
+
+    cfg = toy_config(wind_speeds=[10], aero=["potential"],
+                     output={"animations": True, "animation_frames": 16})
+    ds = run(None, cfg, tmp_path, progress=False)
+    pvd = tmp_path / "animations" / "flutter_p0000.pvd"
+    assert pvd.is_file()
+    sets = ET.parse(pvd).getroot().find("Collection").findall("DataSet")
+    assert len(sets) == 16
+    frames = [meshio.read(pvd.parent / d.get("file")) for d in sets]
+    times = [float(d.get("timestep")) for d in sets]
+    # one period of the flutter frequency, 16 equal steps
+    np.testing.assert_allclose(np.diff(times), 1 / 16 / float(ds["flutter_frequency"][0]), rtol=1e-6)
+    x = np.array([f.points[-1, 0] for f in frames])       # tip flap motion over the cycle
+    assert x.max() > 0 > x.min()                            # it oscillates about the rest position

@@ -117,6 +117,17 @@ class ToyAnalyser:
         fail = os.environ.get("TOY_FAIL_WIND", "")
         self.fail = {float(x) for x in fail.split(",") if x.strip()}
 
+    def fe_model(self, point):
+        """A stick of beams through the stations (for the animation)."""
+        from windflutter.structure.fem import BeamSection, FEModel
+
+        r = np.linspace(0.3, 1.0, 8) * R_TIP
+        nodes = np.stack([np.zeros_like(r), np.zeros_like(r), r], axis=1)
+        n = r.size
+        return FEModel(nodes=nodes, beam_conn=np.stack([np.arange(n - 1), np.arange(1, n)], axis=1),
+                       beam_section=np.zeros(n - 1, int), beam_orient=np.tile([1.0, 0.0, 0.0], (n - 1, 1)),
+                       beam_sections=[BeamSection(stiffness=np.eye(6), mass=np.eye(6))])
+
     def describe(self) -> dict:
         v = np.arange(3.0, 25.01, 1.0)
         rpm = np.minimum(6.9 + (12.1 - 6.9) * (v - 3) / (11.4 - 3), 12.1)
@@ -172,6 +183,11 @@ class ToyAnalyser:
             force = np.stack([(Ah @ np.array([mh, ma]))for mh, ma in motion[:, :2]])
             force = np.column_stack([force * w[:, None], np.zeros(r.size)])
             res.aero_work = section_work(motion, force)
+            # the same mode on a stick model along z (flap = x translation, torsion = rz)
+            u = np.zeros((r.size, 6), complex)
+            u[:, 0] = scale * q[0]
+            u[:, 5] = scale * q[1]
+            res.flutter_dof_vector = u.ravel()
         Ud = divergence_speed()
         if Ud > V:
             rpm_d = math.sqrt(Ud**2 - V**2) / RADIUS * 30 / math.pi
