@@ -153,3 +153,22 @@ def test_beam_mesh_convergence_order():
         errs.append(np.min(np.abs(f - f3)) / f3)
     p = np.log2(np.array(errs[:-1]) / np.array(errs[1:]))
     assert np.all(p > 3.5), (errs, p)
+
+
+def test_tension_centre_offset_coupling():
+    """EA acting at y = e from the reference axis: C = [[EA, -EA e], [-EA e, EIz_c + EA e^2]] on
+    (axial strain, kappa_z).  An axial tip force P at the reference axis bends the beam:
+    kappa_z = P e / EIz_c, v(L) = P e L^2 / (2 EIz_c), u(L) = P L (1/EA + e^2/EIz_c)."""
+    L, EA, EIz, e, P = 10.0, 1e8, 1e6, 0.2, 1e4
+    C = np.diag([EA, 1e9, 1e9, 5e5, 1e6, EIz + EA * e**2])
+    C[0, 5] = C[5, 0] = -EA * e
+    fe = cantilever(ne=4, section=BeamSection(stiffness=C, mass=np.diag([10.0, 10, 10, 0.5, 0.1, 0.1])))
+    st = assemble(fe)
+    from windflutter.structure import static_solve
+
+    F = np.zeros(st.n_dof)
+    F[6 * 4] = P
+    u = static_solve(st, F).reshape(-1, 6)
+    assert u[4, 1] == pytest.approx(P * e * L**2 / (2 * EIz), rel=1e-8)
+    assert u[4, 5] == pytest.approx(P * e * L / EIz, rel=1e-8)
+    assert u[4, 0] == pytest.approx(P * L * (1 / EA + e**2 / EIz), rel=1e-8)

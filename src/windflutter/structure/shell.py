@@ -119,7 +119,7 @@ def shell_frames(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     md = np.asarray(fe.shell_matdir, dtype=float)
     ex = md - np.sum(md * n, axis=1)[:, None] * n
     nx = np.linalg.norm(ex, axis=1)
-    fallback = (X[:, 1] - X[:, 0]) + (X[:, 2] - X[:, 3])
+    fallback = (X[:, 2] - X[:, 0]) + (X[:, 1] - X[:, 3])  # pyfe3d's element x axis: v13 + v42
     fallback -= np.sum(fallback * n, axis=1)[:, None] * n
     use_fb = nx <= 1e-8 * np.maximum(np.linalg.norm(md, axis=1), 1e-300)
     ex[use_fb] = fallback[use_fb]
