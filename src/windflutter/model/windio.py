@@ -401,7 +401,16 @@ def _blade(b: dict, r: Reader, k: _Keys, airfoils: dict, materials: dict) -> Bla
     layup = None
     if struct is not None:
         sp = f"components.blade.{k.blade_struct}"
-        layup = _layup_v2(struct, r, sp, materials) if k.major >= 2 else _layup_v1(struct, r, sp, materials)
+        from windflutter.model.v1arcs import contour_at
+
+        def geom(sq: float):
+            x, y = contour_at(sq, pos_a, tuple(names), airfoils, float(np.interp(sq, s, rthick)))
+            return x, y, float(np.interp(sq, s, chord)), float(np.interp(sq, s, pitch_axis))
+
+        if k.major >= 2:
+            layup = _layup_v2(struct, r, sp, materials, geom)
+        else:
+            layup = _layup_v1(struct, r, sp, materials, geom)
 
     beam = _blade_beam(b, r, k, arc[-1], s, tv_s := np.interp(s, tg, tv))
     return Blade(
@@ -412,7 +421,7 @@ def _blade(b: dict, r: Reader, k: _Keys, airfoils: dict, materials: dict) -> Bla
 
 
 # ----------------------------------------------------------------------------- layup, v2 anchors
-def _layup_v2(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
+def _layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup:
     anchors: dict[str, tuple[dict, str]] = {}
     for i, a in enumerate(r.seq(st, sp, "anchors", default=[])):
         anchors[r.string(a, f"{sp}.anchors[{i}]", "name")] = (a, f"{sp}.anchors[{i}]")
@@ -432,13 +441,13 @@ def _layup_v2(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
             if nm not in anchors:
                 raise InputError(join(path, "anchor.name"), nm, f"a defined anchor ({sorted(anchors)})", r.source)
             a, ap = anchors[nm]
+            if geom is not None and _width_placeholder(a, handle):
+                return _from_width(a, ap, handle, depth)
             if handle not in a:
                 # IEA-10 v2 has a handle that names another anchor: follow it with the same handle
                 if handle in anchors:
-                    other, op = anchors[handle]
                     key = "start_nd_arc" if "start" in path.rsplit(".", 1)[-1] else "end_nd_arc"
-                    if key in other:
-                        return resolve(other[key], join(op, key), depth + 1)
+                    return resolve({"anchor": {"name": handle, "handle": key}}, path, depth + 1)
                 raise InputError(join(path, "anchor.handle"), handle, f"a key of anchor {nm!r} ({sorted(a)})",
                                  r.source)
             return resolve(a[handle], join(ap, handle), depth + 1)
@@ -447,6 +456,19 @@ def _layup_v2(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
             return g, v
         raise InputError(path, spec if not isinstance(spec, dict) else sorted(spec), "arc positions "
                          "({grid, values}) or an anchor reference with resolved positions", r.source)
+
+    def _from_width(a: dict, ap: str, handle: str, depth: int) -> tuple[np.ndarray, np.ndarray]:
+        # the other end of the anchor, then +/- width (m) converted with the local contour length
+        other = "start_nd_arc" if handle == "end_nd_arc" else "end_nd_arc"
+        go, ao = resolve(a[other], join(ap, other), depth + 1)
+        gw, wv = r.grid_values(a, ap, "width", nonneg=True)
+        g = np.unique(np.concatenate([go, gw, np.linspace(0.0, 1.0, 41)]))
+        from windflutter.model.airfoil_geom import perimeter
+
+        per = np.array([perimeter(*geom(sq)[:2]) * geom(sq)[2] for sq in g])
+        wnd = np.interp(g, gw, wv) / per
+        base = np.interp(g, go, ao)
+        return g, np.clip(base + wnd if handle == "end_nd_arc" else base - wnd, 0.0, 1.0)
 
     webs = []
     for i, w in enumerate(webs_in):
@@ -491,12 +513,14 @@ def _layup_v2(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
 
 
 # ------------------------------------------------------------------------------------- layup, v1
-def _layup_v1(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
+def _layup_v1(st: dict, r: Reader, sp: str, materials: dict, geom) -> Layup:
     """windIO 1.x layup.  Explicit ``start_nd_arc``/``end_nd_arc`` are used as given; layers with
-    neither (and no ``width``) cover the whole contour.  Parametric definitions (``width`` +
-    ``offset_y_pa``, ``midpoint_nd_arc``, one-sided arcs + ``width``) need the blade geometry and
-    are marked with NaN arcs; the WISDEM/IEA v1 files bundled here give resolved arcs for all
-    but the NREL 5 MW v1 file (use the v2 file for its layup)."""
+    neither (and no ``width``) cover the whole contour; parametric definitions (``offset_y_pa``,
+    ``width``, ``midpoint_nd_arc``, arcs fixed to TE or to other layers) are resolved on the blade
+    geometry by :mod:`windflutter.model.v1arcs`."""
+    from windflutter.model.v1arcs import resolve_layer, resolve_web
+
+    uniform = np.linspace(0.0, 1.0, 41)
     webs = []
     for i, w in enumerate(r.seq(st, sp, "webs", default=[])):
         q = f"{sp}.webs[{i}]"
@@ -504,14 +528,15 @@ def _layup_v1(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
         if _explicit(w.get("start_nd_arc")) and _explicit(w.get("end_nd_arc")):
             g1, a1 = r.grid_values(w, q, "start_nd_arc", nonneg=True)
             g2, a2 = r.grid_values(w, q, "end_nd_arc", nonneg=True)
+            s = np.unique(np.concatenate([g1, g2]))
+            a1, a2 = np.interp(s, g1, a1), np.interp(s, g2, a2)
         else:
-            g1 = g2 = np.array([0.0, 1.0])
-            a1 = a2 = np.full(2, np.nan)
-        s = np.unique(np.concatenate([g1, g2]))
-        webs.append(Web(name=name, s=s, start_arc=np.interp(s, g1, a1), end_arc=np.interp(s, g2, a2),
-                        s_start=float(s[0]), s_end=float(s[-1])))
+            s = uniform
+            a1, a2 = resolve_web(w, r, q, geom, s)
+        webs.append(Web(name=name, s=s, start_arc=a1, end_arc=a2, s_start=float(s[0]), s_end=float(s[-1])))
     web_names = {w.name for w in webs}
     layers = []
+    resolved: dict = {}
     for i, lay in enumerate(r.seq(st, sp, "layers")):
         q = f"{sp}.layers[{i}]"
         name = r.string(lay, q, "name")
@@ -529,13 +554,18 @@ def _layup_v1(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
         elif _explicit(lay.get("start_nd_arc")) and _explicit(lay.get("end_nd_arc")):
             g1, a1 = r.grid_values(lay, q, "start_nd_arc", nonneg=True)
             g2, a2 = r.grid_values(lay, q, "end_nd_arc", nonneg=True)
-        elif "start_nd_arc" not in lay and "end_nd_arc" not in lay and "width" not in lay \
-                and "midpoint_nd_arc" not in lay:
+        elif not any(k in lay for k in ("start_nd_arc", "end_nd_arc", "width", "midpoint_nd_arc", "offset_y_pa")):
             g1 = g2 = np.array([0.0, 1.0])
             a1, a2 = np.zeros(2), np.ones(2)
         else:
-            g1 = g2 = np.array([0.0, 1.0])
-            a1 = a2 = np.full(2, np.nan)
+            extra = [uniform, tg]
+            if "width" in lay:
+                extra.append(r.grid_values(lay, q, "width")[0])
+            g1 = g2 = np.unique(np.concatenate(extra))
+            a1, a2 = resolve_layer(lay, r, q, geom, g1, resolved)
+        if web is None:
+            sg = np.unique(np.concatenate([g1, g2]))
+            resolved[name] = (sg, np.interp(sg, g1, a1), np.interp(sg, g2, a2))
         s = np.unique(np.concatenate([tg, g1, g2] + ([fo[0]] if fo is not None else [])))
         orient = np.interp(s, fo[0], fo[1]) if fo is not None else np.zeros_like(s)  # v1: rad
         layers.append(Layer(
@@ -544,6 +574,21 @@ def _layup_v1(st: dict, r: Reader, sp: str, materials: dict) -> Layup:
             s_start=float(tg[0]), s_end=float(tg[-1]),
         ))
     return Layup(webs=tuple(webs), layers=tuple(layers))
+
+
+def _width_placeholder(a: dict, handle: str) -> bool:
+    """True when a v2 anchor defines ``handle`` through ``width`` but the file carries only a
+    constant 0/1 placeholder for it (WISDEM's IEA-10 file: the TE bands would otherwise cover the
+    whole contour)."""
+    w = a.get("width")
+    if not isinstance(w, dict) or handle not in (w.get("defines") or []):
+        return False
+    h = a.get(handle)
+    if not _explicit(h):
+        return False
+    v = np.asarray(h["values"], dtype=float) if all(isinstance(x, (int, float)) for x in h["values"]) else None
+    other = "start_nd_arc" if handle == "end_nd_arc" else "end_nd_arc"
+    return v is not None and np.ptp(v) == 0.0 and v[0] in (0.0, 1.0) and other in a
 
 
 def _explicit(d: Any) -> bool:
