@@ -25,12 +25,24 @@ class BladeBeamMesh:
     eta: np.ndarray
 
 
-def blade_beam_mesh(blade, n_span: int, clustering: float = 0.0) -> BladeBeamMesh:
+def blade_beam_properties(turbine):
+    """The blade's 6x6 properties: from the turbine file if given, else thin-walled sections of
+    the shell layup (:func:`windflutter.mesh.section_props.thin_walled_properties`)."""
+    if turbine.blade.beam is not None:
+        return turbine.blade.beam
+    if turbine.blade.layup is None:
+        raise InputError("blade.beam", None, "6x6 beam properties or a composite layup for the beam model")
+    from windflutter.mesh.section_props import thin_walled_properties
+
+    return thin_walled_properties(turbine)
+
+
+def blade_beam_mesh(blade, n_span: int, clustering: float = 0.0, props=None) -> BladeBeamMesh:
     """Beam elements between ``n_span + 1`` stations; each element takes the 6x6 stiffness and
-    mass of :attr:`Blade.beam` averaged over its length (Simpson rule on the piecewise-linear
+    mass of ``props`` (default :attr:`Blade.beam`) averaged over its length (Simpson rule on the piecewise-linear
     tables), and the section y axis turned by the structural twist at its midpoint.
     """
-    bp = blade.beam
+    bp = props if props is not None else blade.beam
     if bp is None:
         raise InputError("blade.beam", None, "6x6 beam properties (windIO elastic_properties or BeamDyn) for the beam model")
     eta = station_positions(n_span, clustering)

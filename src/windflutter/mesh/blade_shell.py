@@ -176,10 +176,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     arc_e = np.mod(0.5 * (_center_arc_rows(arc, ii, jj) + _center_arc_rows(arc, ii + 1, jj)), 1.0)
     T, A = layer_tables(shell_layers, s_elem, arc_e)
     mats = [_material(materials, lay.material, lay.name) for lay in shell_layers]
-    empty = np.where(T.sum(axis=1) <= 0)[0]
-    if empty.size:
-        e = int(empty[0])
-        raise InputError("blade.layup", f"no layer at span {s_elem[e]:.3f}, arc {arc_e[e]:.3f}", "layers covering the whole skin")
+    T, A = fill_uncovered(T, A, n_st - 1, nc)
     prop_skin, props = group_laminates(T, A, mats, "skin")
     conns = [conn_skin]
     prop_list = [prop_skin]
@@ -250,6 +247,26 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
         twist=twist,
         pitch_axis=pa,
     )
+
+
+def fill_uncovered(T: np.ndarray, A: np.ndarray, n_rows: int, nc: int) -> tuple[np.ndarray, np.ndarray]:
+    """Give skin elements no layer covers the laminate of the nearest covered element at the same
+    chordwise position along the span (e.g. a layup table that starts 2 m from the root, as the
+    seed's appendix A).  Raises InputError if a whole chordwise column is uncovered."""
+    tot = T.sum(axis=1).reshape(n_rows, nc)
+    if np.all(tot > 0):
+        return T, A
+    T, A = T.copy(), A.copy()
+    rows = np.arange(n_rows)
+    for j in range(nc):
+        ok = np.where(tot[:, j] > 0)[0]
+        if ok.size == 0:
+            raise InputError("blade.layup", f"no layer at contour position {j}/{nc} anywhere on the span",
+                             "layers covering the whole skin")
+        src = ok[np.abs(rows[:, None] - ok[None, :]).argmin(axis=1)]
+        T[rows * nc + j] = T[src * nc + j]
+        A[rows * nc + j] = A[src * nc + j]
+    return T, A
 
 
 def _blend_to_thickness(a: np.ndarray, b: np.ndarray, arc: np.ndarray, w0: float, tc: float) -> np.ndarray:

@@ -15,7 +15,7 @@ import numpy as np
 from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.errors import InputError
 from windflutter.mesh import aero_map as am
-from windflutter.mesh.beam_model import blade_beam_mesh
+from windflutter.mesh.beam_model import blade_beam_mesh, blade_beam_properties
 from windflutter.mesh.blade_shell import blade_shell_mesh
 from windflutter.mesh.frames import blade_placement, rot_y
 from windflutter.mesh.loft import chord_frame
@@ -97,7 +97,7 @@ def build_model(turbine, settings: MeshSettings | None = None) -> tuple[FEModel,
         pstart = len(b.shell_properties)
         b.shell_properties.extend(bm.properties)
     else:
-        bm = blade_beam_mesh(turbine.blade, st.n_span, st.span_clustering)
+        bm = blade_beam_mesh(turbine.blade, st.n_span, st.span_clustering, blade_beam_properties(turbine))
         eta = bm.eta
         local_nodes = bm.nodes
         pstart = len(b.beam_sections)
@@ -279,7 +279,7 @@ def blade_mass_points(turbine, settings: MeshSettings) -> tuple[np.ndarray, np.n
         area = 0.5 * np.linalg.norm(np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1]), axis=1)
         mpa = np.array([pr.mass_per_area for pr in bm.properties])[bm.prop]
         return area * mpa, p.mean(axis=1)
-    bm = blade_beam_mesh(turbine.blade, settings.n_span, settings.span_clustering)
+    bm = blade_beam_mesh(turbine.blade, settings.n_span, settings.span_clustering, blade_beam_properties(turbine))
     x0, x1 = bm.nodes[bm.conn[:, 0]], bm.nodes[bm.conn[:, 1]]
     L = np.linalg.norm(x1 - x0, axis=1)
     m = np.array([s.mass[0, 0] for s in bm.sections])
