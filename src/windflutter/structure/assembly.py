@@ -12,7 +12,6 @@ from functools import cached_property
 
 import numpy as np
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError, ModelError
 from windflutter.structure.beam import beam_global_matrices, element_dofs
