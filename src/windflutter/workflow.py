@@ -24,6 +24,7 @@ method giving model size and the operating curve; see ``docs/workflow.md``).
 
 from __future__ import annotations
 
+import dataclasses
 import datetime as _dt
 import importlib
 import inspect
@@ -186,6 +187,22 @@ def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
     return TurbinePointAnalyser(turbine, config, _st)
 
 
+def mesh_settings(config: AnalysisConfig) -> dict[str, Any]:
+    """Mesh-setting overrides from ``model.mesh_density`` and ``model.n_aero_sections``.
+
+    Element counts of :class:`windflutter.mesh.settings.MeshSettings` scaled by the density:
+    strips / elements along the blade ``n_aero_sections * density``; for shells also the
+    elements around a section (default 40, kept even) and along / around the tower.
+    """
+    d = config.model.mesh_density
+    out: dict[str, Any] = {"n_span": max(4, int(round(config.model.n_aero_sections * d)))}
+    if config.model.type == "shell" and d != 1.0:
+        out["n_chord"] = max(8, 2 * int(round(20 * d)))
+        out["n_tower_circ"] = max(8, int(round(20 * d)))
+        out["n_tower_axial"] = max(4, int(round(22 * d)))
+    return out
+
+
 class TurbinePointAnalyser:
     """Adapter: :class:`windflutter.stability.turbine.TurbineStability` -> ``analyse(point)``.
 
@@ -207,6 +224,7 @@ class TurbinePointAnalyser:
         key = (aero, method)
         if key not in self._cases:
             opts = self._st.options_from_config(self.config, aero, method)
+            opts = dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(self.config)})
             self._cases[key] = self._st.TurbineStability(self.turbine, opts)
         return self._cases[key]
 
