@@ -126,13 +126,26 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     n_st = len(eta)
     layup = blade.layup
     shell_layers = layup.shell_layers
-    webs = [w for w in layup.webs if layup.web_layers(w.name)]
+    # a web exists where its layers have thickness (windIO files give attachment arcs along the
+    # whole span, also where the web is absent and may coincide with another web's)
+    web_t = {w.name: sum(lay.thickness_at(eta) for lay in layup.web_layers(w.name)) * ((eta >= w.s_start - 1e-9) & (eta <= w.s_end + 1e-9))
+             for w in layup.webs if layup.web_layers(w.name)}
+    webs = [w for w in layup.webs if w.name in web_t and np.any(web_t[w.name] > 0)]
+    # web elements on the rows whose two bounding stations both have web thickness
+    web_rows = {w.name: np.where((web_t[w.name][:-1] > 0) & (web_t[w.name][1:] > 0))[0] for w in webs}
+    webs = [w for w in webs if web_rows[w.name].size]
+
+    def web_curve(w, arcs):
+        # attachment arc on the stations of the web's rows, held constant beyond them
+        rows = web_rows[w.name]
+        st_on = np.unique(np.concatenate([rows, rows + 1]))
+        return np.interp(eta, eta[st_on], np.interp(eta[st_on], w.s, arcs))
 
     # --- key arcs: webs first, then layer boundaries
     curves: list[tuple[str, np.ndarray]] = []
     for w in webs:
-        curves.append((f"{w.name}.start", np.interp(eta, w.s, w.start_arc)))
-        curves.append((f"{w.name}.end", np.interp(eta, w.s, w.end_arc)))
+        curves.append((f"{w.name}.start", web_curve(w, w.start_arc)))
+        curves.append((f"{w.name}.end", web_curve(w, w.end_arc)))
     n_web_keys = len(curves)
     for lay in shell_layers:
         if np.max(lay.thickness) <= 0:
@@ -200,7 +213,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
             nodes.append(inner.reshape(-1, 3))
             next_id += n_st * (nw - 1)
         se = 0.5 * (eta[:-1] + eta[1:])
-        on = np.where((se >= w.s_start - 1e-9) & (se <= w.s_end + 1e-9))[0]
+        on = web_rows[w.name]
         if on.size == 0:
             continue
         i = np.repeat(on, nw)
