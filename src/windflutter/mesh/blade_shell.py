@@ -125,7 +125,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     eta = station_positions(settings.n_span, settings.span_clustering)
     n_st = len(eta)
     layup = blade.layup
-    shell_layers = layup.shell_layers
+    shell_layers = extend_to_blade_ends(layup.shell_layers)
     # a web exists where its layers have thickness (windIO files give attachment arcs along the
     # whole span, also where the web is absent and may coincide with another web's)
     web_t = {w.name: sum(lay.thickness_at(eta) for lay in layup.web_layers(w.name)) * ((eta >= w.s_start - 1e-9) & (eta <= w.s_end + 1e-9))
@@ -185,9 +185,8 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     conn_skin = lf.quad_grid(n_st, nc)
     ii = np.repeat(np.arange(n_st - 1), nc)
     jj = np.tile(np.arange(nc), n_st - 1)
-    s_elem = 0.5 * (eta[ii] + eta[ii + 1])
-    arc_e = np.mod(0.5 * (_center_arc_rows(arc, ii, jj) + _center_arc_rows(arc, ii + 1, jj)), 1.0)
-    T, A = layer_tables(shell_layers, s_elem, arc_e)
+    a_lo, a_hi = _arc_interval(arc, ii, jj)
+    T, A = layer_tables(shell_layers, eta[ii], eta[ii + 1], a_lo, a_hi)
     mats = [_material(materials, lay.material, lay.name) for lay in shell_layers]
     T, A = fill_uncovered(T, A, n_st - 1, nc)
     prop_skin, props = group_laminates(T, A, mats, "skin")
@@ -219,8 +218,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
         i = np.repeat(on, nw)
         k = np.tile(np.arange(nw), on.size)
         cw = np.stack([cols[i, k], cols[i + 1, k], cols[i + 1, k + 1], cols[i, k + 1]], axis=1)
-        sw = np.repeat(se[on], nw)
-        Tw, Aw = layer_tables(wl, sw, None)
+        Tw, Aw = layer_tables(wl, np.repeat(eta[on], nw), np.repeat(eta[on + 1], nw))
         if np.any(Tw.sum(axis=1) <= 0):
             raise InputError(f"blade.layup.webs[{w.name}]", "zero thickness", "web layers over the web's extent")
         pw, props_w = group_laminates(Tw, Aw, [_material(materials, lay.material, lay.name) for lay in wl], f"web_{w.name}")
@@ -260,6 +258,49 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
         twist=twist,
         pitch_axis=pa,
     )
+
+
+class _ExtendedLayer:
+    """A layer whose span extent is widened to the blade ends; beyond its original extent it
+    keeps the thickness it has at that end."""
+
+    def __init__(self, layer, s0: float, s1: float, lo: bool, hi: bool):
+        self._l = layer
+        self._s0, self._s1 = s0, s1
+        self.s_start = 0.0 if lo else layer.s_start
+        self.s_end = 1.0 if hi else layer.s_end
+        self.name, self.material = layer.name, layer.material
+
+    def _clamp(self, s):
+        return np.clip(np.asarray(s, dtype=float), self._s0 if self.s_start == 0.0 else -np.inf, self._s1 if self.s_end == 1.0 else np.inf)
+
+    def thickness_at(self, s):
+        return self._l.thickness_at(self._clamp(s))
+
+    def arcs_at(self, s):
+        return self._l.arcs_at(self._clamp(s))
+
+    def orientation_at(self, s):
+        return self._l.orientation_at(self._clamp(s))
+
+
+def extend_to_blade_ends(layers) -> list:
+    """If the shell layup as a whole starts after the root (ends before the tip), the layers
+    present at its first (last) position are extended with constant properties to the root
+    (tip): e.g. the seed's appendix-A tables start 2 m from the root.  A layup covering the whole
+    span is returned unchanged."""
+    live = [lay for lay in layers if np.max(lay.thickness) > 0]
+    if not live:
+        return list(layers)
+    s0 = min(lay.s_start for lay in live)
+    s1 = max(lay.s_end for lay in live)
+    out = []
+    for lay in layers:
+        # a layer counts as present at s0 if it starts there and has thickness just after it
+        lo = s0 > 1e-9 and abs(lay.s_start - s0) < 1e-9 and float(lay.thickness_at(s0 + 1e-6)) > 0
+        hi = s1 < 1 - 1e-9 and abs(lay.s_end - s1) < 1e-9 and float(lay.thickness_at(s1 - 1e-6)) > 0
+        out.append(_ExtendedLayer(lay, s0, s1, lo, hi) if (lo or hi) else lay)
+    return out
 
 
 def fill_uncovered(T: np.ndarray, A: np.ndarray, n_rows: int, nc: int) -> tuple[np.ndarray, np.ndarray]:
@@ -302,12 +343,15 @@ def _blend_to_thickness(a: np.ndarray, b: np.ndarray, arc: np.ndarray, w0: float
     return (1 - w) * ra + w * rb
 
 
-def _center_arc_rows(arc: np.ndarray, i: np.ndarray, j: np.ndarray) -> np.ndarray:
+def _arc_interval(arc: np.ndarray, i: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Contour interval of skin element (row i, column j): node arcs averaged over the two
+    bounding stations; the last column ends at 1 (closing the contour)."""
     nc = arc.shape[1]
-    a = arc[i, j]
-    b = arc[i, (j + 1) % nc]
-    b = np.where(b <= a, b + 1.0, b)
-    return 0.5 * (a + b)
+    a = 0.5 * (arc[i, j] + arc[i + 1, j])
+    jn = (j + 1) % nc
+    b = 0.5 * (arc[i, jn] + arc[i + 1, jn])
+    b = np.where(jn == 0, 1.0, b)
+    return a, b
 
 
 def _material(materials: dict, name: str, layer: str):
