@@ -315,14 +315,19 @@ class StripAero:
 
         ``Phi`` is in the unconstrained DOF numbering; cheap per call (dense m x m).
         """
-        PPhi = self.P @ Phi  # (3 ns, m)
+        PPhi = np.asarray(self.P @ Phi)  # (3 ns, m)
         ns = self.sections.n_sections
         R = PPhi.reshape(ns, 3, -1)
+
+        Rf = PPhi.T  # (m, 3 ns)
+        if sp.issparse(Rf):
+            Rf = Rf.toarray()
 
         def f(omega: float):
             out = []
             for blk in self.section_blocks(omega):
-                out.append(np.einsum("jam,jab,jbn->mn", R, blk, R))
+                X = np.matmul(blk, R)  # (ns, 3, m)
+                out.append(Rf @ X.reshape(3 * ns, -1))
             return tuple(out)
 
         return f

@@ -52,6 +52,7 @@ class Onset:
     params: np.ndarray = field(default_factory=lambda: np.zeros(0))
     eigenvalues: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), complex))
     method: str = "pk"
+    vectors0: list | None = None
 
 
 def _qep(M, D, K, n_eig, shift=0.0):
@@ -121,8 +122,11 @@ def _track(system, modes, n_eig):
 
 
 def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_eig: int = 20,
-              xtol: float = 1e-3, min_frequency: float = 1e-3, divergence: bool = True) -> Onset:
+              xtol: float = 1e-3, min_frequency: float = 1e-3, divergence: bool = True,
+              stop_at_onset: bool = True) -> Onset:
     """p-k search over increasing ``params``.
+
+    With ``stop_at_onset=False`` the whole grid is swept (Campbell data in ``eigenvalues``).
 
     Parameters
     ----------
@@ -148,6 +152,7 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
     cur = _track(sys0, modes, n_eig)
     lams[0] = [l for l, _ in cur]
     vecs[0] = cur
+    res.vectors0 = [x for _, x in cur]
     g_prev = static_min_eig(sys0) if divergence else None
     flutter_found = False
     for ip in range(1, params.size):
@@ -183,7 +188,7 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
                 q0, lam, x, i = min(cand, key=lambda c: c[0])
                 res.flutter, res.flutter_frequency, res.flutter_vector, res.flutter_mode = q0, lam.imag, x, i
                 flutter_found = True
-        if flutter_found and (res.divergence is not None or not divergence):
+        if stop_at_onset and flutter_found and (res.divergence is not None or not divergence):
             res.params, res.eigenvalues = params[: ip + 1], lams[: ip + 1]
             return res
     res.eigenvalues = lams

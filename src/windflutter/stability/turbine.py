@@ -1,0 +1,278 @@
+"""Flutter and divergence of a whole turbine, one wind speed at a time.
+
+For a wind speed ``V`` the blade pitch comes from the turbine's operating curve; the FE model
+(beam or shell, built by :func:`windflutter.mesh.turbine.build_model` at that pitch) is coupled
+with the rotating-frame terms (G, Kr and -- full physics -- the centrifugal prestress Ksigma) and
+the Theodorsen strips; the rotor speed is then increased over ``rpm_min .. rpm_max`` and the
+first flutter and divergence onsets are located (:mod:`windflutter.stability.search`).
+
+Public API
+----------
+* :class:`TurbineOptions` -- model, aero variant, search method, physics, ranges.
+* :class:`TurbineStability` -- holds the turbine and caches the FE models per pitch;
+  :meth:`TurbineStability.analyse_operating_point` analyses one wind speed.
+* :func:`analyse_operating_point` / :func:`stability_map` -- one-call wrappers.
+* :func:`make_point_analyser` -- the adapter for ``windflutter run`` (``workflow.py``).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from windflutter.aero.strip import AeroOptions
+from windflutter.errors import InputError
+from windflutter.rotor.rotating import rotor_terms
+from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
+from windflutter.stability.search import Onset, pk_search, thesis_search
+from windflutter.stability.tracking import label_mode
+
+RPM = math.pi / 30.0  # rad/s per RPM
+
+
+@dataclass(frozen=True)
+class TurbineOptions:
+    """How to analyse a turbine.
+
+    Parameters
+    ----------
+    model : ``"beam"`` or ``"shell"``.
+    aero : ``"potential"`` or ``"viscous"``.
+    method : ``"pk"`` (p-k + root-finding) or ``"thesis"`` (the seed's 8-k search).
+    physics : ``"full"`` (with centrifugal prestress Ksigma) or ``"thesis"`` (without, as the seed).
+    air_density : kg/m^3.
+    rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
+    tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
+    n_modes : structural modes per reference speed in the projection basis (None: full model).
+    n_tracked : modes followed by the p-k search.
+    apparent_mass_scaling : viscous only, scale apparent-mass terms by Cl_alpha / 2 pi.
+    damping : ``"none"``, ``"stiffness"`` or ``"rayleigh"``; ``damping_ratio`` at
+        ``damping_reference_hz`` (Rayleigh: and at 10x it).
+    mesh : extra :class:`~windflutter.mesh.settings.MeshSettings` fields (dict).
+    """
+
+    model: str = "beam"
+    aero: str = "potential"
+    method: str = "pk"
+    physics: str = "full"
+    air_density: float = 1.225
+    rpm_min: float = 2.0
+    rpm_max: float = 40.0
+    rpm_step: float = 2.0
+    tolerance_rpm: float = 0.01
+    n_modes: int | None = 30
+    n_tracked: int = 8
+    apparent_mass_scaling: bool = False
+    damping: str = "none"
+    damping_ratio: float = 0.0
+    damping_reference_hz: float = 1.0
+    mesh: dict = field(default_factory=dict)
+
+    def __post_init__(self):
+        for name, choices in (("model", ("beam", "shell")), ("aero", ("potential", "viscous")),
+                              ("method", ("pk", "thesis")), ("physics", ("full", "thesis")),
+                              ("damping", ("none", "stiffness", "rayleigh"))):
+            if getattr(self, name) not in choices:
+                raise InputError(name, getattr(self, name), f"one of {choices}")
+        if not (0 <= self.rpm_min < self.rpm_max):
+            raise InputError("rpm_min", self.rpm_min, f"0 <= rpm_min < rpm_max = {self.rpm_max}")
+        if not self.rpm_step > 0:
+            raise InputError("rpm_step", self.rpm_step, "a positive step (RPM)")
+        if not self.tolerance_rpm > 0:
+            raise InputError("tolerance_rpm", self.tolerance_rpm, "a positive tolerance (RPM)")
+        if not self.air_density > 0:
+            raise InputError("air_density", self.air_density, "a positive density (kg/m^3)")
+
+    def grid(self) -> np.ndarray:
+        """Rotor-speed grid (RPM)."""
+        n = max(int(math.ceil((self.rpm_max - self.rpm_min) / self.rpm_step - 1e-9)), 1)
+        return np.linspace(self.rpm_min, self.rpm_max, n + 1)
+
+
+@dataclass
+class PointSummary:
+    """Result at one wind speed (user units).
+
+    flutter_rpm, flutter_frequency_hz, flutter_mode, divergence_rpm: None when not found in
+    range.  pitch_deg: blade pitch used.  sweep_rpm, frequency_hz, damping_ratio, mode_labels:
+    the tracked modes over the grid (Campbell).  onset: raw search result.
+    """
+
+    wind_speed: float
+    pitch_deg: float
+    flutter_rpm: float | None
+    flutter_frequency_hz: float | None
+    flutter_mode: str | None
+    divergence_rpm: float | None
+    sweep_rpm: np.ndarray
+    frequency_hz: np.ndarray
+    damping_ratio: np.ndarray
+    mode_labels: list[str]
+    onset: Onset
+
+    def as_dict(self) -> dict:
+        f = (lambda v: None if v is None else float(v))
+        return {"wind_speed": float(self.wind_speed), "flutter_rpm": f(self.flutter_rpm),
+                "flutter_frequency_hz": f(self.flutter_frequency_hz), "flutter_mode": self.flutter_mode,
+                "divergence_rpm": f(self.divergence_rpm), "pitch_deg": float(self.pitch_deg)}
+
+
+class TurbineStability:
+    """A turbine ready for stability analysis; FE models are cached per blade pitch."""
+
+    def __init__(self, turbine, options: TurbineOptions | None = None):
+        self.turbine = turbine
+        self.options = options or TurbineOptions()
+        self._models: dict[float, tuple] = {}
+
+    # -- model -----------------------------------------------------------------------------
+    def pitch_at(self, wind_speed: float) -> float:
+        """Blade pitch (rad) from the operating curve (0 without one)."""
+        oc = self.turbine.operating_curve
+        return float(oc.pitch_at(wind_speed)) if oc is not None else 0.0
+
+    def model(self, pitch: float):
+        """(fe, sections, AeroelasticModel) at blade pitch ``pitch`` (rad), cached."""
+        key = round(float(pitch), 6)
+        if key in self._models:
+            return self._models[key]
+        from windflutter.mesh.settings import MeshSettings
+        from windflutter.mesh.turbine import build_model, rotor_geometry
+        from windflutter.structure.assembly import assemble
+
+        o = self.options
+        settings = MeshSettings(**{"model": o.model, **o.mesh, "pitch": float(pitch)})
+        fe, sections = build_model(self.turbine, settings)
+        st = assemble(fe)
+        geom = rotor_geometry(self.turbine)
+        terms = rotor_terms(fe, st, geom, prestress=(o.physics == "full"))
+        sm = StructuralMatrices.from_structural(st)
+        sm.D = self._damping(st)
+        aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling)
+        am = AeroelasticModel(structure=sm, sections=sections, rotor=terms, rotor_geometry=geom, aero=aero,
+                              air_density=o.air_density, n_modes=o.n_modes,
+                              omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
+        self._models[key] = (fe, sections, am)
+        return self._models[key]
+
+    def _damping(self, st):
+        o = self.options
+        if o.damping == "none" or o.damping_ratio == 0.0:
+            return None
+        from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
+
+        if o.damping == "stiffness":
+            beta = o.damping_ratio / (math.pi * o.damping_reference_hz)
+            return damping_matrix(st, "rayleigh", alpha=0.0, beta=beta)
+        a, b = rayleigh_coefficients(o.damping_reference_hz, 10 * o.damping_reference_hz, o.damping_ratio)
+        return damping_matrix(st, "rayleigh", alpha=a, beta=b)
+
+    # -- analysis --------------------------------------------------------------------------
+    def analyse_operating_point(self, wind_speed: float, rpm_grid=None) -> PointSummary:
+        """Flutter/divergence onset over the rotor-speed grid at one wind speed (m/s)."""
+        if not (np.isfinite(wind_speed) and wind_speed >= 0):
+            raise InputError("wind_speed", wind_speed, "a non-negative wind speed (m/s)")
+        o = self.options
+        pitch = self.pitch_at(wind_speed)
+        fe, sections, am = self.model(pitch)
+        grid = o.grid() if rpm_grid is None else np.asarray(rpm_grid, float)
+        if grid[0] <= 0 and wind_speed == 0:
+            grid = grid[grid > 0]
+
+        def system_at(rpm):
+            return am.at(wind_speed, rpm * RPM)
+
+        if o.method == "pk":
+            on = pk_search(system_at, grid, n_track=min(o.n_tracked, am.size), xtol=o.tolerance_rpm,
+                           stop_at_onset=False)
+        else:
+            on = thesis_search(system_at, grid)
+        tower = np.asarray(fe.node_groups.get("tower", []), dtype=np.int64)
+        tower_dofs = (6 * tower[:, None] + np.arange(3)).ravel()
+        sys_ref = system_at(grid[0])
+
+        def lab(x):
+            return label_mode(sys_ref.expand(x), sections, sys_ref.strip.P, tower_dofs)
+
+        mode = None
+        if on.flutter_vector is not None:
+            s_on = system_at(on.flutter)
+            mode = label_mode(s_on.expand(on.flutter_vector), sections, s_on.strip.P, tower_dofs)
+        labels = [lab(x) for x in on.vectors0] if on.vectors0 is not None else []
+        lam = on.eigenvalues
+        with np.errstate(invalid="ignore", divide="ignore"):
+            zeta = -lam.real / np.abs(lam)
+        return PointSummary(
+            wind_speed=float(wind_speed), pitch_deg=float(np.degrees(pitch)),
+            flutter_rpm=on.flutter, divergence_rpm=on.divergence,
+            flutter_frequency_hz=None if on.flutter_frequency is None else on.flutter_frequency / (2 * math.pi),
+            flutter_mode=mode, sweep_rpm=on.params, frequency_hz=np.abs(lam.imag) / (2 * math.pi),
+            damping_ratio=zeta, mode_labels=labels, onset=on)
+
+
+def analyse_operating_point(turbine, wind_speed: float, options: TurbineOptions | None = None) -> PointSummary:
+    """One wind speed; see :meth:`TurbineStability.analyse_operating_point`."""
+    return TurbineStability(turbine, options).analyse_operating_point(wind_speed)
+
+
+def stability_map(turbine, wind_speeds, options: TurbineOptions | None = None) -> list[PointSummary]:
+    """Onsets at every wind speed (m/s), sharing the cached FE models."""
+    ts = TurbineStability(turbine, options)
+    return [ts.analyse_operating_point(float(v)) for v in wind_speeds]
+
+
+def options_from_config(config, aero: str, method: str) -> TurbineOptions:
+    """:class:`TurbineOptions` from a workflow :class:`~windflutter.config.AnalysisConfig`."""
+    r = config.rotor_speed
+    step = (r.max_rpm - r.min_rpm) / max(r.n_points - 1, 1)
+    mtype = config.model.type
+    if mtype not in ("beam", "shell"):
+        raise InputError("model.type", mtype, "'beam' or 'shell' for the turbine solver")
+    mesh = {}
+    if mtype == "beam":
+        mesh["n_span"] = max(2, int(config.model.n_aero_sections))
+    dmp = config.damping.model
+    if dmp == "modal":
+        raise InputError("damping.model", dmp, "'none', 'stiffness' or 'rayleigh' with the built-in solver")
+    return TurbineOptions(model=mtype, aero=aero, method=method,
+                          physics="full" if config.solver.geometric_stiffness else "thesis",
+                          air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
+                          tolerance_rpm=r.tolerance_rpm, n_tracked=config.solver.n_tracked,
+                          damping=dmp, damping_ratio=config.damping.ratio,
+                          damping_reference_hz=config.damping.reference_hz, mesh=mesh)
+
+
+def make_point_analyser(turbine, config):
+    """Adapter for ``windflutter run``: ``analyse(point, progress=None) -> PointResult``."""
+    from windflutter.workflow import PointResult
+
+    cache: dict[tuple[str, str], TurbineStability] = {}
+
+    def analyse(point, progress=None):
+        key = (point.aero, point.method)
+        if key not in cache:
+            cache[key] = TurbineStability(turbine, options_from_config(config, point.aero, point.method))
+        ts = cache[key]
+        grid = np.asarray(point.sweep_rpm, float) if point.sweep_rpm else None
+        if progress is not None:
+            progress(0.0, f"V = {point.wind_speed:g} m/s")
+        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=grid)
+        if progress is not None:
+            progress(1.0, None)
+        nan = float("nan")
+        fe, sections, am = ts.model(ts.pitch_at(point.wind_speed))
+        return PointResult(
+            flutter_rpm=nan if s.flutter_rpm is None else s.flutter_rpm,
+            flutter_frequency_hz=nan if s.flutter_frequency_hz is None else s.flutter_frequency_hz,
+            flutter_mode=s.flutter_mode or "",
+            divergence_rpm=nan if s.divergence_rpm is None else s.divergence_rpm,
+            sweep_rpm=np.asarray(s.sweep_rpm), frequency_hz=s.frequency_hz, damping_ratio=s.damping_ratio,
+            mode_labels=s.mode_labels, info={"pitch_deg": s.pitch_deg})
+
+    return analyse
+
+
+__all__ = ["TurbineOptions", "TurbineStability", "PointSummary", "analyse_operating_point", "stability_map",
+           "make_point_analyser", "options_from_config", "replace"]
