@@ -41,8 +41,12 @@ def timed(fn: Callable, *args, **kw) -> tuple[Any, float, float]:
     return out, dt, peak / 2**20
 
 
-def _child(conn, fn, args, kw):
+def _child(conn, fn, args, kw, blas_threads):
     try:
+        if blas_threads is not None:
+            from threadpoolctl import threadpool_limits
+
+            threadpool_limits(limits=blas_threads, user_api="blas")
         t0 = time.perf_counter()
         out = fn(*args, **kw)
         dt = time.perf_counter() - t0
@@ -53,10 +57,12 @@ def _child(conn, fn, args, kw):
         conn.close()
 
 
-def isolated(fn: Callable, *args, **kw) -> tuple[Any, float, float]:
+def isolated(fn: Callable, *args, blas_threads: int | None = 1, **kw) -> tuple[Any, float, float]:
     """Run ``fn`` in a forked child: (result, wall seconds, child's peak RSS MB).
 
-    The result must be picklable. Falls back to in-process when fork is unavailable.
+    ``blas_threads``: BLAS thread limit in the child (default 1: on a shared or busy machine
+    multi-threaded OpenBLAS makes timings erratic by 10-50x, see docs/performance.md; ``None``
+    keeps the library default). The result must be picklable.
     """
     try:
         ctx = mp.get_context("fork")
@@ -64,7 +70,7 @@ def isolated(fn: Callable, *args, **kw) -> tuple[Any, float, float]:
         out, dt, _ = timed(fn, *args, **kw)
         return out, dt, maxrss_mb()
     a, b = ctx.Pipe(duplex=False)
-    p = ctx.Process(target=_child, args=(b, fn, args, kw))
+    p = ctx.Process(target=_child, args=(b, fn, args, kw, blas_threads))
     p.start()
     b.close()
     status, out, dt, rss = a.recv()

@@ -83,7 +83,7 @@ def main() -> int:
         if be not in available_backends():
             print(f"(skipping {label}: not installed)")
             continue
-        r, wall, rss = isolated(case, be, ordering, threads, na, nl)
+        r, wall, rss = isolated(case, be, ordering, threads, na, nl, blas_threads=threads)
         r["case"] = label
         r["peak_rss_MB"] = rss
         rows.append(r)

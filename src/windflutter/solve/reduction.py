@@ -145,8 +145,12 @@ def structural_modes(
         Ms = sp.csc_matrix(M)
         Ks = sp.csc_matrix(K)
         f = factorize((Ks - shift * Ms).tocsc(), backend)
+        # fixed start vector: ARPACK's default one comes from a per-process random state that
+        # advances with every call, so results would depend on what ran before in the process
+        v0 = np.random.default_rng(20100).standard_normal(n)
         try:
-            w2, V = spla.eigsh(Ks, k=n_modes, M=Ms, sigma=shift, which="LM", OPinv=as_operator(f))
+            w2, V = spla.eigsh(Ks, k=n_modes, M=Ms, sigma=shift, which="LM", OPinv=as_operator(f),
+                               v0=v0)
         except spla.ArpackNoConvergence as err:  # pragma: no cover - rare
             raise ConvergenceError(f"structural modes: ARPACK did not converge ({err})") from err
         order = np.argsort(w2)

@@ -1,0 +1,119 @@
+"""Full-order vs modally reduced eigen-solve of a complex shell-like QEP.
+
+Model: the synthetic clamped tube of ``windflutter.solve.testproblems.tube_qep`` (40 x 104
+free nodes = 24,960 DOF, ``--quick``: 12 x 20 = 1,440 DOF) with Rayleigh damping, gyroscopic
+coupling and complex element-local aero-like coupling.
+
+Cases (each in its own forked process with BLAS limited to 1 thread -- see bench_linsolve.py for
+what multi-threaded BLAS does on a busy machine; times in s, peak RSS of that process):
+1. full order, ``windflutter.solve.qep.solve_qep_sparse`` as committed (SciPy ``splu`` defaults)
+   -- the baseline; 20 eigenvalues nearest the shift 0 (smallest modulus, as the thesis);
+2. the same solver with its LU swapped for ``windflutter.solve.linsolve.factorize`` (symmetric
+   ordering, 1 BLAS thread) -- a drop-in change, no edit to qep.py;
+3. reduced: 40 structural modes (one-off: shift-invert Lanczos) + projection + dense 2m
+   companion eigen-solve (the per-point cost);
+4. reduced with static-correction (MTA) vectors for the coupling loads.
+Accuracy: worst relative eigenvalue difference to case 1 over the 10 smallest-modulus
+eigenvalues.
+Usage: python benchmarks/bench_reduction.py [--quick]
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+import types
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _benchutil import QUICK, header, isolated, table  # noqa: E402
+
+import scipy.sparse.linalg as spla  # noqa: E402
+
+from windflutter.solve import reduction as R  # noqa: E402
+from windflutter.solve.linsolve import factorize  # noqa: E402
+from windflutter.solve.testproblems import tube_qep  # noqa: E402
+
+N_EIG = 20
+N_CMP = 10
+SIZE = (12, 20) if QUICK else (40, 104)
+
+
+def _problem():
+    return tube_qep(*SIZE, coupling=0.02, gyro=0.05, seed=0)
+
+
+def _full_eigs(M, D, K, fast_lu: bool):
+    from windflutter.solve import qep
+
+    if not fast_lu:
+        return qep.solve_qep_sparse(M, D, K, shift=0.0, n_eig=N_EIG).values
+    shim = types.SimpleNamespace(**{k: getattr(spla, k) for k in dir(spla) if not k.startswith("__")})
+    shim.splu = lambda A, **kw: factorize(A)
+    old = qep.spla
+    qep.spla = shim  # benchmark-local swap of the LU; restored below
+    try:
+        return qep.solve_qep_sparse(M, D, K, shift=0.0, n_eig=N_EIG).values
+    finally:
+        qep.spla = old
+
+
+def case_full(fast_lu: bool) -> dict:
+    p = _problem()
+    M, D, K = p.M, p.D, p.K
+    t0 = time.perf_counter()
+    lam = _full_eigs(M, D, K, fast_lu)
+    return dict(t_oneoff=0.0, t_point=time.perf_counter() - t0, m="", lam=lam)
+
+
+def case_reduced(n_modes: int, mta: bool) -> dict:
+    p = _problem()
+    M, D, K = p.M, p.D, p.K
+    t0 = time.perf_counter()
+    b = R.structural_modes(p.Ms, p.Ks, n_modes)
+    if mta:
+        b = R.augment(b, p.Ks, p.Ms, np.hstack([p.Ka @ b.Phi, p.Da @ b.Phi]))
+    t_oneoff = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    r = R.reduce_qep(M, D, K, b.Phi)
+    lam, Y = R.solve_dense_qep(r.Mr, r.Dr, r.Kr, N_EIG)
+    R.expand(b.Phi, Y)
+    return dict(t_oneoff=t_oneoff, t_point=time.perf_counter() - t0, m=b.m, lam=lam)
+
+
+def main() -> int:
+    p = _problem()
+    header("bench_reduction: full-order vs reduced eigen-solve",
+           model=f"tube {SIZE[0]}x{SIZE[1]}: n = {p.n} DOF, nnz(K) = {p.K.nnz}",
+           note=f"{N_EIG} eigenvalues nearest 0; accuracy over the {N_CMP} smallest")
+    del p
+    cases = [("full, qep.solve_qep_sparse (splu defaults) [baseline]", case_full, (False,)),
+             ("full, same with linsolve.factorize", case_full, (True,)),
+             ("reduced, 20 modes", case_reduced, (20, False)),
+             ("reduced, 40 modes", case_reduced, (40, False)),
+             ("reduced, 20 modes + MTA", case_reduced, (20, True))]
+    rows = []
+    for label, fn, args in cases:
+        try:
+            r, wall, rss = isolated(fn, *args)
+        except RuntimeError as exc:
+            print(f"  {label}: FAILED\n{exc}")
+            continue
+        r.update(case=label, peak_rss_MB=rss)
+        rows.append(r)
+        print(f"  done: {label}: {r['t_oneoff'] + r['t_point']:.2f} s", flush=True)
+    base = rows[0]
+    ref = np.sort_complex(base["lam"][np.argsort(np.abs(base["lam"]))[:N_CMP]])
+    for r in rows:
+        r["point_ratio"] = r["t_point"] / base["t_point"]
+        r["max_rel_err"] = max(float(np.min(np.abs(r["lam"] - x)) / abs(x)) for x in ref)
+    table(rows, ["case", "m", "t_oneoff", "t_point", "point_ratio", "max_rel_err", "peak_rss_MB"])
+    print("t_oneoff: basis (structural modes [+ MTA]) once per rotor speed/range; t_point: per "
+          "eigen-solve; point_ratio = t_point / baseline t_point")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
