@@ -168,3 +168,30 @@ def test_seed5mw_model_size_matches_seed():
     assert nq == pytest.approx(26136, rel=0.03)
     assert fe.n_nodes == pytest.approx(4455, rel=0.03)
     assert len(fe.shell_conn) == pytest.approx(4650, rel=0.03)
+
+
+def test_pitch_and_azimuth_inputs():
+    """Azimuth 90 deg puts blade 0 along -y (rotation about +x); pitch towards feather turns the
+    strips' chord direction (LE -> TE) downwind: e_chord . shaft = sin(pitch) cos(precone) for
+    the untwisted tube blade."""
+    L, c, th, t = 30.0, 2.0, 0.4, 0.01
+    tb = synthetic_turbine(tube_blade(L, c, th, t, beam=tube_beam_props(L, c, th, t)))
+    for model in ("shell", "beam"):
+        fe, sec = build_model(tb, MeshSettings(model=model, part="rotor", n_chord=16, n_span=5, pitch=0.3, azimuth=np.pi / 2))
+        d = fe.nodes[fe.node_groups["blade0"]].mean(axis=0) - tb.rotor_apex
+        assert d[1] < -0.9 * np.linalg.norm(d)
+        assert np.allclose(sec.e_chord[sec.blade == 0] @ tb.nacelle.shaft_axis(), np.sin(0.3) * np.cos(tb.hub.precone), atol=1e-9)
+        assert "hub" in fe.node_groups and len(fe.rigid_links) == 1 and list(fe.spc) == [int(fe.node_groups["hub"][0])]
+
+
+def test_shell_turbine_labels_reduced():
+    """Whole seed 5 MW shell turbine on a coarse mesh: two tower modes first, then the 1st flap
+    family (2 asymmetric + 1 collective) and the 1st edge family (labels from energy fractions)."""
+    from windflutter.mesh.analysis import turbine_modes
+    from windflutter.model.windio import load_turbine
+
+    res = turbine_modes(load_turbine("seed5mw"), MeshSettings(n_chord=16, n_span=8, n_tower_circ=12, n_tower_axial=10), n_modes=8)
+    print(res.frequencies_hz, res.labels)
+    assert set(res.labels[:2]) == {"1st tower fore-aft", "1st tower side-side"}
+    assert sorted(res.labels[2:5]) == ["1st flap asymmetric", "1st flap asymmetric", "1st flap collective"]
+    assert sorted(res.labels[5:8]) == ["1st edge asymmetric", "1st edge asymmetric", "1st edge collective"]
