@@ -15,8 +15,8 @@ class MeshSettings:
     """How to turn a :class:`~windflutter.model.turbine.Turbine` into an FE model.
 
     The defaults give a whole NREL 5 MW shell model of the seed's size (Castillo Capponi 2010,
-    table 4.6: 4650 CQUAD4, 4455 nodes, 26136 DOF): 3 blades x (40 x 30 skin + 2 webs x 3 x 30)
-    + tower 20 x 22 = 4580 quads, 4551 nodes (27.3k DOF).
+    table 4.6: 4650 CQUAD4, 4455 nodes, 26136 DOF): 3 blades x (40 x 30 skin + webs 3 high)
+    + tower 20 x 22; the bundled ``seed5mw`` gives 4526 quads, 4519 nodes, 26142 free DOF.
 
     Parameters
     ----------
