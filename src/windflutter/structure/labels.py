@@ -10,8 +10,9 @@ For each mode shape ``phi`` (full numbering):
    (along the chord) and torsion (rotation about the span times a radius of gyration of a
    quarter chord), weighted by the strip width; the largest sum names the mode.  With several
    blades, blade participations ``c_k`` (projection of blade k's strip motions on the most
-   active blade's) give ``collective`` (all of one sign, each >= 1/4 of the largest: tower
-   coupling makes collective modes uneven) or ``asymmetric``; a mode confined to one blade is
+   active blade's) are split into the collective (mean) and cyclic parts of the multi-blade
+   transformation; by Parseval the collective energy fraction is ``B mean(c)^2 / sum c^2``:
+   above 1/2 the mode is ``collective``, else ``asymmetric``; a mode confined to one blade is
    labelled with that blade.
 3. Tower modes: the tower nodes' kinetic energy in x (fore-aft), y (side-side) and rz
    (torsion); for shell towers torsion is recognised by the tangential share of the wall
@@ -89,10 +90,10 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
                 kref = int(np.argmax(amps))
                 ref = c[b == kref]
                 proj = np.array([np.sum(w[b == k, 0] * c[b == k] * ref) for k in range(nbl)]) / max(np.sum(w[b == kref, 0] * ref**2), 1e-300)
-                if np.all(proj > 0.25):
-                    variant = "collective"
-                elif np.sum(amps > 0.1 * amps.max()) == 1:
+                if np.sum(amps > 0.1 * amps.max()) == 1:
                     variant = f"blade {kref}"
+                elif nbl * np.mean(proj) ** 2 > 0.5 * np.sum(proj**2):
+                    variant = "collective"
                 else:
                     variant = "asymmetric"
             counts[kind] = counts.get(kind, 0) + 1
