@@ -103,3 +103,27 @@ def test_group_laminates_merges_and_orders_plies():
     # layers are listed outer -> inner; plies bottom (inner) -> top (outer)
     assert [q.material.name for q in p.plies] == ["b", "a"]
     assert p.mass_per_area == pytest.approx(1e-3 * 1000 + 2e-3 * 2000)
+
+
+def test_web_keys_keep_order_where_webs_are_absent():
+    """A trailing-edge web that exists only on the first half of the span and would cross its
+    neighbour near the tip if held constant: the filled keys stay ordered and exact where the
+    web exists."""
+    from windflutter.mesh.blade_shell import fill_web_keys
+
+    eta = np.linspace(0, 1, 11)
+    main = 0.25 - 0.1 * eta  # main web start, drifting towards the TE
+    te = np.full(11, 0.18)  # TE web start, only for eta <= 0.4
+    on_te = eta <= 0.4
+    keys = dict(fill_web_keys([("main", main, np.ones(11, bool)), ("te", te, on_te)], eta))
+    assert np.allclose(keys["main"], main)
+    assert np.allclose(keys["te"][on_te], 0.18)
+    assert np.all(keys["te"] < keys["main"]) and np.all(keys["te"] > 0)
+
+
+def test_zero_shear_stiffness_means_shear_rigid():
+    from windflutter.mesh.beam_model import SHEAR_RIGID_FACTOR, shear_rigid_where_missing
+
+    K = np.diag([10.0, 0.0, 3.0, 1.0, 1.0, 1.0])[None]
+    Kr = shear_rigid_where_missing(K)
+    assert Kr[0, 1, 1] == SHEAR_RIGID_FACTOR * 10.0 and Kr[0, 2, 2] == 3.0 and K[0, 1, 1] == 0.0

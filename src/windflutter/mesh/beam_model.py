@@ -25,6 +25,20 @@ class BladeBeamMesh:
     eta: np.ndarray
 
 
+SHEAR_RIGID_FACTOR = 1e3  # shear stiffness = factor x EA where a 6x6 gives none
+
+
+def shear_rigid_where_missing(K: np.ndarray) -> np.ndarray:
+    """(n, 6, 6) section stiffness with zero/negative shear terms K[1,1], K[2,2] replaced by
+    ``SHEAR_RIGID_FACTOR * EA``: windIO 6x6 tables from WISDEM leave the shear stiffness 0,
+    meaning an Euler-Bernoulli (shear-rigid) section."""
+    K = np.array(K, dtype=float, copy=True)
+    for c in (1, 2):
+        bad = K[:, c, c] <= 0
+        K[bad, c, c] = SHEAR_RIGID_FACTOR * np.abs(K[bad, 0, 0])
+    return K
+
+
 def blade_beam_properties(turbine):
     """The blade's 6x6 properties: from the turbine file if given, else thin-walled sections of
     the shell layup (:func:`windflutter.mesh.section_props.thin_walled_properties`)."""
@@ -54,7 +68,7 @@ def blade_beam_mesh(blade, n_span: int, clustering: float = 0.0, props=None) -> 
     def avg(v: np.ndarray) -> np.ndarray:
         return (interp_span(bp.s, v, a) + 4 * interp_span(bp.s, v, m) + interp_span(bp.s, v, b)) / 6.0
 
-    K = avg(bp.stiffness)
+    K = shear_rigid_where_missing(avg(bp.stiffness))
     M = avg(bp.mass)
     tw = np.interp(m, bp.s, bp.twist)
     _, e_n = chord_frame(tw)

@@ -135,17 +135,15 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     web_rows = {w.name: np.where((web_t[w.name][:-1] > 0) & (web_t[w.name][1:] > 0))[0] for w in webs}
     webs = [w for w in webs if web_rows[w.name].size]
 
-    def web_curve(w, arcs):
-        # attachment arc on the stations of the web's rows, held constant beyond them
-        rows = web_rows[w.name]
-        st_on = np.unique(np.concatenate([rows, rows + 1]))
-        return np.interp(eta, eta[st_on], np.interp(eta[st_on], w.s, arcs))
-
     # --- key arcs: webs first, then layer boundaries
-    curves: list[tuple[str, np.ndarray]] = []
+    raw = []
     for w in webs:
-        curves.append((f"{w.name}.start", web_curve(w, w.start_arc)))
-        curves.append((f"{w.name}.end", web_curve(w, w.end_arc)))
+        rows = web_rows[w.name]
+        on = np.zeros(n_st, dtype=bool)
+        on[np.unique(np.concatenate([rows, rows + 1]))] = True
+        raw.append((f"{w.name}.start", np.interp(eta, w.s, w.start_arc), on))
+        raw.append((f"{w.name}.end", np.interp(eta, w.s, w.end_arc), on))
+    curves: list[tuple[str, np.ndarray]] = fill_web_keys(raw, eta)
     n_web_keys = len(curves)
     for lay in shell_layers:
         if np.max(lay.thickness) <= 0:
@@ -301,6 +299,36 @@ def extend_to_blade_ends(layers) -> list:
         hi = s1 < 1 - 1e-9 and abs(lay.s_end - s1) < 1e-9 and float(lay.thickness_at(s1 - 1e-6)) > 0
         out.append(_ExtendedLayer(lay, s0, s1, lo, hi) if (lo or hi) else lay)
     return out
+
+
+def fill_web_keys(raw: list, eta: np.ndarray) -> list[tuple[str, np.ndarray]]:
+    """Web attachment arcs along the whole span, ordered, from their values where the webs exist.
+
+    Outside its extent a web still needs a grid column (one structured topology): there its
+    key keeps the relative position it has, at the nearest station where it exists, between
+    its ordered neighbours (webs with larger extents placed first; 0 and 1 at the ends), so
+    keys never cross where webs converge (e.g. a trailing-edge web ending mid-span).
+
+    Parameters
+    ----------
+    raw : (name, (n_st,) arc, (n_st,) bool where the web exists).
+    """
+    mean = [float(np.mean(c[on])) for _, c, on in raw]
+    order = list(np.argsort(mean))  # position in the chordwise ordering
+    done: dict[int, np.ndarray] = {}
+    idx = np.arange(len(eta))
+    for k in sorted(range(len(raw)), key=lambda k: -int(raw[k][2].sum())):
+        name, c, on = raw[k]
+        pos = order.index(k)
+        lower = [order[p] for p in range(pos - 1, -1, -1) if order[p] in done]
+        upper = [order[p] for p in range(pos + 1, len(order)) if order[p] in done]
+        L = done[lower[0]] if lower else np.zeros_like(c)
+        U = done[upper[0]] if upper else np.ones_like(c)
+        t = (c - L) / np.maximum(U - L, 1e-12)
+        near = idx[on][np.abs(idx[:, None] - idx[on][None, :]).argmin(axis=1)]
+        t = np.where(on, t, t[near])
+        done[k] = L + np.clip(t, 0.0, 1.0) * (U - L)
+    return [(raw[k][0], done[k]) for k in range(len(raw))]
 
 
 def fill_uncovered(T: np.ndarray, A: np.ndarray, n_rows: int, nc: int) -> tuple[np.ndarray, np.ndarray]:
