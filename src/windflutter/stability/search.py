@@ -60,7 +60,7 @@ def _qep(M, D, K, n_eig, shift=0.0):
 
 
 # ---------------------------------------------------------------------------- p-k
-def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-7, maxiter: int = 50,
+def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, maxiter: int = 40,
             n_eig: int = 20):
     """p-k iteration for one mode: solve with Theodorsen frozen at the mode's own frequency.
 
@@ -69,9 +69,19 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-7, max
     w = max(float(omega0), 0.0)
     lam, x = None, x0
     change = np.inf
+    cache = getattr(system, "_qep_cache", None)
+    if cache is None:
+        cache = {}
+        try:
+            system._qep_cache = cache  # identical frequencies (symmetric blades) share solves
+        except AttributeError:
+            pass
     for it in range(maxiter):
-        M, D, K = system.matrices(w)
-        e = _qep(M, D, K, n_eig, shift=1j * w)
+        key = (w, n_eig)
+        if key not in cache:
+            M, D, K = system.matrices(w)
+            cache[key] = _qep(M, D, K, n_eig, shift=1j * w)
+        e = cache[key]
         vals, vecs = e.values, e.vectors
         phys = vals.imag >= -1e-9 * max(1.0, abs(w))
         if not np.any(phys):
@@ -87,6 +97,10 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-7, max
         w_new = max(lam.imag, 0.0)
         change = abs(w_new - w) / max(abs(w_new), 1.0)
         if change <= tol:
+            return lam, x_new
+        if it >= 4 and -lam.real > 0.3 * abs(lam):
+            # heavily damped (zeta > 0.3): far from any onset; its frequency may wander between
+            # close roots, so stop refining it
             return lam, x_new
         if it >= maxiter // 3:  # under-relax an oscillating iteration (heavily damped modes)
             w_new = 0.5 * (w + w_new)
@@ -117,8 +131,27 @@ def static_min_eig(system) -> float:
 def _track(system, modes, n_eig):
     out = []
     for w, x in modes:
+        if x is None or not np.isfinite(w):  # a mode lost earlier stays lost
+            out.append((complex(np.nan, np.nan), None))
+            continue
         out.append(pk_mode(system, w, x, n_eig=n_eig))
     return out
+
+
+def _drop_duplicates(cur, prev, rtol: float = 1e-6):
+    """Two tracked modes that landed on the same eigenvalue: keep the one more similar (MAC) to
+    its own previous shape, mark the other as lost (NaN)."""
+    n = len(cur)
+    for i in range(n):
+        for j in range(i + 1, n):
+            li, lj = cur[i][0], cur[j][0]
+            if cur[i][1] is None or cur[j][1] is None:
+                continue
+            if abs(li - lj) <= rtol * max(abs(li), 1.0) and mac(cur[i][1], cur[j][1]) > 0.99:
+                mi = mac(cur[i][1], prev[i][1]) if prev[i][1] is not None else 0.0
+                mj = mac(cur[j][1], prev[j][1]) if prev[j][1] is not None else 0.0
+                k = j if mi >= mj else i
+                cur[k] = (complex(np.nan, np.nan), None)
 
 
 def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_eig: int = 20,
@@ -160,6 +193,7 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
         sysp = system_at(p)
         prev = cur
         cur = _track(sysp, [(max(l.imag, 0.0), x) for l, x in prev], n_eig)
+        _drop_duplicates(cur, prev)
         lams[ip] = [l for l, _ in cur]
         vecs[ip] = cur
         if divergence and res.divergence is None:
@@ -170,6 +204,8 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
         if not flutter_found:
             cand = []
             for i, (l, _) in enumerate(cur):
+                if prev[i][1] is None or cur[i][1] is None:
+                    continue
                 if l.real >= 0 and l.imag > min_frequency and prev[i][0].real < 0:
                     pm = params[ip - 1]
                     seed = prev[i]

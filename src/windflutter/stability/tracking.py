@@ -44,7 +44,11 @@ def label_mode(x_dof: np.ndarray, sections, P=None, tower_dofs: np.ndarray | Non
         t = np.max(np.abs(x_dof[tower_dofs]))
         if t > np.sqrt(blade_e.max(initial=0.0)):
             return "tower"
-    kind = ("flap", "torsion", "edge")[int(np.argmax(energy))]
+    names = ("flap", "torsion", "edge")
+    order = np.argsort(energy)[::-1]
+    kind = names[order[0]]
+    if energy[order[1]] > 0.3 * energy[order[0]]:  # strongly coupled, e.g. flap-torsion flutter
+        kind = f"{kind}-{names[order[1]]}"
     j = int(np.argmax(blade_e))
     r = np.asarray(sections.radius, float)
     blade = np.asarray(sections.blade)[j]

@@ -46,7 +46,8 @@ class TurbineOptions:
     rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
     tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
     n_modes : structural modes per reference speed in the projection basis (None: full model).
-    n_tracked : modes followed by the p-k search.
+    n_tracked : modes followed by the p-k search (18 = up to the first torsion of a 3-bladed
+        rotor; fewer may miss the flutter mode).
     apparent_mass_scaling : viscous only, scale apparent-mass terms by Cl_alpha / 2 pi.
     damping : ``"none"``, ``"stiffness"`` or ``"rayleigh"``; ``damping_ratio`` at
         ``damping_reference_hz`` (Rayleigh: and at 10x it).
@@ -63,7 +64,7 @@ class TurbineOptions:
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
     n_modes: int | None = 30
-    n_tracked: int = 8
+    n_tracked: int = 18
     apparent_mass_scaling: bool = False
     damping: str = "none"
     damping_ratio: float = 0.0
@@ -201,6 +202,9 @@ class TurbineStability:
             s_on = system_at(on.flutter)
             mode = label_mode(s_on.expand(on.flutter_vector), sections, s_on.strip.P, tower_dofs)
         labels = [lab(x) for x in on.vectors0] if on.vectors0 is not None else []
+        if mode is not None and on.flutter_mode is not None and on.flutter_mode < len(labels):
+            # the structural mode it grew from, and the shape at onset
+            mode = f"{labels[on.flutter_mode]} -> {mode}"
         lam = on.eigenvalues
         with np.errstate(invalid="ignore", divide="ignore"):
             zeta = -lam.real / np.abs(lam)
