@@ -89,13 +89,15 @@ MAT5 = {"UDOB": (38887e6, 9000e6, 3600e6, 0.249, 1869.0), "UD45R": (24800e6, 115
         "R4545": (11700e6, 11700e6, 9770e6, 0.501, 1782.0), "SKINFOAM": (256e6, 256e6, 22e6, 0.3, 200.0),
         "WEBPS": (25e6, 25e6, 12e6, 0.3, 45.0)}
 # Table A.2: (radius from blade root in m, total thickness in mm) per layer group
-TRIAX1 = [(2.0, 2.82), (63.5, 2.82)]
-TRIAX2 = [(2.0, 100.0), (2.3, 100.0), (2.8, 26.0), (3.6, 26.0), (11.0, 0.94)]
+# the table starts at r = 2 m; the skins and the root build-up are held constant from 2 m to the
+# root (r = 0) so that the whole blade surface has a laminate
+TRIAX1 = [(0.0, 2.82), (2.0, 2.82), (63.5, 2.82)]
+TRIAX2 = [(0.0, 100.0), (2.0, 100.0), (2.3, 100.0), (2.8, 26.0), (3.6, 26.0), (11.0, 0.94)]
 UD_CAP = [(3.5, 0.47), (9.0, 49.26), (14.0, 96.33), (19.0, 94.05), (24.0, 87.37), (29.0, 80.94), (34.0, 71.77),
           (39.0, 58.37), (44.0, 46.45), (49.0, 25.81), (54.0, 9.99), (60.0, 0.47)]
 UD_TE = [(3.5, 0.47), (7.5, 15.0), (11.0, 21.0), (14.0, 13.6), (47.0, 0.47)]
 SKINFOAM = [(3.5, 1.0), (7.5, 40.0), (43.0, 40.0), (57.0, 6.0), (60.0, 6.0)]
-TRIAX3 = [(2.0, 2.82), (63.5, 2.82)]
+TRIAX3 = [(0.0, 2.82), (2.0, 2.82), (63.5, 2.82)]
 WEB_FACE_MM = 2 * 0.94  # "2 * R4545" per face; R4545 ply thickness not given: 0.94 mm assumed (as the triax)
 WEB_CORE_MM = 50.0  # "50 mm WEBPS"
 WEB_SPAN5 = (3.5, 60.0)  # webs where the UD spar cap exists (choice)
@@ -106,7 +108,8 @@ NOTES_5 = [
     "Aero (table 4.4/4.5): chord, twist, airfoil per station; positions from the blade root (61.5 m blade). Pitch "
     "axis is not in the thesis: NREL ElastoDyn PitchAxis (from the WISDEM windIO NREL-5MW section_offset_y).",
     "Layup (tables A.1/A.2): 'Radius' read as distance from the blade root, clipped to the 61.5 m blade; layer "
-    "thickness linear between the listed radii, zero outside. Chordwise extents (spar caps, TE UD, sandwich "
+    "thickness linear between the listed radii, zero outside; the skins and root build-up listed from r = 2 m are "
+    "held constant to the root. Chordwise extents (spar caps, TE UD, sandwich "
     "panels, webs) are not in the thesis text: taken from the anchors of the WISDEM windIO NREL-5MW file.",
     "Stack per region (outer -> inner): TRIAX-1 (3 x UD45R, 2.82 mm), TRIAX-2 root build-up (UD45R), spar cap UD "
     "(UDOB) / TE UD (UDOB) / SKINFOAM panels (LE and TE), TRIAX-3 (3 x UD45R, 2.82 mm). Webs: 2 x R4545 + 50 mm "
