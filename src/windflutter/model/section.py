@@ -5,8 +5,9 @@ offset of the tension centre):
 
 * each laminate is reduced to membrane moduli from classical lamination theory,
   ``E_x t = A11 - A12^2 / A22`` and ``G t = A66`` (x = span direction, ply angles from the span);
-* the wall midline is the outer airfoil contour scaled by the chord (the laminate is not offset
-  inwards - a documented approximation that over-estimates bending stiffness by O(t/h));
+* the wall midline is the outer airfoil contour scaled by the chord, offset inwards by half the
+  local laminate thickness (capped at a quarter of the local airfoil thickness near the trailing
+  edge, where the two skins meet);
 * axial and bending stiffness, mass and mass moments are line integrals over the skin and the
   webs about the reference (pitch) axis;
 * torsion stiffness from multi-cell Bredt-Batho shear flow (cells separated by the webs);
@@ -172,6 +173,28 @@ def _bredt_batho(skin_yz: np.ndarray, skin_Gt: np.ndarray, webs) -> float:
     return float(2.0 * areas @ q)
 
 
+def _offset_inwards(yz: np.ndarray, t_seg: np.ndarray, xg: np.ndarray, yg: np.ndarray, chord: float) -> np.ndarray:
+    """Move the closed polygon's vertices inwards by half the laminate thickness (vertex value =
+    mean of the two adjacent segments), capped at 1/4 of the local airfoil thickness."""
+    n = t_seg.size
+    tv = 0.5 * (t_seg + np.roll(t_seg, 1))  # vertex i between segments i-1 and i
+    P = yz[:-1]
+    tang = np.roll(P, -1, axis=0) - np.roll(P, 1, axis=0)
+    tang /= np.maximum(np.linalg.norm(tang, axis=1, keepdims=True), 1e-30)
+    area2 = np.sum(P[:, 0] * np.roll(P[:, 1], -1) - np.roll(P[:, 0], -1) * P[:, 1])
+    # counter-clockwise in (y, z) -> inward normal is the tangent turned +90 deg
+    sign = 1.0 if area2 > 0 else -1.0
+    normal = sign * np.column_stack([-tang[:, 1], tang[:, 0]])
+    i_le = int(np.argmin(xg[:-1]))
+    xs, ys = xg[: i_le + 1][::-1], yg[: i_le + 1][::-1]
+    xp, yp = xg[i_le:-1], yg[i_le:-1]
+    xv = xg[:-1]
+    h = np.interp(xv, xs[np.argsort(xs)], ys[np.argsort(xs)]) - np.interp(xv, xp[np.argsort(xp)], yp[np.argsort(xp)])
+    off = np.minimum(0.5 * tv, 0.25 * np.abs(h) * chord)
+    Q = P + normal * off[:, None]
+    return np.vstack([Q, Q[:1]])[: n + 1]
+
+
 # ------------------------------------------------------------------------------ blade sections
 def layup_beam_sections(turbine: Turbine, s: np.ndarray | None = None, n_contour: int = 240) -> BeamProperties:
     """Beam properties of the blade from its layup (thin-walled model, see module docstring).
@@ -218,6 +241,8 @@ def layup_beam_sections(turbine: Turbine, s: np.ndarray | None = None, n_contour
             for i in np.nonzero(inside)[0]:
                 plies[i].append((mats[lay.material], t, ang))
         props = np.array([laminate_membrane(p) for p in plies])
+        t_seg = np.array([sum(t for _, t, _ in p) for p in plies])
+        yz = _offset_inwards(yz, t_seg, xg, yg, chord)
         webs = []
         for w in b.layup.webs:
             if not (w.s_start - 1e-12 <= sk <= w.s_end + 1e-12):
