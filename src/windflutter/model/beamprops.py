@@ -166,13 +166,20 @@ def read_elastodyn_blade(path: str | Path, length: float, apply_mass_adjustment:
 
 
 # ------------------------------------------------------------------------------------- functions
-def blade_beam_sections(turbine: Turbine) -> BeamProperties:
+def blade_beam_sections(turbine: Turbine, source: str = "auto") -> BeamProperties:
     """Blade 6x6 properties about the reference axis in the BeamSection convention.
 
-    Uses the properties that came with the turbine (windIO 6x6, or a BeamDyn/ElastoDyn file named
-    in its supplement).  Raises :class:`InputError` if the turbine has none (computing them from
-    the layup is a cross-section analysis, not done here).
+    ``source``: ``"file"`` - the properties that came with the turbine (windIO 6x6, or a
+    BeamDyn/ElastoDyn/layup source named in its supplement); ``"layup"`` - thin-walled sections of
+    the layup (:func:`windflutter.model.section.layup_beam_sections`); ``"auto"`` - file if
+    present, else layup.
     """
+    if source not in ("auto", "file", "layup"):
+        raise InputError("source", source, "'auto', 'file' or 'layup'")
+    if source == "layup" or (source == "auto" and turbine.blade.beam is None and turbine.blade.layup is not None):
+        from windflutter.model.section import layup_beam_sections
+
+        return layup_beam_sections(turbine)
     if turbine.blade.beam is None:
         raise InputError("components.blade.elastic_properties", None,
                          "blade 6x6 beam properties in the turbine file or its supplement", turbine.source)

@@ -158,8 +158,17 @@ def apply_supplement(turbine: Turbine, raw: dict, supp: dict | None, base_dir: P
     if not np.all(np.isfinite(hub.inertia)):
         hub = dataclasses.replace(hub, inertia=np.zeros((3, 3)))
         notes.append("hub inertia not given: zero (point mass)")
-    return dataclasses.replace(turbine, hub=hub, nacelle=nac, rated_rotor_speed=float(rated),
-                               operating_curve=curve, blade=blade, notes=tuple(notes))
+    from_layup = blade.beam == "layup"
+    if from_layup:
+        blade = dataclasses.replace(blade, beam=None)
+    out = dataclasses.replace(turbine, hub=hub, nacelle=nac, rated_rotor_speed=float(rated),
+                              operating_curve=curve, blade=blade, notes=tuple(notes))
+    if from_layup:
+        from windflutter.model.section import layup_beam_sections
+
+        out = dataclasses.replace(out, blade=dataclasses.replace(out.blade, beam=layup_beam_sections(out)),
+                                  notes=out.notes + ("blade 6x6: thin-walled sections of the layup (model/section.py)",))
+    return out
 
 
 def _tower_override(turbine: Turbine, tw: dict, r: Reader, q: str) -> Turbine:
@@ -215,8 +224,10 @@ def _curve(oc: dict, r: Reader, q: str, fdir: Path):
 def _beam(bb: dict, r: Reader, q: str, fdir: Path, length: float):
     from windflutter.model.beamprops import read_beamdyn_blade, read_elastodyn_blade
 
-    f = _file(bb, r, q, fdir)
     fmt = r.string(bb, q, "format", default="beamdyn")
+    if fmt == "layup":
+        return "layup"  # computed after the supplement is applied (needs the final turbine)
+    f = _file(bb, r, q, fdir)
     factor = r.number(bb, q, "mass_factor", default=1.0, positive=True)
     if fmt == "beamdyn":
         tw = None
@@ -226,7 +237,7 @@ def _beam(bb: dict, r: Reader, q: str, fdir: Path, length: float):
     elif fmt == "elastodyn":
         bp = read_elastodyn_blade(f, length)
     else:
-        raise InputError(f"{q}.format", fmt, "'beamdyn' or 'elastodyn'", r.source)
+        raise InputError(f"{q}.format", fmt, "'beamdyn', 'elastodyn' or 'layup'", r.source)
     if factor != 1.0:
         bp = dataclasses.replace(bp, mass=bp.mass * factor, source=f"{bp.source} x mass_factor {factor}")
     return bp
