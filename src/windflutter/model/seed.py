@@ -274,7 +274,6 @@ def seed20mw_dict() -> dict:
         "nacelle": {"mass": 936800.0, "yaw_inertia": 82860699.0, "cg": [3.8, 0.0, round(twr2shft - 3.5, 6)],
                     "overhang": -overhang_shaft, "shaft_tilt_deg": 5.0, "tower_to_shaft": round(twr2shft, 6)},
         "rated_rotor_speed_rpm": rpm_max,
-        "blade_beam": {"format": "layup"},
         "operating_curve": {"wind_speed": v.tolist(), "rotor_speed_rpm": (w * rpm_max / 12.1).round(5).tolist(),
                             "pitch_deg": p.tolist(),
                             "source": "NREL 5MW steady states (OpenFAST, DISCON) with rotor speed x 6.31/12.1"},
@@ -404,7 +403,6 @@ def seed5mw_dict() -> dict:
                     "overhang": -overhang_shaft, "shaft_tilt_deg": 5.0, "tower_to_shaft": round(twr2shft, 6),
                     "gear_ratio": 97.0},
         "rated_rotor_speed_rpm": 12.1,
-        "blade_beam": {"format": "layup"},
         "operating_curve": {"file": "../nrel5mw/NREL5MW_Oper_Onshore_Flexible_Discon.csv", "format": "openfast_csv"},
     }
     return d
