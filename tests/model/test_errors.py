@@ -164,3 +164,21 @@ def test_inputerror_is_valueerror():
     with pytest.raises(ValueError):
         read_windio_dict(d)
     assert np.isfinite(1.0)
+
+
+def test_indefinite_nacelle_inertia_is_rejected(turbine):
+    """WISDEM's NREL-5MW drivetrain inertia puts the yaw inertia in the Iyz slot; the supplement
+    resets it.  A tensor like that must be refused by name, not passed on to the mass matrix."""
+    import dataclasses
+
+    import numpy as np
+
+    from windflutter.errors import InputError
+    from windflutter.model.windio import _check_rigid_body_inertias
+
+    t = turbine("nrel5mw")
+    assert np.linalg.eigvalsh(t.nacelle.inertia).min() >= 0.0  # the bundled file is repaired
+    bad = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, 2.6e6], [0.0, 2.6e6, 0.0]])
+    t_bad = dataclasses.replace(t, nacelle=dataclasses.replace(t.nacelle, inertia=bad))
+    with pytest.raises(InputError, match="nacelle.inertia"):
+        _check_rigid_body_inertias(t_bad, "x.yaml")

@@ -134,7 +134,28 @@ def load_turbine(path_or_name: str | Path, validate: bool = True) -> Turbine:
     source = str(path)
     turbine, raw = read_windio_dict(data, source=source, validate=validate)
     supp, supp_source = find_supplement(data, path)
-    return apply_supplement(turbine, raw, supp, base_dir=path.parent, source=supp_source or source)
+    turbine = apply_supplement(turbine, raw, supp, base_dir=path.parent, source=supp_source or source)
+    _check_rigid_body_inertias(turbine, supp_source or source)
+    return turbine
+
+
+def _check_rigid_body_inertias(turbine: Turbine, source: str | None) -> None:
+    """Hub and nacelle inertia tensors must be symmetric positive semi-definite.
+
+    A tensor that is not (e.g. a yaw inertia written into the Iyz slot of the 6-vector) would
+    make the whole-turbine mass matrix indefinite; refuse it here, naming the field.
+    """
+    for name, body in (("hub", turbine.hub), ("nacelle", turbine.nacelle)):
+        J = np.asarray(body.inertia, dtype=float)
+        if J.shape != (3, 3) or not np.all(np.isfinite(J)):
+            raise InputError(f"{name}.inertia", J.tolist(), "a finite 3x3 inertia tensor (kg m^2)", source)
+        ev = np.linalg.eigvalsh(0.5 * (J + J.T))
+        if ev.min() < -1e-9 * max(abs(ev).max(), 1.0):
+            raise InputError(
+                f"{name}.inertia", J.tolist(),
+                "a positive semi-definite inertia tensor (Ixx, Iyy, Izz, Ixy, Ixz, Iyz order; "
+                "products of inertia must not exceed the moments)", source,
+            )
 
 
 def read_windio_dict(data: dict, source: str | None = None, validate: bool = True) -> tuple[Turbine, dict]:
