@@ -44,7 +44,7 @@ def case(n_modes, wind, rpm, mta=False):
     if mta:  # runs in a forked child: the swap does not leak into other cases
         from windflutter.solve.aero_reduction import MTAAeroelasticModel
 
-        tmod.AeroelasticModel = lambda **kw: MTAAeroelasticModel(**kw, mta_wind_speed=wind)
+        tmod.AeroelasticModel = lambda **kw: MTAAeroelasticModel(**kw, mta_wind_speeds=(wind,))
 
     o = TurbineOptions(model="beam", aero="potential", method="pk", n_modes=n_modes,
                        rpm_min=rpm[0], rpm_max=rpm[1], rpm_step=rpm[2])

@@ -37,7 +37,7 @@ def _stability(turbine, n_modes, mta, rpm=(20.0, 34.0, 2.0), wind=10.0):
     ts = tmod.TurbineStability(turbine, o)
     if mta:
         orig = tmod.AeroelasticModel
-        tmod.AeroelasticModel = lambda **kw: MTAAeroelasticModel(**kw, mta_wind_speed=wind)
+        tmod.AeroelasticModel = lambda **kw: MTAAeroelasticModel(**kw, mta_wind_speeds=(wind,))
         try:
             ts.model(ts.pitch_at(wind))  # built (and cached) with the augmented basis
         finally:

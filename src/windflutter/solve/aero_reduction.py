@@ -37,21 +37,25 @@ class MTAAeroelasticModel(AeroelasticModel):
     mta_points
         Reference points ``(wind_speed m/s, rotor_speed rad/s, frequency rad/s)`` whose aero
         matrices generate the load shapes; default (when empty): every ``omega_ref`` rotor speed
-        at ``mta_wind_speed`` and frequency 0 (quasi-steady aerodynamics).
-    mta_wind_speed
-        Wind speed (m/s) of the default reference points.
+        at every ``mta_wind_speeds`` value and frequency 0 (quasi-steady aerodynamics).
+    mta_wind_speeds
+        Wind speeds (m/s) of the default reference points. For a map, give fixed values (e.g.
+        the ends of the wind range), not the point being analysed: the model is cached per
+        pitch and shared between wind speeds, so a basis tied to the first analysed point would
+        make results depend on the order the points are run in.
     mta_tol
         Relative cut-off for dependent correction vectors (Gram eigenvalue, see
         :func:`windflutter.solve.reduction.m_orthonormalize`).
     """
 
     mta_points: tuple = ()
-    mta_wind_speed: float = 10.0
+    mta_wind_speeds: tuple = (10.0,)
     mta_tol: float = 1e-8
 
     def _basis(self) -> np.ndarray:
         V = super()._basis()
-        points = self.mta_points or tuple((self.mta_wind_speed, om, 0.0) for om in self.omega_ref)
+        points = self.mta_points or tuple((float(v), om, 0.0) for v in np.atleast_1d(self.mta_wind_speeds)
+                                          for om in self.omega_ref)
         T = self.structure.T
         TT = T.T.tocsr()
         TV = T @ V
