@@ -15,8 +15,9 @@ input; nothing is shared between tasks), so serial, local-parallel and Dask runs
 results -- ``tests/perf/test_perf_parallel.py`` checks this bit for bit.
 
 An exception inside a task does not stop the run: that task comes back with ``ok=False`` and
-the error text and traceback. A worker process that dies (segfault, out of memory) fails the
-tasks it held in the same way.
+the error text and traceback. A local worker process that dies (segfault, out of memory)
+breaks the pool: the tasks not finished by then come back failed (``BrokenProcessPool``) and the
+call returns; on Dask the scheduler retries them on other workers first.
 
 The function and tasks are serialised with ``cloudpickle`` (installed with dask), so closures
 and lambdas work; the function is sent to each local worker once, not once per task, so it may
@@ -152,6 +153,7 @@ def _iter_pool(fn, tasks, workers, start_method, blas_threads) -> Iterator[TaskR
     ex = ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx, initializer=_init_worker,
                              initargs=(fn_bytes, blas_threads))
     futures = {}
+    finished = False
     try:
         for i, t in enumerate(tasks):
             payload, failed = _dumps_task(i, t)
@@ -172,8 +174,10 @@ def _iter_pool(fn, tasks, workers, start_method, blas_threads) -> Iterator[TaskR
                 except Exception as exc:  # noqa: BLE001
                     yield TaskResult(i, False, None, f"{type(exc).__name__}: {exc}",
                                      traceback.format_exc(), 0.0, "local")
+        finished = True
     finally:
-        ex.shutdown(wait=True, cancel_futures=True)
+        # on Ctrl-C / an abandoned generator do not wait for the running tasks to end
+        ex.shutdown(wait=finished, cancel_futures=True)
 
 
 # --- Dask ---------------------------------------------------------------------------------

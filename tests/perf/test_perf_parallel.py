@@ -96,3 +96,16 @@ def test_bad_arguments():
         run_tasks(demo_point, TASKS, scheduler="tcp://127.0.0.1:1", connect_timeout=1)
     assert run_tasks(demo_point, [], workers=2) == []
     assert isinstance(run_tasks(abs, [-1], workers=2)[0], TaskResult)
+
+
+def _die_on_two(x):
+    if x == 2:
+        os._exit(3)  # simulates a worker killed by a segfault / the OOM killer
+    return x
+
+
+def test_dead_worker_fails_tasks_without_hanging():
+    res = run_tasks(_die_on_two, [1, 2, 3, 4], workers=2)
+    assert len(res) == 4 and [r.index for r in res] == [0, 1, 2, 3]
+    assert not res[1].ok and "BrokenProcessPool" in res[1].error
+    assert all(r.ok or "BrokenProcessPool" in r.error for r in res)
