@@ -57,3 +57,30 @@ def test_thesis_switch_has_no_prestress():
     G, Kr, Ks = terms.at(1.0)
     assert Ks.nnz == 0
     assert abs(G - (-G.T)).max() < 1e-12  # gyroscopic matrix is skew-symmetric
+
+
+def test_rotor_terms_act_relative_to_the_hub():
+    """A rotor tied to a hub node that can translate (whole-turbine model): a rigid translation of
+    rotor + hub must see no spin softening and no Coriolis force (in the fixed frame there is
+    none), while the blade's elastic motion relative to the hub keeps the point-mass terms."""
+    n, L = 4, 10.0
+    fe, st, *_ = _spinning_blade(n=n, L=L)
+    fe.node_groups["hub"] = np.array([0])
+    geom = RotorGeometry(np.zeros(3), np.array([1.0, 0, 0]))
+    terms = rotor_terms(fe, st, geom, prestress=False)
+    absolute = rotor_terms(fe, st, geom, prestress=False, reference_group=None)
+    G, Kr, _ = terms.at(2.0)
+    Ga, Kra, _ = absolute.at(2.0)
+    rigid_y = np.zeros(st.M.shape[0])
+    rigid_y[1::6] = 1.0  # every node moves 1 m along y (normal to the shaft)
+    assert np.abs(Kr @ rigid_y).max() < 1e-9 * abs(Kra).max()
+    assert np.abs(G @ rigid_y).max() < 1e-9 * abs(Ga).max()
+    assert np.abs(Kra @ rigid_y).max() > 1.0  # the absolute form does soften it (test can fail)
+    # the tip moving relative to a still hub: the same forces on the blade nodes; the relative
+    # form adds their reaction on the hub (so the net force of the pair is zero)
+    tip = np.zeros(st.M.shape[0])
+    tip[6 * n + 1] = 1.0
+    blade = np.arange(6, st.M.shape[0])
+    assert np.allclose((Kr @ tip)[blade], (Kra @ tip)[blade])
+    assert np.allclose((G @ tip)[blade], (Ga @ tip)[blade])
+    assert abs((Kr @ tip)[0::6].sum()) + abs((Kr @ tip)[1::6].sum()) + abs((Kr @ tip)[2::6].sum()) < 1e-9

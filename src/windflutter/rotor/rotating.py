@@ -75,6 +75,23 @@ def coriolis_and_softening(M: sp.spmatrix, dofs: np.ndarray, omega_vec: np.ndarr
     return expand(Gt), expand(Krt)
 
 
+def relative_to_reference(n_dof: int, dofs: np.ndarray, reference_node: int) -> sp.csr_matrix:
+    """Sparse ``L`` (n_dof x n_dof) giving the rotor's translations relative to a reference node.
+
+    ``(L u)[d] = u[d] - u[ref, c(d)]`` for the translational DOFs ``d`` of the rotating part
+    (component ``c(d)``), zero for every other DOF, and zero for the reference node itself.
+    """
+    dofs = np.asarray(dofs, dtype=np.int64)
+    comp = np.tile(np.arange(3), dofs.size // 3)
+    ref = 6 * int(reference_node) + comp
+    keep = dofs != ref
+    d, r = dofs[keep], ref[keep]
+    rows = np.concatenate([d, d])
+    cols = np.concatenate([d, r])
+    vals = np.concatenate([np.ones(d.size), -np.ones(d.size)])
+    return sp.csr_matrix((vals, (rows, cols)), shape=(n_dof, n_dof))
+
+
 def centrifugal_load(M: sp.spmatrix, fe: FEModel, nodes: np.ndarray, omega_vec: np.ndarray,
                      center: np.ndarray) -> np.ndarray:
     """Centrifugal nodal forces ``Fr = S^T Mt S R`` (N), full DOF vector, R = x - center."""
@@ -113,14 +130,30 @@ def _prestress(fe: FEModel, struct, Fr: np.ndarray, u0_solver=None) -> sp.csr_ma
 
 
 def rotor_terms(fe: FEModel, struct, rotor_geometry: RotorGeometry, prestress: bool = True,
-                group: str = "rotor") -> RotorTerms:
-    """Build :class:`RotorTerms` once for a model (unit rotor speed)."""
+                group: str = "rotor", reference_group: str | None = "hub") -> RotorTerms:
+    """Build :class:`RotorTerms` once for a model (unit rotor speed).
+
+    Mixed frames: in a whole-turbine model the tower is in the fixed frame and the rotor is tied
+    to it at the hub.  A rigid translation of the whole rotor with the hub changes neither the
+    centrifugal nor the Coriolis forces in the fixed frame, so G and Kr act on the rotor's
+    translations *relative to the hub node* (``reference_group``, when the model has one);
+    applied to absolute translations they would soften the tower top by ``M_rotor Omega^2`` and
+    produce a spurious low-frequency instability of the tower modes (seen on the NREL 5 MW:
+    "divergence" of the side-side mode at ~26 RPM).  For a rotor with a clamped hub the two are
+    the same.
+    """
     axis = np.asarray(rotor_geometry.shaft_axis, float)
     if not np.isclose(np.linalg.norm(axis), 1.0, atol=1e-6):
         raise InputError("rotor.shaft_axis", axis.tolist(), "a unit vector")
     nodes = rotating_nodes(fe, group)
     M = struct.M
-    G1, Kr1 = coriolis_and_softening(M, translational_dofs(nodes), axis)
+    dofs = translational_dofs(nodes)
+    G1, Kr1 = coriolis_and_softening(M, dofs, axis)
+    ref = fe.node_groups.get(reference_group) if reference_group else None
+    if ref is not None and len(ref) == 1:
+        L = relative_to_reference(M.shape[0], dofs, int(np.asarray(ref)[0]))
+        G1 = L.T @ G1 @ L
+        Kr1 = L.T @ Kr1 @ L
     Ks1 = None
     if prestress:
         Fr = centrifugal_load(M, fe, nodes, axis, rotor_geometry.hub_center)
