@@ -62,7 +62,7 @@ class ModelConfig:
     n_aero_sections : aerodynamic strips per blade.
     """
 
-    type: str = "shell"
+    type: str = "beam"
     mesh_density: float = 1.0
     n_aero_sections: int = 30
 
