@@ -45,7 +45,7 @@ def _n_points(outdir):
     return len(list((Path(outdir) / "points").glob("p*.nc")))
 
 
-def _wait_for_points(proc, outdir, n, timeout=120.0):
+def _wait_for_points(proc, outdir, n, timeout=300.0):
     t0 = time.monotonic()
     while _n_points(outdir) < n:
         if proc.poll() is not None:
@@ -66,7 +66,7 @@ def test_sigint_then_sigkill_then_resume_equals_uninterrupted(tmp_path):
     p = _start(cfg_path, out, delay=1.0)
     _wait_for_points(p, out, 2)
     p.send_signal(signal.SIGINT)
-    _, err = p.communicate(timeout=60)
+    _, err = p.communicate(timeout=300)
     assert p.returncode == 130, err
     assert "--resume" in err and "Traceback" not in err
     n1 = _n_points(out)
@@ -77,7 +77,7 @@ def test_sigint_then_sigkill_then_resume_equals_uninterrupted(tmp_path):
     p = _start(cfg_path, out, delay=1.0, resume=True)
     _wait_for_points(p, out, n1 + 1)
     p.send_signal(signal.SIGKILL)
-    p.communicate(timeout=60)
+    p.communicate(timeout=300)
     assert p.returncode == -signal.SIGKILL
     n2 = _n_points(out)
     assert n1 < n2 < 6
@@ -87,7 +87,7 @@ def test_sigint_then_sigkill_then_resume_equals_uninterrupted(tmp_path):
     cfg2_path = tmp_path / "analysis_report.yaml"
     cfg2_path.write_text(yaml.safe_dump(cfg2))
     p = _start(cfg2_path, out, delay=0.0, resume=True)
-    stdout, err = p.communicate(timeout=120)
+    stdout, err = p.communicate(timeout=300)
     assert p.returncode == 0, err
     assert f"report: {(out / 'report.html').resolve()}" in stdout
     assert "6 operating points, 0 failed" in stdout
