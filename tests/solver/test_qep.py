@@ -36,3 +36,20 @@ def test_single_dof_analytic():
     exact = np.roots([m, c, k])
     assert np.allclose(np.sort_complex(e.values), np.sort_complex(exact), rtol=1e-12)
     assert np.all(e.damping_ratio > 0)
+
+
+def test_no_wind_no_rotation_gives_structural_modes():
+    # coupled wing system with (almost) no air: eigenvalues -> +-i omega of the structural
+    # pencil (K, M); 1e-4 relative: the aero at 1e-3 m/s perturbs them by O(rho U b / (m omega))
+    import scipy.linalg as sla
+
+    from windflutter.stability.wing import WingConfig, wing_model
+
+    cfg = WingConfig(span=6.096, chord=1.8288, elastic_axis=0.33, mass_axis=0.43, bending_stiffness=9.77e6,
+                     torsion_stiffness=0.987e6, mass=35.71, inertia=8.64, n_elements=8, n_modes=6)
+    m = wing_model(cfg)
+    w_struct = np.sqrt(sla.eigh(m.Kr0, m.Mr, eigvals_only=True))
+    s = m.at(1e-3, 0.0)
+    e = solve_qep(*s.matrices(0.0), n_eig=12)
+    w = np.sort(e.values.imag[e.values.imag > 0])
+    assert np.allclose(w, np.sort(w_struct), rtol=1e-4)

@@ -3,8 +3,9 @@
 The attached-flow range of a polar is found as the contiguous interval of angles of attack
 around the zero-lift angle where the local lift slope stays above half of the slope at zero
 lift and below the stall peaks, limited to ``max_range`` on either side.  Over that range
-``Cl`` and ``Cd`` are fitted by least-squares straight lines; their slopes are ``Cl_alpha`` and
-``Cd_alpha`` (1/rad).  Polars without a lift slope (cylinders) give ``Cl_alpha = 0``.
+``Cl`` is fitted by a least-squares straight line (slope ``Cl_alpha``, 1/rad); ``Cd`` by a
+straight line over the positive part of the range (zero lift .. positive end, where operating
+blade sections work), slope ``Cd_alpha`` (1/rad).  Polars without a lift slope (cylinders) give ``Cl_alpha = 0``.
 """
 
 from __future__ import annotations
@@ -83,7 +84,15 @@ def fit_polar(polar: Polar, max_range: float = np.radians(12.0), slope_fraction:
     sel = slice(lo, hi + 1)
     A = np.vstack([a[sel], np.ones(hi - lo + 1)]).T
     cla = float(np.linalg.lstsq(A, cl[sel], rcond=None)[0][0])
-    cda = float(np.linalg.lstsq(A, cd[sel], rcond=None)[0][0])
+    # drag: fitted on the positive side of the attached range (alpha0 .. alpha_max), where an
+    # operating blade section works; over the whole range the bucket-shaped Cd would give a
+    # slope set by the range's asymmetry only
+    pos = np.arange(lo, hi + 1)[a[lo:hi + 1] >= a0]
+    if pos.size >= 2:
+        Ap = np.vstack([a[pos], np.ones(pos.size)]).T
+        cda = float(np.linalg.lstsq(Ap, cd[pos], rcond=None)[0][0])
+    else:
+        cda = float(np.linalg.lstsq(A, cd[sel], rcond=None)[0][0])
     return PolarFit(cla, cda, float(a0), float(a[lo]), float(a[hi]), hi - lo + 1, polar.name)
 
 

@@ -90,6 +90,14 @@ class AeroelasticModel:
     pitch: float = 0.0
 
     def __post_init__(self):
+        if self.aero.model == "viscous" and (self.aero.lift_slope is None or self.aero.drag_slope is None):
+            # fit the polars once (not at every operating point)
+            from dataclasses import replace
+
+            from windflutter.aero.strip import lift_drag_slopes
+
+            cla, cda = lift_drag_slopes(self.sections, self.aero)
+            self.aero = replace(self.aero, lift_slope=cla, drag_slope=cda)
         s = self.structure
         self.Mr = s.reduce(s.M)
         self.Kr0 = s.reduce(s.K)

@@ -1,0 +1,71 @@
+"""Whole-rotor checks on the bundled NREL 5 MW (beam model; reduced sizes, full-size runs slow)."""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+import scipy.linalg as sla
+
+from windflutter.model.windio import load_turbine
+from windflutter.stability.turbine import TurbineOptions, TurbineStability
+
+RPM = np.pi / 30
+
+
+@pytest.fixture(scope="module")
+def nrel5mw():
+    return load_turbine("nrel5mw")
+
+
+def test_prestress_raises_flap_frequency(nrel5mw):
+    # METHOD.md sec. 2: K_sigma raises the NREL 5 MW blade flap frequency by ~10 % at rated
+    # speed (12.1 RPM); the thesis switch (no K_sigma) leaves it (spin softening only touches
+    # in-plane motion).  Bounds 5-15 % / +-1 %: the order of magnitude is the check here, the
+    # exact Southwell law is checked in test_rotor.py.
+    f = {}
+    for phys in ("full", "thesis"):
+        ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", physics=phys, mesh={"n_span": 8, "part": "rotor"}))
+        _, _, am = ts.model(0.0)
+        w0 = np.sqrt(sla.eigh(am.structural_stiffness(0.0), am.Mr, eigvals_only=True)[0])
+        w1 = np.sqrt(sla.eigh(am.structural_stiffness(12.1 * RPM), am.Mr, eigvals_only=True)[0])
+        f[phys] = w1 / w0
+    assert 1.05 < f["full"] < 1.15
+    assert abs(f["thesis"] - 1.0) < 0.01
+
+
+def test_reduced_rotor_flutter_above_rated(nrel5mw):
+    # Reduced NREL 5 MW rotor (hub clamped, 8 beam elements/strips per blade), 10 m/s, potential
+    # flow.  Seed: flutter near 19 RPM (shell model, no K_sigma), published 19.1 RPM; divergence
+    # slightly above flutter.  Checks: onset above rated 12.1 RPM and within 15-30 RPM, divergence
+    # above flutter -- not the exact value (model differs; see docs/stability.md).
+    ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", rpm_min=14, rpm_max=30, rpm_step=4,
+                                                  mesh={"n_span": 8, "part": "rotor"}))
+    p = ts.analyse_operating_point(10.0)
+    assert p.flutter_rpm is not None and 15.0 < p.flutter_rpm < 30.0
+    assert p.divergence_rpm is None or p.divergence_rpm > p.flutter_rpm
+    # at the onset the tracked mode has zero damping (root-finding to 0.01 RPM)
+    assert p.flutter_frequency_hz > 0.5
+
+
+def test_stability_cli_json():
+    out = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--part", "rotor",
+                          "--n-span", "6", "--rpm", "16", "28", "4", "--json"], capture_output=True, text=True,
+                         check=True)
+    d = json.loads(out.stdout)
+    (pt,) = d["points"]
+    assert set(pt) >= {"wind_speed", "flutter_rpm", "flutter_frequency_hz", "flutter_mode", "divergence_rpm"}
+    bad = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--wind-speeds", "-3"],
+                         capture_output=True, text=True)
+    assert bad.returncode == 2 and "wind-speeds" in bad.stderr
+
+
+@pytest.mark.slow
+def test_full_turbine_beam_map(nrel5mw):
+    # whole turbine (tower, nacelle, hub), 20 elements per blade, 4-25 m/s: onsets above rated
+    ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", rpm_min=10, rpm_max=40, rpm_step=2,
+                                                  mesh={"n_span": 20}))
+    for v in (4.0, 10.0, 25.0):
+        p = ts.analyse_operating_point(v)
+        assert p.flutter_rpm is None or p.flutter_rpm > 12.1
