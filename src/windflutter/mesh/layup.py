@@ -13,6 +13,7 @@ from __future__ import annotations
 from typing import Sequence
 
 import numpy as np
+from scipy.integrate import trapezoid  # numpy < 2 (pyNastran env) has no np.trapezoid
 
 from windflutter.structure.fem import Material, Ply, ShellProperty
 
@@ -105,7 +106,7 @@ def layer_tables(
         u = np.linspace(0.0, 1.0, SPAN_SAMPLES)
         ss = np.where(frac > 0, a, sc)[:, None] + np.where(frac > 0, b - a, 0.0)[:, None] * u[None, :]
         tt = np.asarray(lay.thickness_at(ss), dtype=float)
-        t = np.trapezoid(tt, u, axis=1) * frac
+        t = trapezoid(tt, u, axis=1) * frac
         if arc_lo is not None:
             a0, a1 = lay.arcs_at(sc)
             t = t * arc_overlap_fraction(arc_lo, arc_hi, a0, a1)

@@ -27,6 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
+from scipy.integrate import trapezoid  # numpy < 2 (pyNastran env) has no np.trapezoid
 
 from windflutter.aero.sections import Polar
 from windflutter.structure.fem import IsotropicMaterial, Material, OrthotropicMaterial
@@ -236,7 +237,7 @@ class BeamProperties:
     @property
     def total_mass(self) -> float:
         """Integrated mass (kg), trapezoidal rule over the arc length."""
-        return float(np.trapezoid(self.mass_per_length, self.s * self.length))
+        return float(trapezoid(self.mass_per_length, self.s * self.length))
 
 
 # ----------------------------------------------------------------------------------------- blade
