@@ -507,15 +507,7 @@ def _layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup
     layers = []
     for i, lay in enumerate(r.seq(st, sp, "layers")):
         q = f"{sp}.layers[{i}]"
-        name = r.string(lay, q, "name")
-        mat = r.string(lay, q, "material")
-        if mat not in materials:
-            raise InputError(join(q, "material"), mat, f"a defined material ({sorted(materials)})", r.source)
-        tg, tv = r.grid_values(lay, q, "thickness", nonneg=True)
-        fo = r.grid_values(lay, q, "fiber_orientation", default=None)
-        web = lay.get("web")
-        if web is not None and web not in web_names:
-            raise InputError(join(q, "web"), web, f"a defined web ({sorted(web_names)})", r.source)
+        name, mat, tg, tv, fo, web = _layer_fields(lay, q, r, materials, web_names)
         if web is None:
             g1, a1 = resolve(r.get(lay, q, "start_nd_arc"), join(q, "start_nd_arc"))
             g2, a2 = resolve(r.get(lay, q, "end_nd_arc"), join(q, "end_nd_arc"))
@@ -560,15 +552,7 @@ def _layup_v1(st: dict, r: Reader, sp: str, materials: dict, geom) -> Layup:
     resolved: dict = {}
     for i, lay in enumerate(r.seq(st, sp, "layers")):
         q = f"{sp}.layers[{i}]"
-        name = r.string(lay, q, "name")
-        mat = r.string(lay, q, "material")
-        if mat not in materials:
-            raise InputError(join(q, "material"), mat, f"a defined material ({sorted(materials)})", r.source)
-        tg, tv = r.grid_values(lay, q, "thickness", nonneg=True)
-        fo = r.grid_values(lay, q, "fiber_orientation", default=None)
-        web = lay.get("web")
-        if web is not None and web not in web_names:
-            raise InputError(join(q, "web"), web, f"a defined web ({sorted(web_names)})", r.source)
+        name, mat, tg, tv, fo, web = _layer_fields(lay, q, r, materials, web_names)
         if web is not None:
             g1 = g2 = np.array([0.0, 1.0])
             a1, a2 = np.zeros(2), np.ones(2)
@@ -752,6 +736,21 @@ def _hub(h: dict, r: Reader, k: _Keys, data: dict) -> Hub:
         precone=r.number(h, p, "cone_angle") * k.angle, cg_offset=0.0,
     )
 
+
+
+def _layer_fields(lay: dict, q: str, r: Reader, materials: dict, web_names: set):
+    """Fields every layup layer has (v1 and v2): name, material (checked), thickness grid and
+    values, fibre orientation (or None) and web name (checked, or None)."""
+    name = r.string(lay, q, "name")
+    mat = r.string(lay, q, "material")
+    if mat not in materials:
+        raise InputError(join(q, "material"), mat, f"a defined material ({sorted(materials)})", r.source)
+    tg, tv = r.grid_values(lay, q, "thickness", nonneg=True)
+    fo = r.grid_values(lay, q, "fiber_orientation", default=None)
+    web = lay.get("web")
+    if web is not None and web not in web_names:
+        raise InputError(join(q, "web"), web, f"a defined web ({sorted(web_names)})", r.source)
+    return name, mat, tg, tv, fo, web
 
 def _inertia6(v: np.ndarray) -> np.ndarray:
     """windIO 6-vector (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) -> symmetric 3x3."""
