@@ -737,7 +737,6 @@ def _hub(h: dict, r: Reader, k: _Keys, data: dict) -> Hub:
     )
 
 
-
 def _layer_fields(lay: dict, q: str, r: Reader, materials: dict, web_names: set):
     """Fields every layup layer has (v1 and v2): name, material (checked), thickness grid and
     values, fibre orientation (or None) and web name (checked, or None)."""
@@ -751,6 +750,7 @@ def _layer_fields(lay: dict, q: str, r: Reader, materials: dict, web_names: set)
     if web is not None and web not in web_names:
         raise InputError(join(q, "web"), web, f"a defined web ({sorted(web_names)})", r.source)
     return name, mat, tg, tv, fo, web
+
 
 def _inertia6(v: np.ndarray) -> np.ndarray:
     """windIO 6-vector (Ixx, Iyy, Izz, Ixy, Ixz, Iyz) -> symmetric 3x3."""
