@@ -21,7 +21,10 @@ the aero-work diagnostic).  NetCDF has no complex type: complex mode shapes are 
 
 from __future__ import annotations
 
+import contextlib
 import os
+import signal
+import threading
 import tempfile
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -147,8 +150,34 @@ def _strings_fixed(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
+@contextlib.contextmanager
+def _interrupts_deferred():
+    """Hold SIGINT/SIGTERM until the block is done (main thread, POSIX; no-op elsewhere).
+
+    A KeyboardInterrupt raised inside xarray/netCDF4/HDF5 while they hold their (non-reentrant)
+    file lock leaves that lock taken, and the next write -- the one that saves the finished
+    points after Ctrl-C -- then waits on it forever.  With the signals blocked the write
+    completes and the interrupt is delivered right after it.
+    """
+    sigs = {signal.SIGINT, signal.SIGTERM}
+    if not hasattr(signal, "pthread_sigmask") or threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    old = signal.pthread_sigmask(signal.SIG_BLOCK, sigs)
+    try:
+        yield
+    finally:
+        signal.pthread_sigmask(signal.SIG_SETMASK, old)
+
+
 def atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
-    """Write ``ds`` to ``path`` atomically (temporary file in the same folder + ``os.replace``)."""
+    """Write ``ds`` to ``path`` atomically (temporary file in the same folder + ``os.replace``);
+    an interrupt arriving meanwhile is delivered once the file is complete."""
+    with _interrupts_deferred():
+        return _atomic_write_netcdf(ds, path)
+
+
+def _atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".nc.tmp", dir=path.parent)
