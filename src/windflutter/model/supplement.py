@@ -82,13 +82,7 @@ def apply_supplement(turbine: Turbine, raw: dict, supp: dict | None, base_dir: P
         h = r.mapping(supp, p, "hub", default={})
         if h:
             q = f"{p}.hub"
-            inertia = np.array(hub.inertia, dtype=float)
-            if "inertia" in h:
-                inertia = _inertia6(r, h, q)
-            if "inertia_shaft" in h:
-                if not np.all(np.isfinite(inertia)):
-                    inertia = np.zeros((3, 3))
-                inertia[0, 0] = r.number(h, q, "inertia_shaft", nonneg=True)
+            inertia = _overridden_inertia(r, h, q, hub.inertia, "inertia_shaft", 0)
             hub = dataclasses.replace(
                 hub,
                 mass=r.number(h, q, "mass", default=hub.mass, positive=True),
@@ -101,13 +95,7 @@ def apply_supplement(turbine: Turbine, raw: dict, supp: dict | None, base_dir: P
         n = r.mapping(supp, p, "nacelle", default={})
         if n:
             q = f"{p}.nacelle"
-            inertia = np.array(nac.inertia, dtype=float)
-            if "inertia" in n:
-                inertia = _inertia6(r, n, q)
-            if "yaw_inertia" in n:
-                if not np.all(np.isfinite(inertia)):
-                    inertia = np.zeros((3, 3))
-                inertia[2, 2] = r.number(n, q, "yaw_inertia", nonneg=True)
+            inertia = _overridden_inertia(r, n, q, nac.inertia, "yaw_inertia", 2)
             cg = nac.cg
             if "cg" in n:
                 cg = r.array(n["cg"], f"{q}.cg", min_len=3)[:3]
@@ -192,6 +180,19 @@ def _tower_override(turbine: Turbine, tw: dict, r: Reader, q: str) -> Turbine:
                   layers=(TowerLayer(name="wall", material=name, thickness=t[0] + (t[-1] - t[0]) * s),),
                   outfitting_factor=1.0)
     return dataclasses.replace(turbine, tower=tower, materials={**turbine.materials, name: mat})
+
+
+def _overridden_inertia(r, d: dict, q: str, base, axis_key: str, axis: int) -> np.ndarray:
+    """Inertia tensor after a supplement block ``d``: a full ``inertia`` 6-vector replaces
+    ``base``, then ``axis_key`` (e.g. ``yaw_inertia``) sets the one diagonal term ``axis``."""
+    inertia = np.array(base, dtype=float)
+    if "inertia" in d:
+        inertia = _inertia6(r, d, q)
+    if axis_key in d:
+        if not np.all(np.isfinite(inertia)):
+            inertia = np.zeros((3, 3))
+        inertia[axis, axis] = r.number(d, q, axis_key, nonneg=True)
+    return inertia
 
 
 def _inertia6(r: Reader, d: dict, q: str) -> np.ndarray:
