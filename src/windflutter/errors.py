@@ -41,6 +41,31 @@ class InputError(WindflutterError, ValueError):
         super().__init__(f"{where}{field} = {shown}: expected {expected}")
 
 
+def check_choice(field: str, value: Any, choices, source: str | None = None) -> Any:
+    """Return ``value`` if it is one of ``choices``, else raise :class:`InputError` naming the
+    field, the value and the allowed choices.
+
+    Parameters
+    ----------
+    field
+        Dotted path of the field, e.g. ``"mesh.model"``.
+    value
+        The value received.
+    choices
+        The allowed values (any iterable; shown in its order).
+    source
+        Optional file name the field came from.
+    """
+    allowed = tuple(choices)
+    try:
+        ok = value in allowed
+    except TypeError:  # e.g. an unhashable or incomparable value
+        ok = False
+    if not ok:
+        raise InputError(field, value, "one of " + ", ".join(repr(c) for c in allowed), source)
+    return value
+
+
 class ModelError(WindflutterError):
     """A model that cannot be analysed, e.g. unconstrained rigid-body motion."""
 

@@ -40,11 +40,17 @@ def tube_blade(length=40.0, chord=2.0, thick=1.0, t=0.01, webs=False, beam=None)
     )
 
 
-def tube_beam_props(length, chord, thick, t, E=70e9, nu=0.3, rho=2700.0) -> BeamProperties:
+def tube_beam_props(length, chord, thick, t, E=70e9, nu=0.3, rho=2700.0, midline=False) -> BeamProperties:
     """Thin-walled elliptical tube (numerical contour integration; Bredt-Batho torsion constant
-    ``J = 4 A_enc^2 t / perimeter``), section y = flap, z = edge."""
+    ``J = 4 A_enc^2 t / perimeter``), section y = flap, z = edge.  The wall lies on the ellipse
+    of the blade's outer surface (as the shell mesh), or with ``midline`` on the ellipse whose
+    semi-axes are shorter by ``t/2`` (the wall midline of a wall whose outside is the airfoil; an
+    ellipse to O(t^2))."""
     x, y = ellipse(thick, 2001)
     X, Y = (x - 0.5) * chord, y * chord  # X edgewise (to TE), Y flapwise
+    if midline:
+        ax, ay = 0.5 * chord, 0.5 * thick * chord
+        X, Y = X * (ax - 0.5 * t) / ax, Y * (ay - 0.5 * t) / ay
     dl = np.hypot(np.diff(np.append(X, X[0])), np.diff(np.append(Y, Y[0])))
     Xm = 0.5 * (X + np.roll(X, -1))
     Ym = 0.5 * (Y + np.roll(Y, -1))

@@ -139,20 +139,26 @@ def test_settings_and_missing_data_are_rejected():
 
 def test_thin_walled_properties_vs_analytic_tube():
     """Thin-walled 6x6 from the layup of an isotropic elliptical tube vs contour integrals of
-    the exact ellipse (EA, EI flap/edge, GJ Bredt, mass and inertias): 1 % with 48 points
-    around; couplings vanish for the doubly symmetric section."""
+    the exact midline ellipse (EA, EI flap/edge, GJ Bredt, mass and inertias): 1 % with 240
+    points around (measured within 0.2 %); couplings vanish for the doubly symmetric section.
+    Against the outer-surface ellipse the midline section is 3.2 % lower in flap EI (semi-axis
+    0.4 m, wall 0.01 m: (0.395/0.4)^2 = 0.975 and a shorter perimeter) -- the difference the
+    test must be able to see."""
     from windflutter.mesh.section_props import thin_walled_properties
 
     L, c, th, t = 40.0, 2.0, 0.4, 0.01
-    bp = thin_walled_properties(synthetic_turbine(tube_blade(L, c, th, t)), n_chord=48, n_span=6)
-    ref = tube_beam_props(L, c, th, t)
+    bp = thin_walled_properties(synthetic_turbine(tube_blade(L, c, th, t)), n_span=6)
+    ref = tube_beam_props(L, c, th, t, midline=True)
     for i in range(len(bp.s)):
         for k in (0, 3, 4, 5):
             assert bp.stiffness[i, k, k] == pytest.approx(ref.stiffness[0, k, k], rel=0.01)
         for k in (0, 3, 4, 5):
             assert bp.mass[i, k, k] == pytest.approx(ref.mass[0, k, k], rel=0.01)
-        off = bp.stiffness[i] - np.diag(np.diag(bp.stiffness[i]))
-        assert np.abs(off).max() < 1e-4 * bp.stiffness[i].max()
+        # doubly symmetric: tension centre on the axis (resampling the 181-point contour leaves
+        # ~0.5 mm = 2e-4 chord; 1e-3 chord allowed) and no flap-edge product of stiffness
+        K = bp.stiffness[i]
+        assert abs(K[0, 4]) < 1e-3 * c * K[0, 0] and abs(K[0, 5]) < 1e-3 * c * K[0, 0]
+        assert abs(K[4, 5]) < 1e-4 * np.sqrt(K[4, 4] * K[5, 5])
 
 
 def test_seed5mw_model_size_matches_seed():

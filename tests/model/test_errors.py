@@ -182,3 +182,18 @@ def test_indefinite_nacelle_inertia_is_rejected(turbine):
     t_bad = dataclasses.replace(t, nacelle=dataclasses.replace(t.nacelle, inertia=bad))
     with pytest.raises(InputError, match="nacelle.inertia"):
         _check_rigid_body_inertias(t_bad, "x.yaml")
+
+
+def test_check_choice_names_field_value_and_choices():
+    from windflutter.errors import check_choice
+    from windflutter.mesh.settings import MeshSettings
+
+    assert check_choice("a.b", "beam", ("shell", "beam")) == "beam"
+    with pytest.raises(InputError) as exc:
+        check_choice("mesh.model", "plate", ("shell", "beam"), source="cfg.yaml")
+    msg = str(exc.value)
+    assert exc.value.field == "mesh.model" and "'plate'" in msg and "'shell', 'beam'" in msg and "cfg.yaml" in msg
+    with pytest.raises(InputError):
+        check_choice("x", ["unhashable"], {"a", "b"})
+    with pytest.raises(InputError, match="mesh.part.*'nacelle'.*'turbine', 'blade'"):
+        MeshSettings(part="nacelle")

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-from windflutter.errors import InputError
+from windflutter.errors import InputError, check_choice
 
 PARTS = ("turbine", "blade", "tower", "rotor")
 MODELS = ("shell", "beam")
@@ -49,12 +49,9 @@ class MeshSettings:
     span_clustering: float = 0.0
 
     def __post_init__(self) -> None:
-        if self.model not in MODELS:
-            raise InputError("mesh.model", self.model, f"one of {MODELS}")
-        if self.part not in PARTS:
-            raise InputError("mesh.part", self.part, f"one of {PARTS}")
-        if self.tower_model not in MODELS:
-            raise InputError("mesh.tower_model", self.tower_model, f"one of {MODELS}")
+        check_choice("mesh.model", self.model, MODELS)
+        check_choice("mesh.part", self.part, PARTS)
+        check_choice("mesh.tower_model", self.tower_model, MODELS)
         for name, lo in (("n_chord", 8), ("n_span", 2), ("n_web", 1), ("n_tower_circ", 8), ("n_tower_axial", 2)):
             v = getattr(self, name)
             if not isinstance(v, int) or v < lo:

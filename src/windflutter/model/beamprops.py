@@ -135,17 +135,7 @@ def read_elastodyn_blade(path: str | Path, length: float, apply_mass_adjustment:
     ``apply_mass_adjustment`` (Jonkman 2009's 17,740 kg includes AdjBlMs = 1.04536).
     """
     p = Path(path)
-    lines = p.read_text().splitlines()
-    adj = {"AdjBlMs": 1.0, "AdjFlSt": 1.0, "AdjEdSt": 1.0}
-    n_st = None
-    for ln in lines:
-        tok = ln.split()
-        if len(tok) >= 2 and tok[1] in adj:
-            adj[tok[1]] = float(tok[0])
-        if len(tok) >= 2 and tok[1] == "NBlInpSt":
-            n_st = int(tok[0])
-    i0 = next(i for i, ln in enumerate(lines) if "BlFract" in ln) + 2
-    tab = np.array([_numbers(ln)[:6] for ln in lines[i0:i0 + n_st]])
+    adj, tab = _elastodyn_table(p, ("AdjBlMs", "AdjFlSt", "AdjEdSt"), "NBlInpSt", "BlFract", 6)
     frac, _, twist, mden, flp, edg = tab.T
     if not apply_mass_adjustment:
         adj = {k: 1.0 for k in adj}
@@ -154,15 +144,40 @@ def read_elastodyn_blade(path: str | Path, length: float, apply_mass_adjustment:
     big = 1e3 * max(EIflap.max(), EIedge.max())
     EA_ = EA if EA is not None else np.full_like(m, big)
     GJ_ = GJ if GJ is not None else np.full_like(m, big)
-    n = m.size
-    Ks = np.zeros((n, 6, 6))
-    Ms = np.zeros((n, 6, 6))
-    for j in range(n):
-        # section y is the flapwise *direction*: bending about y is edgewise, about z flapwise
-        Ks[j] = np.diag([EA_[j], big, big, GJ_[j], EIedge[j], EIflap[j]])
-        Ms[j] = np.diag([m[j], m[j], m[j], 0.0, 0.0, 0.0])
+    # section y is the flapwise *direction*: bending about y is edgewise, about z flapwise
+    Ks = _diagonal_sections([EA_, big, big, GJ_, EIedge, EIflap])
+    Ms = _diagonal_sections([m, m, m, 0.0, 0.0, 0.0])
     src = f"ElastoDyn {p.name} (AdjBlMs={adj['AdjBlMs']})" + ("" if EA is not None else "; EA/GJ rigid placeholders")
     return BeamProperties(s=frac, stiffness=Ks, mass=Ms, twist=np.radians(twist), length=float(length), source=src)
+
+
+def _elastodyn_table(p: Path, adj_keys: tuple[str, ...], count_key: str, header: str,
+                     n_col: int) -> tuple[dict[str, float], np.ndarray]:
+    """Adjustment factors (``adj_keys``, default 1) and the distributed-property table of an
+    ElastoDyn blade/tower file: ``count_key`` rows of ``n_col`` numbers, starting two lines
+    below the column-header line containing ``header`` (names line, units line)."""
+    lines = p.read_text().splitlines()
+    adj = dict.fromkeys(adj_keys, 1.0)
+    n_st = None
+    for ln in lines:
+        tok = ln.split()
+        if len(tok) >= 2 and tok[1] in adj:
+            adj[tok[1]] = float(tok[0])
+        if len(tok) >= 2 and tok[1] == count_key:
+            n_st = int(tok[0])
+    i0 = next((i for i, ln in enumerate(lines) if header in ln), None)
+    if n_st is None or i0 is None:
+        raise InputError("ElastoDyn file", str(p), f"an ElastoDyn input file with {count_key} and a {header} table")
+    rows = [_numbers(ln) for ln in lines[i0 + 2:i0 + 2 + n_st]]
+    if len(rows) != n_st or any(r is None or len(r) < n_col for r in rows):
+        raise InputError(f"ElastoDyn file {header} table", str(p), f"{n_st} rows of {n_col} numbers")
+    return adj, np.array([r[:n_col] for r in rows])
+
+
+def _diagonal_sections(diag: list) -> np.ndarray:
+    """(n, 6, 6) diagonal matrices from six entries, each a scalar or an (n,) array."""
+    d = np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in diag])
+    return np.einsum("jn,jk->njk", np.array(d), np.eye(6))
 
 
 # ------------------------------------------------------------------------------------- functions
@@ -237,26 +252,13 @@ def read_elastodyn_tower(path: str | Path, height: float) -> BeamProperties:
     :func:`tower_beam_sections`: y = fore-aft direction (global x), so bending about z is fore-aft.
     """
     p = Path(path)
-    lines = p.read_text().splitlines()
-    adj = {"AdjTwMa": 1.0, "AdjFASt": 1.0, "AdjSSSt": 1.0}
-    n_st = None
-    for ln in lines:
-        tok = ln.split()
-        if len(tok) >= 2 and tok[1] in adj:
-            adj[tok[1]] = float(tok[0])
-        if len(tok) >= 2 and tok[1] == "NTwInpSt":
-            n_st = int(tok[0])
-    i0 = next(i for i, ln in enumerate(lines) if "HtFract" in ln) + 2
-    tab = np.array([_numbers(ln)[:4] for ln in lines[i0:i0 + n_st]])
+    adj, tab = _elastodyn_table(p, ("AdjTwMa", "AdjFASt", "AdjSSSt"), "NTwInpSt", "HtFract", 4)
     frac, mden, fa, ss = tab.T
     m = mden * adj["AdjTwMa"]
     EIfa, EIss = fa * adj["AdjFASt"], ss * adj["AdjSSSt"]
     big = 1e3 * EIfa.max()
     n = m.size
-    K = np.zeros((n, 6, 6))
-    M = np.zeros((n, 6, 6))
-    for j in range(n):
-        K[j] = np.diag([big, big, big, big, EIss[j], EIfa[j]])
-        M[j] = np.diag([m[j], m[j], m[j], 0.0, 0.0, 0.0])
+    K = _diagonal_sections([big, big, big, big, EIss, EIfa])
+    M = _diagonal_sections([m, m, m, 0.0, 0.0, 0.0])
     return BeamProperties(s=frac, stiffness=K, mass=M, twist=np.zeros(n), length=float(height),
                           source=f"ElastoDyn {p.name}; EA/GJ/shear rigid placeholders")
