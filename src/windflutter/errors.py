@@ -41,6 +41,11 @@ class InputError(WindflutterError, ValueError):
         super().__init__(f"{where}{field} = {shown}: expected {expected}")
 
 
+class InputWarning(UserWarning):
+    """Input data that windflutter corrected or interpreted; the message names the field, what
+    was found and what was done."""
+
+
 def check_choice(field: str, value: Any, choices, source: str | None = None) -> Any:
     """Return ``value`` if it is one of ``choices``, else raise :class:`InputError` naming the
     field, the value and the allowed choices.

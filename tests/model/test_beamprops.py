@@ -162,3 +162,29 @@ def test_permutation_is_a_rotation():
     np.testing.assert_allclose(Ks, Ks.transpose(0, 2, 1))
     np.testing.assert_allclose(np.trace(Ks, axis1=1, axis2=2), np.trace(K, axis1=1, axis2=2))
     assert np.all(np.linalg.eigvalsh(Ks) > 0)
+
+
+def test_precomp_inertia_defect_repaired_and_indefinite_mass_rejected():
+    """WISDEM issue #377 signature (i_flap = 0, i_cp = -i_edge): repaired with the
+    perpendicular-axis theorem i_flap = i_plr - i_edge and i_cp = 0, with a warning; any other
+    matrix is left alone, and an indefinite one is refused by name."""
+    from windflutter.errors import InputError, InputWarning
+    from windflutter.model.beamprops import beamdyn_mass_matrix, check_section_mass, repair_precomp_inertia
+
+    m = np.array([800.0, 400.0])
+    ie, ifl = np.array([2000.0, 500.0]), np.array([600.0, 100.0])
+    good = beamdyn_mass_matrix(m, np.zeros(2), np.zeros(2), ie, ifl, ie + ifl, np.array([30.0, 5.0]))
+    assert repair_precomp_inertia(good, "f") is good
+    bad = beamdyn_mass_matrix(m, np.zeros(2), np.zeros(2), ie, np.zeros(2), ie + ifl, -ie)
+    with pytest.raises(InputError, match="inertia_matrix at span 0.0000"):
+        check_section_mass(bad, np.array([0.0, 1.0]), "x.inertia_matrix")
+    with pytest.warns(InputWarning, match="i_flap = i_plr - i_edge"):
+        fixed = repair_precomp_inertia(bad, "x.inertia_matrix")
+    np.testing.assert_allclose(fixed[:, 4, 4], ifl)
+    np.testing.assert_allclose(fixed[:, 3, 4], 0.0)
+    check_section_mass(fixed, np.array([0.0, 1.0]), "x")
+    # another indefinite matrix (i_cp^2 > i_edge i_flap) is not "repaired" but refused
+    worse = beamdyn_mass_matrix(m, np.zeros(2), np.zeros(2), ie, ifl, ie + ifl, np.array([5000.0, 5.0]))
+    assert repair_precomp_inertia(worse, "f") is worse
+    with pytest.raises(InputError, match="positive semi-definite"):
+        check_section_mass(worse, np.array([0.0, 1.0]), "x")

@@ -42,6 +42,21 @@ def test_simply_supported_isotropic_plate():
     np.testing.assert_allclose(md.freq[:4], ref, rtol=0.012)
 
 
+def test_incompressible_isotropic_ply_plane_stress():
+    """nu = 0.5 (e.g. the IEA 10 MW balsa) is accepted and gives the plane-stress plate:
+    Kirchhoff D = E h^3 / (12 (1 - nu^2)) with nu = 0.5; 1.2 % as the nu = 0.3 plate.  nu > 0.5 is
+    refused (no isotropic solid has it)."""
+    from windflutter.errors import InputError
+
+    a, b, h, nu = 1.0, 0.8, 0.01, 0.5
+    md = modes(assemble(ss_plate(20, a, b, h, prop=iso(E_AL, nu, RHO_AL, h))), n=2)
+    D = E_AL * h**3 / (12 * (1 - nu**2))
+    ref = sorted(kirchhoff_ss(m, n, a, b, D, RHO_AL * h) for m in range(1, 4) for n in range(1, 4))[:2]
+    np.testing.assert_allclose(md.freq[:2], ref, rtol=0.012)
+    with pytest.raises(InputError, match="nu <= 0.5"):
+        assemble(ss_plate(4, a, b, h, prop=iso(E_AL, 0.55, RHO_AL, h)))
+
+
 def test_mesh_convergence_rate():
     """Observed convergence order of the fundamental frequency of the SS square plate."""
     h = 0.01

@@ -72,6 +72,54 @@ def beamdyn_mass_matrix(
     return M
 
 
+def repair_precomp_inertia(M: np.ndarray, field: str, source: str | None = None) -> np.ndarray:
+    """Undo a known WISDEM windIO-writer defect in BeamDyn-order (n, 6, 6) section mass matrices.
+
+    WISDEM (PreComp) files written before the fix of WISDEM issue #377 (2022) carry the edgewise
+    mass moment of inertia twice, in ``i_edge`` and, negated, in ``i_cp`` (so ``M45 = M44``), and
+    ``i_flap = 0`` (``M55 = 0``): a rank-deficient, indefinite 2x2 rotary block
+    ``[[i_edge, i_edge], [i_edge, 0]]``.  The IEA 10 MW file shipped with WISDEM has it (windIO
+    issue #54: BeamDyn rejects it because ``i_plr != i_edge + i_flap``).  Its ``i_plr`` is right, so
+    with the perpendicular-axis theorem (exact for the section's mass moments about the same
+    point) ``i_flap = i_plr - i_edge``; PreComp does not compute the product of inertia, so
+    ``i_cp = 0`` (as WISDEM writes it since the fix).
+
+    Only this exact signature is changed (every station with ``i_edge > 0`` has ``M55 = 0`` and
+    ``M45 = M44``), with an :class:`~windflutter.errors.InputWarning` naming the field; any other
+    matrix is returned unchanged.
+    """
+    import warnings
+
+    from windflutter.errors import InputWarning
+
+    ie, ifl, mcp, ip = M[:, 3, 3], M[:, 4, 4], M[:, 3, 4], M[:, 5, 5]
+    on = ie > 0
+    if not on.any() or np.any(ifl[on] != 0.0) or not np.allclose(mcp[on], ie[on], rtol=1e-9, atol=0.0):
+        return M
+    out = M.copy()
+    out[:, 4, 4] = np.maximum(ip - ie, 0.0)
+    out[:, 3, 4] = out[:, 4, 3] = 0.0
+    where = f"{source}: " if source else ""
+    warnings.warn(f"{where}{field}: i_flap is 0 and i_cp = -i_edge at all {int(on.sum())} stations (WISDEM "
+                  "writer defect, WISDEM issue #377); using i_flap = i_plr - i_edge and i_cp = 0",
+                  InputWarning, stacklevel=3)
+    return out
+
+
+def check_section_mass(M: np.ndarray, s: np.ndarray, field: str, source: str | None = None) -> None:
+    """Raise :class:`InputError` if any (6, 6) section mass matrix (any order) is not symmetric
+    positive semi-definite (tolerance 1e-9 of its largest entry), naming the station."""
+    for k in range(M.shape[0]):
+        A = M[k]
+        scale = max(np.abs(A).max(), 1e-300)
+        lam = np.linalg.eigvalsh(0.5 * (A + A.T)).min()
+        if np.abs(A - A.T).max() > 1e-9 * scale or lam < -1e-9 * scale:
+            raise InputError(f"{field} at span {float(s[k]):.4f}", f"smallest eigenvalue {lam:.4g}",
+                             "a positive semi-definite section mass matrix: mass > 0, i_edge, i_flap >= 0, "
+                             "i_cp^2 <= i_edge i_flap, i_plr = i_edge + i_flap (fix the file's inertia_matrix)",
+                             source)
+
+
 # ---------------------------------------------------------------------------------- file readers
 def _numbers(line: str) -> list[float] | None:
     try:

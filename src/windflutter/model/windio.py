@@ -516,9 +516,11 @@ def _layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup
             a1, a2 = np.zeros(2), np.ones(2)
         s = np.unique(np.concatenate([tg, g1, g2] + ([fo[0]] if fo is not None else [])))
         orient = np.interp(s, fo[0], fo[1]) * DEG if fo is not None else np.zeros_like(s)
+        t_s, a0_s, a1_s = _collapse_inverted(q, name, s, np.interp(s, tg, tv), np.interp(s, g1, a1),
+                                             np.interp(s, g2, a2), r.source)
         layers.append(Layer(
-            name=name, material=mat, s=s, thickness=np.interp(s, tg, tv), orientation=orient,
-            start_arc=np.interp(s, g1, a1), end_arc=np.interp(s, g2, a2), web=web,
+            name=name, material=mat, s=s, thickness=t_s, orientation=orient,
+            start_arc=a0_s, end_arc=a1_s, web=web,
             s_start=r.number(lay, q, "start_nd_grid", default=float(tg[0])),
             s_end=r.number(lay, q, "end_nd_grid", default=float(tg[-1])),
         ))
@@ -573,12 +575,47 @@ def _layup_v1(st: dict, r: Reader, sp: str, materials: dict, geom) -> Layup:
             resolved[name] = (sg, np.interp(sg, g1, a1), np.interp(sg, g2, a2))
         s = np.unique(np.concatenate([tg, g1, g2] + ([fo[0]] if fo is not None else [])))
         orient = np.interp(s, fo[0], fo[1]) if fo is not None else np.zeros_like(s)  # v1: rad
+        t_s, a0_s, a1_s = _collapse_inverted(q, name, s, np.interp(s, tg, tv), np.interp(s, g1, a1),
+                                             np.interp(s, g2, a2), r.source)
         layers.append(Layer(
-            name=name, material=mat, s=s, thickness=np.interp(s, tg, tv), orientation=orient,
-            start_arc=np.interp(s, g1, a1), end_arc=np.interp(s, g2, a2), web=web,
+            name=name, material=mat, s=s, thickness=t_s, orientation=orient,
+            start_arc=a0_s, end_arc=a1_s, web=web,
             s_start=float(tg[0]), s_end=float(tg[-1]),
         ))
     return Layup(webs=tuple(webs), layers=tuple(layers))
+
+
+INVERTED_MAX = 0.5  # end_arc < start_arc by less than this (wrapped width > 0.5): inverted, not wrapping
+
+
+def _collapse_inverted(q: str, name: str, s: np.ndarray, t: np.ndarray, a0: np.ndarray, a1: np.ndarray,
+                       source: str | None) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Outer-shell layer arcs with ``end_arc < start_arc`` by less than :data:`INVERTED_MAX`.
+
+    ``end < start`` means a layer wrapping through the trailing edge; a panel whose two
+    bounding division points have crossed (e.g. WISDEM's IEA 10 MW ``DP15_DP13_*`` and
+    ``DP04_DP02_*`` beyond 80 % span, where the leading-edge band reaches past the spar-cap edge:
+    end - start down to -0.11) would then wrap around almost the whole contour (90-99 % of it
+    instead of nothing).  Such stations get zero width (both arcs at their midpoint; linear
+    interpolation to a neighbouring valid station then never inverts), with an
+    :class:`~windflutter.errors.InputWarning` naming the layer and the span range.  WISDEM's own
+    6x6 of the IEA 10 MW has no such mass there (mass per length at 90 % span: ours 2.0x the
+    file's before, 1.0x after)."""
+    import warnings
+
+    from windflutter.errors import InputWarning
+
+    inv = (a1 < a0) & (a0 - a1 < INVERTED_MAX) & (t > 0)
+    if not inv.any():
+        return t, a0, a1
+    worst = float(np.max((a0 - a1)[inv]))
+    mid = 0.5 * (a0 + a1)
+    a0, a1 = np.where(inv, mid, a0), np.where(inv, mid, a1)
+    where = f"{source}: " if source else ""
+    warnings.warn(f"{where}{q} ({name}): end_nd_arc < start_nd_arc (by up to {worst:.3f}) at span "
+                  f"{float(s[inv].min()):.3f}-{float(s[inv].max()):.3f} (crossed division points, not a "
+                  "trailing-edge wrap); the layer is given zero width there", InputWarning, stacklevel=2)
+    return t, a0, a1
 
 
 def _width_placeholder(a: dict, handle: str) -> bool:
@@ -607,7 +644,9 @@ _UPPER = [(i, j) for i in range(6) for j in range(i, 6)]
 def _blade_beam(b: dict, r: Reader, k: _Keys, length: float, s_blade: np.ndarray, twist_blade: np.ndarray):
     """6x6 blade properties from the file (v2 ``structure.elastic_properties``, v1
     ``elastic_properties_mb.six_x_six``), converted to the BeamSection convention."""
-    from windflutter.model.beamprops import beamdyn_to_section, beamdyn_mass_matrix
+    from windflutter.model.beamprops import (
+        beamdyn_mass_matrix, beamdyn_to_section, check_section_mass, repair_precomp_inertia,
+    )
 
     if k.major >= 2:
         st = b.get(k.blade_struct) or {}
@@ -645,6 +684,8 @@ def _blade_beam(b: dict, r: Reader, k: _Keys, length: float, s_blade: np.ndarray
             raise InputError(join(ip, "mass"), float(mass.min()), "positive mass per length (kg/m)", r.source)
         M = beamdyn_mass_matrix(mass, col("cm_x", 0.0), col("cm_y", 0.0), col("i_edge"), col("i_flap"),
                                 col("i_plr", np.nan), col("i_cp", 0.0))
+        M = repair_precomp_inertia(M, ip, r.source)
+        check_section_mass(M, gi, ip, r.source)
         if gi.size != gk.size or np.max(np.abs(gi - gk)) > 1e-9:
             M = np.stack([np.stack([np.interp(gk, gi, M[:, a, c]) for c in range(6)], -1) for a in range(6)], 1)
         g = gk
@@ -660,7 +701,8 @@ def _blade_beam(b: dict, r: Reader, k: _Keys, length: float, s_blade: np.ndarray
             raise InputError(p, f"{kv.shape[1]}/{iv.shape[1]} entries per station",
                              "21 upper-triangle entries per station", r.source)
         K = _from_upper(kv)
-        M = _from_upper(iv)
+        M = repair_precomp_inertia(_from_upper(iv), join(p, "inertia_matrix"), r.source)
+        check_section_mass(M, ig, join(p, "inertia_matrix"), r.source)
         if ig.size != kg.size or np.max(np.abs(ig - kg)) > 1e-9:
             M = np.stack([np.stack([np.interp(kg, ig, M[:, a, c]) for c in range(6)], -1) for a in range(6)], 1)
         g = kg

@@ -29,8 +29,11 @@ def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
         if not (np.isfinite(ply.thickness) and ply.thickness > 0):
             raise InputError(f"shell_properties[{index}].plies[{j}].thickness", ply.thickness, "a positive thickness (m)")
         if isinstance(m, IsotropicMaterial):
-            if not (m.E > 0 and -1 < m.nu < 0.5 and m.rho >= 0):
-                raise InputError(f"shell_properties[{index}].plies[{j}].material", m, "E > 0, -1 < nu < 0.5, rho >= 0")
+            # nu = 0.5 (incompressible limit) is admissible: the shell is plane stress, whose
+            # stiffness E/(1 - nu^2) and G = E/(2 (1 + nu)) stay regular (only the 3D bulk modulus
+            # E/(3 (1 - 2 nu)) would not).  WISDEM's IEA 10 MW balsa has nu = 0.5.
+            if not (m.E > 0 and -1 < m.nu <= 0.5 and m.rho >= 0):
+                raise InputError(f"shell_properties[{index}].plies[{j}].material", m, "E > 0, -1 < nu <= 0.5, rho >= 0")
             props.append((m.E, m.nu))
         elif isinstance(m, OrthotropicMaterial):
             if not (m.E1 > 0 and m.E2 > 0 and m.G12 > 0 and m.G13 > 0 and m.G23 > 0 and m.rho >= 0
