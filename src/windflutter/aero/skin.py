@@ -52,7 +52,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.aero.sections import AeroSections
+from windflutter.aero.strip import StripAero, section_matrices, theodorsen_c
 from windflutter.errors import InputError
+from windflutter.solve.aeroelastic import AeroelasticModel
 
 GAUSS_2 = 1.0 / np.sqrt(3.0)
 _XI = np.array([-1.0, 1.0, 1.0, -1.0])  # corner coordinates of the 4 nodes (cyclic order)
@@ -322,5 +324,93 @@ def skin_quad_sections(fe, sections: AeroSections, options: SkinOptions | None =
     return skin_distribution(fe, sections, options, **kwargs).sections
 
 
+
+
+# --------------------------------------------------------------------------- fast projection
+
+
+@dataclass
+class SkinStripAero(StripAero):
+    """:class:`~windflutter.aero.strip.StripAero` for sub-strip sections whose ``parent`` strip is
+    known: same matrices, but :meth:`projected` uses that all Gauss points of a strip share its
+    Theodorsen blocks per unit span ``A_j``:
+    ``sum_g R_g^T (w_g A_j) R_g = sum_j sum_ab A_j,ab H_j,ab`` with the frequency-independent
+    ``H_j,ab = sum_{g in j} w_g R_g,a^T R_g,b`` (m x m) precomputed once, so a call costs
+    ``9 ns m^2`` instead of ``n_gauss`` 3 x 3 x m products (exact, not an approximation).
+    """
+
+    parent: np.ndarray | None = None
+
+    def __post_init__(self):
+        super().__post_init__()
+        par = np.asarray(self.parent, dtype=np.int64)
+        if par.shape != (self.sections.n_sections,):
+            raise InputError("parent", par.shape, f"one parent strip per sub-strip ({self.sections.n_sections},)")
+        self._par = par
+        self._n_par = int(par.max()) + 1
+        first = np.full(self._n_par, -1, dtype=np.int64)
+        first[par[::-1]] = np.arange(par.size)[::-1]
+        if np.any(first < 0):
+            raise InputError("parent", "gaps", "parent strip indices 0..n-1 each with sub-strips")
+        self._rep = first
+
+    def parent_blocks(self, omega: float):
+        """(n_strips, 3, 3) Ma, Da, Ka per unit span of the parent strips at ``omega`` (rad/s)."""
+        r = self._rep
+        b, U = self.b[r], self.flow.U[r]
+        C = theodorsen_c(abs(omega) * b / U)
+        return section_matrices(b, self.a[r], U, C, self.op.air_density, self.cla[r], self.cda[r], self.am[r])
+
+    def projected(self, Phi: np.ndarray):
+        PPhi = self.P @ Phi
+        PPhi = PPhi.toarray() if sp.issparse(PPhi) else np.asarray(PPhi)
+        R = PPhi.reshape(self.sections.n_sections, 3, -1) * np.sqrt(self.width)[:, None, None]
+        m = R.shape[2]
+        H = np.zeros((self._n_par, 3, 3, m, m))
+        order = np.argsort(self._par, kind="stable")
+        bounds = np.searchsorted(self._par[order], np.arange(self._n_par + 1))
+        for j in range(self._n_par):
+            Rj = R[order[bounds[j]:bounds[j + 1]]]  # (g, 3, m)
+            H[j] = np.einsum("gai,gbk->abik", Rj, Rj, optimize=True)
+        Hf = H.reshape(self._n_par * 9, m * m)
+
+        def f(omega: float):
+            out = []
+            for blk in self.parent_blocks(omega):
+                v = blk.reshape(1, -1)
+                out.append((v.real @ Hf + 1j * (v.imag @ Hf)).reshape(m, m))
+            return tuple(out)
+
+        return f
+
+
+@dataclass
+class SkinAeroelasticModel(AeroelasticModel):
+    """:class:`~windflutter.solve.aeroelastic.AeroelasticModel` whose ``sections`` are skin
+    sub-strips (:func:`skin_distribution`) with their ``parent`` strips; identical results to
+    the plain model with the same sections, faster projected aerodynamics (:class:`SkinStripAero`).
+    """
+
+    parent: np.ndarray | None = None
+
+    def strip(self, wind_speed: float, omega_rot: float) -> StripAero:
+        if self.parent is None:
+            return super().strip(wind_speed, omega_rot)
+        return SkinStripAero(self.sections, self.operating_point(wind_speed, omega_rot), self.aero, parent=self.parent)
+
+
+def skin_aeroelastic_model(fe, sections: AeroSections, skin: SkinOptions | None = None, **model_kwargs
+                           ) -> SkinAeroelasticModel:
+    """The aeroelastic model with the seed's skin-quad distribution.
+
+    ``model_kwargs`` are those of :class:`~windflutter.solve.aeroelastic.AeroelasticModel`
+    (``structure``, ``rotor``, ``rotor_geometry``, ``aero``, ``air_density``, ``n_modes``,
+    ``omega_ref``, ``pitch``); ``sections`` are the model's strips (spline map not used).
+    """
+    d = skin_distribution(fe, sections, skin)
+    return SkinAeroelasticModel(sections=d.sections, parent=d.parent, **model_kwargs)
+
+
 __all__ = ["SkinOptions", "SkinDistribution", "skin_distribution", "skin_quad_sections", "skin_elements",
-           "assign_to_strips", "shape_functions", "gauss_points_2x2"]
+           "assign_to_strips", "shape_functions", "gauss_points_2x2", "SkinStripAero", "SkinAeroelasticModel",
+           "skin_aeroelastic_model"]
