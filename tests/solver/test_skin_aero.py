@@ -98,7 +98,7 @@ def test_shape_functions_partition_of_unity():
     assert np.allclose(shape_functions(np.array([-1.0, 1, 1, -1]), np.array([-1.0, -1, 1, 1]))[0], np.eye(4))
 
 
-@pytest.mark.parametrize("rotation", ["nodal", "gradient"])
+@pytest.mark.parametrize("rotation", ["nodal", "gradient", "strip"])
 def test_rigid_motion_gives_section_motion_at_every_gauss_point(wing, rotation):
     # a rigid motion u = u0 + theta x (x - x0) must give every Gauss point exactly the strip's
     # rigid motion of its elastic-axis point, which is what the spline map's least-squares fit
@@ -111,7 +111,7 @@ def test_rigid_motion_gives_section_motion_at_every_gauss_point(wing, rotation):
     assert np.abs(q_skin - q_spline[d.parent]).max() < 1e-10 * np.abs(q_spline).max()
 
 
-@pytest.mark.parametrize("rotation", ["nodal", "gradient"])
+@pytest.mark.parametrize("rotation", ["nodal", "gradient", "strip"])
 def test_rigid_section_generalized_forces_identical(wing, rotation):
     # generalized aerodynamic forces of every strip on the rigid motions (6 x 6 complex Ma, Da,
     # Ka per strip) and of the whole assembled model: identical to round-off

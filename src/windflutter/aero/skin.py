@@ -26,7 +26,8 @@ Kinematics at a Gauss point x_g of a quad with nodes n = 1..4, shape functions N
   rotation that best explains the surface gradient of the interpolated translations,
   least squares of ``theta x t_xi = du/dxi``, ``theta x t_eta = du/deta`` (out-of-plane
   components = the skin's slopes, in-plane = half the surface curl); only translations used,
-  like the spline map;
+  like the spline map; ``rotation="strip"`` -- the strip's rigid-fit rotation (spline map) at
+  all its Gauss points (a hybrid: no local skin slopes in alpha);
 * ``kinematics="section"`` (default): the point's motion is carried rigidly to the strip's
   elastic-axis point, ``u_ea = u(x_g) + theta(x_g) x (o_j - x_g)``; then
   ``h = e1 . u_ea, alpha = e2 . theta, s = e3 . u_ea``.  A rigid motion of the section gives
@@ -69,8 +70,10 @@ class SkinOptions:
     ----------
     kinematics : ``"section"`` (Gauss-point motion carried rigidly to the strip's elastic axis;
         rigid-consistent) or ``"seed"`` (h, s at the skin point itself, the thesis literally).
-    rotation : ``"nodal"`` (interpolated shell rotation DOFs, the thesis) or ``"gradient"``
-        (from the surface gradient of the interpolated translations).
+    rotation : ``"nodal"`` (interpolated shell rotation DOFs, the thesis), ``"gradient"``
+        (from the surface gradient of the interpolated translations) or ``"strip"`` (the strip's
+        rigid-fit rotation from the model's ``motion_map``, the same at all its Gauss points: local
+        skin slopes then do not enter alpha, only the skin translations enter h and s).
     weighting : ``"area"`` (skin area) or ``"projected"`` (area projected on the chord plane).
     """
 
@@ -79,7 +82,7 @@ class SkinOptions:
     weighting: str = "area"
 
     def __post_init__(self):
-        for name, choices in (("kinematics", ("section", "seed")), ("rotation", ("nodal", "gradient")),
+        for name, choices in (("kinematics", ("section", "seed")), ("rotation", ("nodal", "gradient", "strip")),
                               ("weighting", ("area", "projected"))):
             if getattr(self, name) not in choices:
                 raise InputError(f"skin.{name}", getattr(self, name), f"one of {choices}")
@@ -209,6 +212,8 @@ def _gauss_rows(x: np.ndarray, N: np.ndarray, dxi: np.ndarray, deta: np.ndarray,
     W = np.zeros((ng, 6, 4, 6))
     I3 = np.eye(3)
     W[:, :3, :, :3] = N[:, None, :, None] * I3[None, :, None, :]  # u = sum N_n u_n
+    if options.rotation == "strip":  # added from the strip's rigid fit by _strip_rotation_rows
+        return W
     if options.rotation == "nodal":
         W[:, 3:, :, 3:] = N[:, None, :, None] * I3[None, :, None, :]
     else:
@@ -227,6 +232,28 @@ def _gauss_rows(x: np.ndarray, N: np.ndarray, dxi: np.ndarray, deta: np.ndarray,
         # u_ea = u + theta x (o - x_g) = u - skew(o - x_g) theta
         W[:, :3] -= np.einsum("gij,gjnc->ginc", _skew(o - xg), W[:, 3:])
     return W
+
+
+def _strip_rotation_rows(sections: AeroSections, par: np.ndarray, xg: np.ndarray, o: np.ndarray,
+                         transfer: bool) -> sp.csr_matrix:
+    """Rows ``theta_g = theta_strip`` (the parent strip's rigid-fit rotation from its
+    ``motion_map``) and, with ``transfer``, ``u_g += theta_strip x (o - x_g)``."""
+    ng = par.size
+    ns = sections.n_sections
+    r, c, v = [], [], []
+    for k in range(3):  # theta rows
+        r.append(6 * np.arange(ng) + 3 + k)
+        c.append(6 * par + 3 + k)
+        v.append(np.ones(ng))
+    if transfer:
+        S = -_skew(o - xg)  # u += -skew(d) theta
+        for i in range(3):
+            for k in range(3):
+                r.append(6 * np.arange(ng) + i)
+                c.append(6 * par + 3 + k)
+                v.append(S[:, i, k])
+    sel = sp.csr_matrix((np.concatenate(v), (np.concatenate(r), np.concatenate(c))), shape=(6 * ng, 6 * ns))
+    return (sel @ sp.csr_matrix(sections.motion_map)).tocsr()
 
 
 def skin_distribution(fe, sections: AeroSections, options: SkinOptions | None = None,
@@ -300,6 +327,8 @@ def skin_distribution(fe, sections: AeroSections, options: SkinOptions | None = 
     cols = np.broadcast_to((6 * np.repeat(conn, 4, axis=0))[:, None, :, None] + np.arange(6)[None, None, None, :], W.shape)
     keep = W != 0.0
     mm = sp.csr_matrix((W[keep], (rows[keep], cols[keep])), shape=(6 * ng, fe.n_dof))
+    if options.rotation == "strip":
+        mm = mm + _strip_rotation_rows(sections, par, xg, o[par], options.kinematics == "section")
 
     def pick(a):
         return np.asarray(a)[par]
