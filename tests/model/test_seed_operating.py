@@ -76,10 +76,16 @@ def test_seed5mw_thesis_tables(turbine):
     assert np.interp(14.350, r, b.chord) == pytest.approx(4.652)
     assert np.degrees(np.interp(30.750, r, b.twist)) == pytest.approx(6.544)
     lay = {x.name: x for x in b.layup.layers}
-    # table A.2: UD spar cap 96.33 mm at 14 m, TE UD 21 mm at 11 m, root build-up 100 mm at 2 m
-    assert lay["ud_spar_cap_ss"].thickness_at(14.0 / 61.5) == pytest.approx(0.09633)
-    assert lay["ud_te_ps"].thickness_at(11.0 / 61.5) == pytest.approx(0.021)
-    assert lay["triax_2_root"].thickness_at(2.0 / 61.5) == pytest.approx(0.100)
+    # table A.2 ("Radius" from the rotor axis, blade root at 2.0 m): UD spar cap 96.33 mm at
+    # Radius 14 m, TE UD 21 mm at 11 m, root build-up 100 mm from 2 to 2.3 m, 26 mm at 2.8 m; the
+    # skins TRIAX-1/3 (Radius 2 -> 63.5 m) cover exactly the 61.5 m blade
+    r0 = 2.0
+    assert lay["ud_spar_cap_ss"].thickness_at((14.0 - r0) / 61.5) == pytest.approx(0.09633)
+    assert lay["ud_te_ps"].thickness_at((11.0 - r0) / 61.5) == pytest.approx(0.021)
+    assert lay["triax_2_root"].thickness_at(0.0) == pytest.approx(0.100)
+    assert lay["triax_2_root"].thickness_at((2.3 - r0) / 61.5) == pytest.approx(0.100)
+    assert lay["triax_2_root"].thickness_at((2.8 - r0) / 61.5) == pytest.approx(0.026)
+    assert lay["triax_1_outer"].s_start == 0.0 and lay["triax_1_outer"].s_end == pytest.approx(1.0)
     assert lay["ud_spar_cap_ss"].thickness_at(0.99) == 0.0
     assert t.materials["UDOB"].E1 == pytest.approx(38887e6)
     assert t.hub.mass == 56780.0 and t.nacelle.mass == 240000.0

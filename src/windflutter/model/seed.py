@@ -88,32 +88,36 @@ AFNAMES5 = {1: "Cylinder1", 2: "Cylinder2", 3: "DU40_A17", 4: "DU35_A17", 5: "DU
 MAT5 = {"UDOB": (38887e6, 9000e6, 3600e6, 0.249, 1869.0), "UD45R": (24800e6, 11500e6, 4861e6, 0.416, 1826.0),
         "R4545": (11700e6, 11700e6, 9770e6, 0.501, 1782.0), "SKINFOAM": (256e6, 256e6, 22e6, 0.3, 200.0),
         "WEBPS": (25e6, 25e6, 12e6, 0.3, 45.0)}
-# Table A.2: (radius from blade root in m, total thickness in mm) per layer group
-# the table starts at r = 2 m; the skins and the root build-up are held constant from 2 m to the
-# root (r = 0) so that the whole blade surface has a laminate
-TRIAX1 = [(0.0, 2.82), (2.0, 2.82), (63.5, 2.82)]
-TRIAX2 = [(0.0, 100.0), (2.0, 100.0), (2.3, 100.0), (2.8, 26.0), (3.6, 26.0), (11.0, 0.94)]
+# Table A.2: ("Radius" in m as printed, total thickness in mm) per layer group.  "Radius" is measured
+# from the rotor axis with the blade root at ROOT_RADIUS5 = 2.0 m: the skins TRIAX-1/TRIAX-3 run from
+# 2.0 to 63.5 m, i.e. exactly the 61.5 m blade (read from the blade root instead, they would start
+# 2 m outboard of the root and end 2 m beyond the tip, and the 100 mm root build-up would cover the
+# first 2.3 m instead of 0.3 m: +8 t of blade mass).
+ROOT_RADIUS5 = 2.0
+TRIAX1 = [(2.0, 2.82), (63.5, 2.82)]
+TRIAX2 = [(2.0, 100.0), (2.3, 100.0), (2.8, 26.0), (3.6, 26.0), (11.0, 0.94)]
 UD_CAP = [(3.5, 0.47), (9.0, 49.26), (14.0, 96.33), (19.0, 94.05), (24.0, 87.37), (29.0, 80.94), (34.0, 71.77),
           (39.0, 58.37), (44.0, 46.45), (49.0, 25.81), (54.0, 9.99), (60.0, 0.47)]
 UD_TE = [(3.5, 0.47), (7.5, 15.0), (11.0, 21.0), (14.0, 13.6), (47.0, 0.47)]
 SKINFOAM = [(3.5, 1.0), (7.5, 40.0), (43.0, 40.0), (57.0, 6.0), (60.0, 6.0)]
-TRIAX3 = [(0.0, 2.82), (2.0, 2.82), (63.5, 2.82)]
+TRIAX3 = [(2.0, 2.82), (63.5, 2.82)]
 WEB_FACE_MM = 2 * 0.94  # "2 * R4545" per face; R4545 ply thickness not given: 0.94 mm assumed (as the triax)
 WEB_CORE_MM = 50.0  # "50 mm WEBPS"
-WEB_SPAN5 = (3.5, 60.0)  # webs where the UD spar cap exists (choice)
+WEB_SPAN5 = (3.5, 60.0)  # table A.2 radius: webs where the UD spar cap exists (choice)
 
 NOTES_5 = [
     "Castillo Capponi (2010) ch. 4 and appendix A: NREL 5 MW (Jonkman et al. 2009, NREL/TP-500-38060) with the "
     "UpWind WMC5MW laminate lay-out (thesis ref. [53]).",
     "Aero (table 4.4/4.5): chord, twist, airfoil per station; positions from the blade root (61.5 m blade). Pitch "
     "axis is not in the thesis: NREL ElastoDyn PitchAxis (from the WISDEM windIO NREL-5MW section_offset_y).",
-    "Layup (tables A.1/A.2): 'Radius' read as distance from the blade root, clipped to the 61.5 m blade; layer "
-    "thickness linear between the listed radii, zero outside; the skins and root build-up listed from r = 2 m are "
-    "held constant to the root. Chordwise extents (spar caps, TE UD, sandwich "
+    "Layup (tables A.1/A.2): 'Radius' read from the rotor axis with the blade root at r = 2.0 m (the skins TRIAX-1/3 "
+    "run from 2.0 to 63.5 m = the 61.5 m blade), i.e. blade-root distance = Radius - 2.0 m; layer thickness linear "
+    "between the listed radii, zero outside. Chordwise extents (spar caps, TE UD, sandwich "
     "panels, webs) are not in the thesis text: taken from the anchors of the WISDEM windIO NREL-5MW file.",
     "Stack per region (outer -> inner): TRIAX-1 (3 x UD45R, 2.82 mm), TRIAX-2 root build-up (UD45R), spar cap UD "
     "(UDOB) / TE UD (UDOB) / SKINFOAM panels (LE and TE), TRIAX-3 (3 x UD45R, 2.82 mm). Webs: 2 x R4545 + 50 mm "
-    "WEBPS + 2 x R4545; R4545 ply thickness 0.94 mm assumed; webs from r = 3.5 m to 60 m (where the spar cap is).",
+    "WEBPS + 2 x R4545; R4545 ply thickness 0.94 mm assumed; webs from Radius 3.5 m to 60 m (where the spar cap "
+    "is), i.e. 1.5 to 58 m from the blade root.",
     "Orthotropic materials: G13 = G23 = G12 and E3 = E22 assumed (only E11, E22, G12, nu12, rho in table A.1).",
     "Tower (fig. 4.1, table 4.2): 87.6 m, D 6.0 -> 3.87 m, wall 0.0351 -> 0.0247 m linear; E 210 GPa, G 80.8 GPa, "
     "effective density 8500 kg/m^3.",
@@ -341,7 +345,7 @@ def seed5mw_dict() -> dict:
         return {"anchor": {"name": nm, "handle": h}}
 
     def layer(name, mat, table, anchor, web=None):
-        g, v, s0, s1 = _piecewise(table, L)
+        g, v, s0, s1 = _piecewise([(r - ROOT_RADIUS5, t) for r, t in table], L)
         lay = {"name": name, "material": mat, "thickness": _gv(g, v), "fiber_orientation": _gv([0, 1], [0, 0]),
                "start_nd_grid": s0, "end_nd_grid": s1,
                "start_nd_arc": ref(anchor, "start_nd_arc"), "end_nd_arc": ref(anchor, "end_nd_arc")}
@@ -349,7 +353,7 @@ def seed5mw_dict() -> dict:
             lay["web"] = web
         return lay
 
-    ws0, ws1 = WEB_SPAN5[0] / L, WEB_SPAN5[1] / L
+    ws0, ws1 = (WEB_SPAN5[0] - ROOT_RADIUS5) / L, (WEB_SPAN5[1] - ROOT_RADIUS5) / L
     webs = [{"name": w, "start_nd_arc": ref(w, "start_nd_arc"), "end_nd_arc": ref(w, "end_nd_arc"),
              "start_nd_grid": ws0, "end_nd_grid": ws1,
              "anchors": [{"name": f"{w}_shell_attachment", "start_nd_arc": _gv([0, 1], [0, 0]),
