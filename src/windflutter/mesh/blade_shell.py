@@ -19,7 +19,6 @@ from windflutter.mesh.layup import group_laminates, layer_tables
 from windflutter.mesh.settings import MeshSettings
 from windflutter.structure.fem import ShellProperty
 
-MATDIR_NUDGE = 1e-5  # rad, see blade_shell_mesh
 MIN_KEY_GAP = 0.004  # minimum arc gap between two key arcs anywhere on the span (-)
 
 
@@ -233,13 +232,8 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     # every quad is (station i, station i+1, station i+1, station i) -> span edge p1 + p2 - p0 - p3
     matdir = p[:, 1] + p[:, 2] - p[:, 0] - p[:, 3]
     matdir /= np.linalg.norm(matdir, axis=1, keepdims=True)
-    # turn by MATDIR_NUDGE rad in the element plane: pyfe3d 0.11 Quad4.update_rotation_matrix
-    # fails (complex sqrt of a round-off negative) when the material axis is exactly its element
-    # x axis, as on straight rectangular quads; 1e-5 rad is physically irrelevant.
-    cross = p[:, 3] + p[:, 2] - p[:, 0] - p[:, 1]
-    cross -= np.sum(cross * matdir, axis=1, keepdims=True) * matdir
-    matdir += MATDIR_NUDGE * cross / np.maximum(np.linalg.norm(cross, axis=1, keepdims=True), 1e-300)
-    matdir /= np.linalg.norm(matdir, axis=1, keepdims=True)
+    # (no nudge needed: structure/shell.py computes the material angle itself, exact when the
+    # material axis is the element x axis)
     return BladeShellMesh(
         nodes=all_nodes,
         conn=conn,

@@ -75,10 +75,8 @@ def tower_shell_mesh(tower, materials: dict, n_circ: int, n_axial: int, offset: 
     te = 0.5 * (t[:-1] + t[1:])
     props = [ShellProperty(plies=(Ply(mat, float(ti), 0.0),), name=f"tower_{k}") for k, ti in enumerate(te)]
     prop = np.repeat(np.arange(n_axial), n_circ)
-    # material axis: the tower axis tilted by 1e-5 rad towards the circumference (isotropic wall,
-    # no physical effect); exactly parallel to the element x axis pyfe3d 0.11 fails.
-    thc = np.repeat(0.5 * (th + np.roll(th, -1) + np.where(np.arange(n_circ) == n_circ - 1, -2 * np.pi, 0.0))[None, :], n_axial, 0).ravel()
-    matdir = np.column_stack([-1e-5 * np.sin(thc), 1e-5 * np.cos(thc), np.ones_like(thc)])
+    # material axis: the tower axis (structure/shell.py handles an axis equal to the element x axis)
+    matdir = np.tile([0.0, 0.0, 1.0], (n_axial * n_circ, 1))
     ring = offset + np.arange(len(s) * n_circ).reshape(len(s), n_circ)
     return TowerMesh(nodes.reshape(-1, 3), ring, conn, prop, props, matdir, s)
 

@@ -73,13 +73,16 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
     probe = Quad4Probe()
     q = Quad4(probe)
     c6 = 6 * conn
+    cs = material_rotation(np.asarray(fe.nodes, dtype=float)[conn], matdir)
     for e in range(ne):
         q.c1, q.c2, q.c3, q.c4 = int(c6[e, 0]), int(c6[e, 1]), int(c6[e, 2]), int(c6[e, 3])
         q.init_k_KC0 = e * nk
         q.init_k_M = e * nm
-        q.m11, q.m12, q.m21, q.m22 = 1.0, 0.0, 0.0, 1.0
-        md = matdir[e]
-        q.update_rotation_matrix(x, md[0], md[1], md[2])
+        # element axes only (no material vector: pyfe3d then leaves m11..m22 alone), then the
+        # material rotation computed robustly here (see material_rotation)
+        q.update_rotation_matrix(x)
+        c, sn = cs[e]
+        q.m11, q.m12, q.m21, q.m22 = c, -sn, sn, c
         q.update_probe_xe(x)
         prop = props[pid[e]]
         q.update_KC0(Kr, Kc, Kv, prop)
@@ -88,6 +91,39 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
         keep = (np.arange(ne * nm) % nm) < 120
         Mr, Mc, Mv = Mr[keep], Mc[keep], Mv[keep]
     return (Kr, Kc, Kv), (Mr, Mc, Mv)
+
+
+def material_rotation(X: np.ndarray, matdir: np.ndarray) -> np.ndarray:
+    """(cos phi, sin phi) per element: angle ``phi`` from pyfe3d's Quad4 element x axis to the
+    material direction projected on the element, positive about the element normal.
+
+    pyfe3d 0.11 ``Quad4.update_rotation_matrix(x, xmat...)`` computes ``cos = xmat . x_e`` from
+    two unit vectors and ``sin = sqrt(1 - cos**2)``; when the material axis is (numerically) the
+    element x axis, round-off gives ``cos = 1 + 2.2e-16`` and ``sin = NaN`` (16 % of randomly
+    oriented rectangles with the exact x axis as material direction), which poisons K and M.
+    Here ``phi = atan2(xmat . y_e, xmat . x_e)`` (no square root; exact at 0), and pyfe3d's
+    sign convention ``m11 = m22 = cos``, ``m12 = -sin``, ``m21 = sin`` is applied by the caller.
+    The element frame is pyfe3d's: ``z`` along ``(x2 - x4) x (x3 - x1)``, ``x`` along
+    ``(x3 - x1) + (x2 - x4)``, ``y = z x x``.  A material direction normal to the element gives
+    ``phi = 0`` (pyfe3d's behaviour: element axes).
+
+    Parameters
+    ----------
+    X : (ne, 4, 3) node coordinates of each quad (m).
+    matdir : (ne, 3) material direction vectors (any length).
+    """
+    v13 = X[:, 2] - X[:, 0]
+    v42 = X[:, 1] - X[:, 3]
+    z = np.cross(v42, v13)
+    z /= np.linalg.norm(z, axis=1, keepdims=True)
+    ex = v13 + v42
+    ex /= np.linalg.norm(ex, axis=1, keepdims=True)
+    ey = np.cross(z, ex)
+    md = np.asarray(matdir, dtype=float)
+    a, b = np.sum(md * ex, axis=1), np.sum(md * ey, axis=1)
+    normal = np.hypot(a, b) <= 1e-10 * np.maximum(np.linalg.norm(md, axis=1), 1e-300)
+    phi = np.where(normal, 0.0, np.arctan2(b, a))
+    return np.column_stack([np.cos(phi), np.sin(phi)])
 
 
 def _check_quads(fe: FEModel) -> None:
