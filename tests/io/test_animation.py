@@ -92,3 +92,20 @@ def test_bad_inputs(tmp_path):
         write_mode_animation(fe, z, tmp_path)
     with pytest.raises(InputError, match="fraction"):
         write_mode_animation(fe, np.ones(fe.n_dof), tmp_path, fraction=-1)
+
+
+def test_pvd_timesteps_are_plain_numbers_with_numpy_frequency(tmp_path):
+    """Frequencies come out of the eigen-solvers as np.float64; the .pvd must still carry plain
+    numbers (``timestep="0.125"``, which ParaView parses) and not ``np.float64(0.125)``; every frame
+    it lists reads back with meshio."""
+    fe = mixed_model()
+    mode = np.random.default_rng(5).standard_normal(fe.n_dof)
+    pvd = write_mode_animation(fe, mode, tmp_path / "a.pvd", n_frames=8, frequency_hz=np.float64(1.0))
+    raw = [d.get("timestep") for d in ET.parse(pvd).getroot().iter("DataSet")]
+    assert raw == [repr(k / 8) for k in range(8)]
+    assert "np." not in pvd.read_text()
+    times, frames = _frames(pvd)
+    assert times == [k / 8 for k in range(8)]
+    assert all(f.points.shape == (fe.n_nodes, 3) for f in frames)
+    with pytest.raises(InputError):
+        write_mode_animation(fe, mode, tmp_path / "b.pvd", frequency_hz="fast")

@@ -102,8 +102,13 @@ def write_mode_animation(
         raise InputError("mode", "non-finite values", "a finite mode shape")
     if int(n_frames) != n_frames or n_frames < 4:
         raise InputError("n_frames", n_frames, "an integer >= 4 (>= 16 for a smooth animation)")
-    if frequency_hz is not None and not (np.isfinite(frequency_hz) and frequency_hz > 0):
-        raise InputError("frequency_hz", frequency_hz, "a positive frequency (Hz) or None")
+    if frequency_hz is not None:
+        try:
+            f_ok = bool(np.isfinite(float(frequency_hz)) and float(frequency_hz) > 0)
+        except (TypeError, ValueError):
+            f_ok = False
+        if not f_ok:
+            raise InputError("frequency_hz", frequency_hz, "a positive frequency (Hz) or None")
     if not name or any(c in name for c in "/\\"):
         raise InputError("name", name, "a non-empty file base name without path separators")
     phi = phi.astype(complex)
@@ -128,7 +133,7 @@ def write_mode_animation(
     cells, cdata = model_cells(fe, rigid_links=rigid_links)
     nodes = np.asarray(fe.nodes, float)
     amp = s * peak_translation(fe, phi)
-    period = 1.0 / frequency_hz if frequency_hz is not None else 1.0
+    period = 1.0 / float(frequency_hz) if frequency_hz is not None else 1.0  # plain float: the .pvd gets "0.25", not "np.float64(0.25)"
     entries = []
     n_frames = int(n_frames)
     for k in range(n_frames):
@@ -138,7 +143,7 @@ def write_mode_animation(
                            point_data={"displacement": u[:, :3], "rotation": u[:, 3:], "amplitude": amp})
         fname = f"{stem}_{k:04d}.vtu"
         write_vtu(folder / fname, mesh, region_field_data(fe.region_names))
-        entries.append((k * period / n_frames, fname))
+        entries.append((float(k * period / n_frames), fname))
 
     lines = ['<?xml version="1.0"?>',
              '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
