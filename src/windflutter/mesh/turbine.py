@@ -52,6 +52,22 @@ class _Builder:
             self.region_names.append(name)
         return self.region_names.index(name)
 
+    def add_properties(self, kind: str, properties) -> int:
+        """Append shell properties (``kind="shell"``) or beam sections (``"beam"``); return the
+        index of the first one."""
+        props = self.shell_properties if kind == "shell" else self.beam_sections
+        start = len(props)
+        props.extend(properties)
+        return start
+
+    def add_elements(self, kind: str, conn, prop, orient, region) -> None:
+        """Append elements: connectivity, property index, material axis (shells) or section y
+        reference (beams), region id per element."""
+        lists = ((self.shell_conn, self.shell_prop, self.shell_matdir, self.shell_region) if kind == "shell"
+                 else (self.beam_conn, self.beam_section, self.beam_orient, self.beam_region))
+        for lst, v in zip(lists, (conn, prop, orient, region)):
+            lst.append(v)
+
 
 def rotor_geometry(turbine) -> RotorGeometry:
     """Rotor apex and shaft axis (global) of the turbine."""
@@ -94,14 +110,12 @@ def build_model(turbine, settings: MeshSettings | None = None) -> tuple[FEModel,
         bm = blade_shell_mesh(turbine.blade, turbine.airfoils, turbine.materials, st)
         eta = bm.eta
         local_nodes = bm.nodes
-        pstart = len(b.shell_properties)
-        b.shell_properties.extend(bm.properties)
+        pstart = b.add_properties("shell", bm.properties)
     else:
         bm = blade_beam_mesh(turbine.blade, st.n_span, st.span_clustering, blade_beam_properties(turbine))
         eta = bm.eta
         local_nodes = bm.nodes
-        pstart = len(b.beam_sections)
-        b.beam_sections.extend(bm.sections)
+        pstart = b.add_properties("beam", bm.sections)
     eta_mid = 0.5 * (eta[:-1] + eta[1:])
     blade = turbine.blade
     ref = np.column_stack([np.interp(eta, blade.s, blade.ref_axis[:, c]) for c in range(3)])
@@ -119,17 +133,12 @@ def build_model(turbine, settings: MeshSettings | None = None) -> tuple[FEModel,
         ids = b.add_nodes(origin[None, :] + local_nodes @ R.T)
         off = ids[0]
         if st.model == "shell":
-            b.shell_conn.append(bm.conn + off)
-            b.shell_prop.append(bm.prop + pstart)
-            b.shell_matdir.append(bm.matdir @ R.T)
             rid = np.array([b.region(f"blade{k}:{nm}") for nm in bm.region_names])
-            b.shell_region.append(rid[bm.region])
+            b.add_elements("shell", bm.conn + off, bm.prop + pstart, bm.matdir @ R.T, rid[bm.region])
             roots = bm.station_nodes[0] + off
         else:
-            b.beam_conn.append(bm.conn + off)
-            b.beam_section.append(np.arange(len(bm.sections)) + pstart)
-            b.beam_orient.append(bm.orient @ R.T)
-            b.beam_region.append(np.full(len(bm.conn), b.region(f"blade{k}")))
+            b.add_elements("beam", bm.conn + off, np.arange(len(bm.sections)) + pstart, bm.orient @ R.T,
+                           np.full(len(bm.conn), b.region(f"blade{k}")))
             roots = np.array([off])
         groups[f"blade{k}"] = ids
         root_nodes_all.append(roots)
@@ -167,22 +176,16 @@ def build_model(turbine, settings: MeshSettings | None = None) -> tuple[FEModel,
         use_beam = st.model == "beam" or st.tower_model == "beam"
         if use_beam:
             tm = tower_beam_mesh(turbine.tower, turbine.materials, st.n_tower_axial, offset=b.n)
-            b.add_nodes(tm.nodes)
-            b.beam_conn.append(tm.conn)
-            b.beam_section.append(tm.prop + len(b.beam_sections))
-            b.beam_sections.extend(tm.properties)
-            b.beam_orient.append(tm.matdir)
-            b.beam_region.append(np.full(len(tm.conn), b.region("tower")))
+        else:
+            tm = tower_shell_mesh(turbine.tower, turbine.materials, st.n_tower_circ, st.n_tower_axial, offset=b.n)
+        kind = "beam" if use_beam else "shell"
+        b.add_nodes(tm.nodes)
+        start = b.add_properties(kind, tm.properties)
+        b.add_elements(kind, tm.conn, tm.prop + start, tm.matdir, np.full(len(tm.conn), b.region("tower")))
+        if use_beam:
             top_node = int(tm.ring_nodes[-1, 0])
             top_ring = np.zeros(0, dtype=np.int64)
         else:
-            tm = tower_shell_mesh(turbine.tower, turbine.materials, st.n_tower_circ, st.n_tower_axial, offset=b.n)
-            b.add_nodes(tm.nodes)
-            b.shell_conn.append(tm.conn)
-            b.shell_prop.append(tm.prop + len(b.shell_properties))
-            b.shell_properties.extend(tm.properties)
-            b.shell_matdir.append(tm.matdir)
-            b.shell_region.append(np.full(len(tm.conn), b.region("tower")))
             top_ring = tm.ring_nodes[-1]
             top_node = int(b.add_nodes([[0.0, 0.0, turbine.tower.top_z]])[0])
         groups["tower"] = np.concatenate([tm.ring_nodes.ravel(), [top_node] if not use_beam else []]).astype(np.int64)

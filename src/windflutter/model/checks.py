@@ -137,21 +137,20 @@ class Reader:
             raise InputError(_join(path, key), v, "a string", self.source)
         return v
 
-    def mapping(self, d: Any, path: str, key: str, default: Any = _MISSING) -> dict:
+    def _typed(self, d: Any, path: str, key: str, default: Any, kind: type, what: str) -> Any:
+        """``d[key]`` if it is a ``kind`` (else InputError "``what``"); the default as given."""
         v = self.get(d, path, key, default)
         if v is default and default is not _MISSING:
             return v
-        if not isinstance(v, dict):
-            raise InputError(_join(path, key), v, "a mapping", self.source)
+        if not isinstance(v, kind):
+            raise InputError(_join(path, key), v, what, self.source)
         return v
 
+    def mapping(self, d: Any, path: str, key: str, default: Any = _MISSING) -> dict:
+        return self._typed(d, path, key, default, dict, "a mapping")
+
     def seq(self, d: Any, path: str, key: str, default: Any = _MISSING) -> list:
-        v = self.get(d, path, key, default)
-        if v is default and default is not _MISSING:
-            return v
-        if not isinstance(v, list):
-            raise InputError(_join(path, key), v, "a list", self.source)
-        return v
+        return self._typed(d, path, key, default, list, "a list")
 
 
 def _join(path: str, key: str | int) -> str:

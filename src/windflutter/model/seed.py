@@ -167,6 +167,23 @@ def _piecewise(table, L) -> tuple[list, list, float, float]:
     return list(r / L), list(v), float(r[0] / L), float(r[-1] / L)
 
 
+def _blade_component(tmpl: dict, s, r, chord, twist_deg, offset_y, names: list[str], structure: dict) -> dict:
+    """windIO-2 blade: straight reference axis ``r`` (m) at span fractions ``s``, one airfoil per
+    station (``names``; relative thickness from the template's A17 data, 1 for cylinders)."""
+    af = {a["name"]: a for a in tmpl["airfoils"]}
+    rthick = [1.0 if nm.startswith("Cyl") else float(af[AF_DATA[nm]]["rthick"]) for nm in names]
+    return {
+        "reference_axis": {"x": _gv([0, 1], [0, 0]), "y": _gv([0, 1], [0, 0]), "z": _gv(s, r)},
+        "outer_shape": {
+            "chord": _gv(s, chord), "twist": _gv(s, twist_deg), "section_offset_y": _gv(s, offset_y),
+            "rthick": _gv(s, rthick),
+            "airfoils": [{"name": nm, "spanwise_position": float(si), "configuration": ["default"], "weight": [1.0]}
+                         for nm, si in zip(names, s)],
+        },
+        "structure": structure,
+    }
+
+
 def _tower(height, d_bot, d_top, t_bot, t_top, n=11) -> dict:
     s = np.linspace(0.0, 1.0, n)
     return {
@@ -244,19 +261,9 @@ def seed20mw_dict() -> dict:
                        "fiber_orientation": _gv([0, 1], [0, 0]), "start_nd_grid": web_start, "end_nd_grid": 1.0,
                        "start_nd_arc": ref(f"{w}_shell_attachment", "start_nd_arc"),
                        "end_nd_arc": ref(f"{w}_shell_attachment", "end_nd_arc")})
-    rthick = [1.0 if nm.startswith("Cyl") else float({a["name"]: a for a in tmpl["airfoils"]}[AF_DATA[nm]]["rthick"])
-              for nm in AF20]
     # the stack needs increasing positions: one entry per station
-    d["components"]["blade"] = {
-        "reference_axis": {"x": _gv([0, 1], [0, 0]), "y": _gv([0, 1], [0, 0]), "z": _gv(s, R20)},
-        "outer_shape": {
-            "chord": _gv(s, chord), "twist": _gv(s, TWIST20), "section_offset_y": _gv(s, pa * chord),
-            "rthick": _gv(s, rthick),
-            "airfoils": [{"name": nm, "spanwise_position": float(si), "configuration": ["default"], "weight": [1.0]}
-                         for nm, si in zip(AF20, s)],
-        },
-        "structure": {"anchors": anchors, "webs": webs, "layers": layers},
-    }
+    d["components"]["blade"] = _blade_component(tmpl, s, R20, chord, TWIST20, pa * chord, AF20,
+                                                {"anchors": anchors, "webs": webs, "layers": layers})
     d["components"]["hub"] = {"diameter": hub_d, "cone_angle": 2.5, "cd": 0.5}
     tilt = np.radians(5.0)
     overhang_shaft, twr2shft = 10.0, hub_h - 157.1
@@ -375,18 +382,8 @@ def seed5mw_dict() -> dict:
         for nm, mat, t in ((f"{w}_r4545_a", "R4545", WEB_FACE_MM), (f"{w}_webps", "WEBPS", WEB_CORE_MM),
                            (f"{w}_r4545_b", "R4545", WEB_FACE_MM)):
             layers.append(layer(nm, mat, [(r, t) for r, _ in span], f"{w}_shell_attachment", web=w))
-    rthick = [1.0 if nm.startswith("Cyl") else float({a["name"]: a for a in tmpl["airfoils"]}[nm]["rthick"])
-              for nm in names]
-    d["components"]["blade"] = {
-        "reference_axis": {"x": _gv([0, 1], [0, 0]), "y": _gv([0, 1], [0, 0]), "z": _gv(s, R5)},
-        "outer_shape": {
-            "chord": _gv(s, chord), "twist": _gv(s, TWIST5), "section_offset_y": _gv(s, pa_t * chord),
-            "rthick": _gv(s, rthick),
-            "airfoils": [{"name": nm, "spanwise_position": float(si), "configuration": ["default"], "weight": [1.0]}
-                         for nm, si in zip(names, s)],
-        },
-        "structure": {"anchors": anchors, "webs": webs, "layers": layers},
-    }
+    d["components"]["blade"] = _blade_component(tmpl, s, R5, chord, TWIST5, pa_t * chord, names,
+                                                {"anchors": anchors, "webs": webs, "layers": layers})
     d["components"]["hub"] = {"diameter": 3.0, "cone_angle": 2.5, "cd": 0.5}
     tilt = np.radians(5.0)
     overhang_shaft, twr2shft = 5.01, 89.56 - 87.6
