@@ -77,6 +77,12 @@ class AeroelasticModel:
     n_modes : modes per reference speed in the projection basis, None = no projection.
     omega_ref : rotor speeds (rad/s) whose structural modes build the basis.
     pitch : blade pitch reported with the operating point (rad).
+    induction : steady BEM axial and tangential induction in the inflow
+        (:mod:`windflutter.aero.induction`): :meth:`at` solves it at each (V, Omega) (cached) and
+        the strips see ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)``; frozen in the linear
+        problem (quasi-steady, no dynamic inflow).  False (default): the thesis's
+        ``U = sqrt(V^2 + (Omega r)^2)``.
+    n_blades : blades of the rotor for the BEM (None: the blades present in ``sections``).
     """
 
     structure: StructuralMatrices
@@ -88,8 +94,15 @@ class AeroelasticModel:
     n_modes: int | None = 30
     omega_ref: tuple[float, ...] = (0.0,)
     pitch: float = 0.0
+    induction: bool = False
+    n_blades: int | None = None
 
     def __post_init__(self):
+        self._induction_cache: dict = {}
+        if not isinstance(self.induction, (bool, np.bool_)):
+            raise InputError("induction", self.induction, "true or false")
+        if self.induction and self.rotor_geometry is None:
+            raise InputError("induction", True, "a rotor (rotor_geometry) for the BEM induction")
         if self.aero.model == "viscous" and (self.aero.lift_slope is None or self.aero.drag_slope is None):
             # fit the polars once (not at every operating point)
             from dataclasses import replace
@@ -119,6 +132,22 @@ class AeroelasticModel:
         else:
             self.TPhi = None
 
+    def add_modal_damping(self, zeta: float) -> None:
+        """Add ``2 zeta omega_j`` damping to every non-rotating structural mode of the basis.
+
+        ``D += (M V) diag(2 zeta omega) (M V)^T`` with ``V`` the M-orthonormal eigenvectors of the
+        projected (K(Omega=0), M); the projected basis is required (a dense n x n matrix on the
+        full model would not fit in memory for shell models).
+        """
+        if self.Phi is None:
+            raise InputError("damping", "modal", "a projected model (n_modes set) for modal damping")
+        if not (np.isfinite(zeta) and 0 <= zeta < 1):
+            raise InputError("damping.ratio", zeta, "a damping ratio in [0, 1)")
+        K0, M = np.asarray(self.Kr0), np.asarray(self.Mr)
+        w2, V = sla.eigh(0.5 * (K0 + K0.T), 0.5 * (M + M.T))
+        MV = M @ V
+        self.Dr = self.Dr + MV @ np.diag(2.0 * zeta * np.sqrt(np.maximum(w2, 0.0))) @ MV.T
+
     @property
     def size(self) -> int:
         return self.Mr.shape[0]
@@ -145,9 +174,25 @@ class AeroelasticModel:
             V = V @ (U[:, keep] / np.sqrt(w[keep]))
         return V
 
+    def bem(self, wind_speed: float, omega_rot: float):
+        """Steady BEM state (:class:`~windflutter.aero.induction.BEMResult`) at (V m/s, Omega rad/s),
+        cached per operating point."""
+        key = (float(wind_speed), float(omega_rot))
+        if key not in self._induction_cache:
+            from windflutter.aero.induction import sections_induction
+
+            self._induction_cache[key] = sections_induction(
+                self.sections, self.rotor_geometry, wind_speed, omega_rot, n_blades=self.n_blades,
+                pitch=self.pitch, air_density=self.air_density)
+        return self._induction_cache[key]
+
     def operating_point(self, wind_speed: float, omega_rot: float) -> OperatingPoint:
+        induction = None
+        if self.induction:
+            b = self.bem(wind_speed, omega_rot)
+            induction = (b.a, b.ap)
         return OperatingPoint(wind_speed=wind_speed, omega=omega_rot, air_density=self.air_density,
-                              rotor=self.rotor_geometry, pitch=self.pitch)
+                              rotor=self.rotor_geometry, pitch=self.pitch, induction=induction)
 
     def strip(self, wind_speed: float, omega_rot: float) -> StripAero:
         return StripAero(self.sections, self.operating_point(wind_speed, omega_rot), self.aero)
