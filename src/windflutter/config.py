@@ -30,6 +30,13 @@ SEARCH_METHODS = ("thesis", "pk")
 MODEL_TYPES = ("shell", "beam", "section")
 DAMPING_MODELS = ("none", "stiffness", "rayleigh", "modal")
 PLOT_FORMATS = ("png", "svg", "pdf")
+REDUCTIONS = ("mta", "modal", "none")
+AERO_DISTRIBUTIONS = ("spline", "skin")
+# keys of earlier versions: a clear message instead of "unknown key"
+_RENAMED_SOLVER_KEYS = {
+    "n_modes": "renamed: solver.n_eig (eigenvalues per eigen-solve); the projection basis is solver.basis_modes",
+    "shift_hz": "removed: the p-k search shifts each eigen-solve to the tracked mode's own frequency",
+}
 
 
 @dataclass(frozen=True)
@@ -88,25 +95,36 @@ class DampingConfig:
 
 @dataclass(frozen=True)
 class SolverConfig:
-    """Eigen-solver and search options.
+    """Eigen-solver, model-reduction and search options.
 
     Attributes
     ----------
     backend : ``windflutter`` (the built-in solver) or ``"package.module:factory"``, a
         user-supplied analyser factory ``factory(turbine, config) -> analyse`` (see
         ``docs/workflow.md``).
-    n_modes : eigenvalues computed per eigen-solve.
-    shift_hz : shift of the shift-invert Arnoldi (Hz); eigenvalues nearest ``2 pi i shift``.
-    n_tracked : modes tracked and shown in the Campbell diagram.
+    reduction : ``mta`` (structural modes plus aerodynamic static-correction vectors, the
+        default: within 0.02 % of full order on the NREL 5 MW), ``modal`` (structural modes
+        only) or ``none`` (full order, the reference; slow on shell models).
+    basis_modes : structural modes per reference rotor speed in the projection basis.
+    n_eig : eigenvalues computed per eigen-solve (near each tracked mode's frequency).
+    n_tracked : modes followed across rotor speed by the p-k search and shown in the
+        Campbell diagram; ``null`` (default) tracks every mode up to 1.25 x the first blade
+        torsion frequency (the classical flutter partner of the flap modes).
+    aero_distribution : how the strip forces reach a shell model: ``spline`` (rigid-section
+        fit of the skin nodes, the default) or ``skin`` (the seed's bilinear skin quads, 2x2
+        Gauss); beam models map directly (``spline``).
     geometric_stiffness : include the centrifugal stress stiffness K_sigma (full physics);
         ``false`` reproduces the thesis.
-    induction : account for axial induction in the inflow (false: the thesis's V, Omega r).
+    induction : account for axial and tangential induction (steady BEM, frozen in the
+        stability problem) in the inflow; ``false`` is the thesis's ``V, Omega r``.
     """
 
     backend: str = "windflutter"
-    n_modes: int = 20
-    shift_hz: float = 0.0
-    n_tracked: int = 8
+    reduction: str = "mta"
+    basis_modes: int = 30
+    n_eig: int = 20
+    n_tracked: int | None = None
+    aero_distribution: str = "spline"
     geometric_stiffness: bool = True
     induction: bool = False
 
@@ -394,24 +412,42 @@ def config_from_dict(data: dict | None, source: str | None = None,
         dm["model"] = "modal"
 
     # solver
-    d = _section("solver", data.get("solver"), SolverConfig, src)
+    d = data.get("solver")
+    if isinstance(d, dict):
+        for k, why in _RENAMED_SOLVER_KEYS.items():
+            if k in d:
+                raise InputError(f"solver.{k}", d[k], f"a current key ({why})", src)
+    d = _section("solver", d, SolverConfig, src)
     s = asdict(base.solver)
     if "backend" in d:
         b = d["backend"]
         if not isinstance(b, str) or not (b == "windflutter" or (":" in b and all(b.split(":", 1)))):
             raise InputError("solver.backend", b, "'windflutter' or 'package.module:factory'", src)
         s["backend"] = b
-    if "n_modes" in d:
-        s["n_modes"] = _integer("solver.n_modes", d["n_modes"], src, 1)
-    if "shift_hz" in d:
-        s["shift_hz"] = _number("solver.shift_hz", d["shift_hz"], src, nonneg=True, unit="Hz")
+    if "reduction" in d:
+        s["reduction"] = _choice("solver.reduction", d["reduction"], REDUCTIONS, src)
+    if "aero_distribution" in d:
+        s["aero_distribution"] = _choice("solver.aero_distribution", d["aero_distribution"],
+                                         AERO_DISTRIBUTIONS, src)
+    if "basis_modes" in d:
+        s["basis_modes"] = _integer("solver.basis_modes", d["basis_modes"], src, 1)
+    if "n_eig" in d:
+        s["n_eig"] = _integer("solver.n_eig", d["n_eig"], src, 2)
     if "n_tracked" in d:
-        s["n_tracked"] = _integer("solver.n_tracked", d["n_tracked"], src, 1)
+        s["n_tracked"] = None if d["n_tracked"] is None else _integer("solver.n_tracked", d["n_tracked"], src, 1)
     for k in ("geometric_stiffness", "induction"):
         if k in d:
             s[k] = _boolean(f"solver.{k}", d[k], src)
-    if s["n_tracked"] > s["n_modes"]:
-        raise InputError("solver.n_tracked", s["n_tracked"], f"at most solver.n_modes = {s['n_modes']}", src)
+    if s["reduction"] != "none" and s["n_tracked"] is not None and s["n_tracked"] > s["basis_modes"]:
+        raise InputError("solver.n_tracked", s["n_tracked"],
+                         f"at most solver.basis_modes = {s['basis_modes']} with reduction {s['reduction']}", src)
+    if dm["model"] == "modal" and dm["ratio"] > 0 and s["reduction"] == "none":
+        raise InputError("damping.model", "modal", "stiffness or rayleigh with solver.reduction none "
+                         "(modal damping is applied in the modal basis)", src)
+    m_aero = m["type"]
+    if s["aero_distribution"] == "skin" and m_aero != "shell":
+        raise InputError("solver.aero_distribution", "skin", "spline unless model.type is shell "
+                         "(skin quads need a shell model)", src)
 
     # operating
     d = _section("operating", data.get("operating"), OperatingConfig, src)

@@ -44,7 +44,7 @@ def test_run_stores_every_point_with_units(toy_config, tmp_path):
     for name in ("flutter_rpm", "divergence_rpm", "frequency", "damping_ratio", "rotor_speed"):
         assert back[name].attrs["units"]
     for key in ("windflutter_version", "numpy_version", "config_yaml", "config_fingerprint",
-                "solver_n_modes", "rated_rpm", "overspeed_rpm"):
+                "solver_n_eig", "solver_reduction", "rated_rpm", "overspeed_rpm"):
         assert key in back.attrs
     assert back.attrs["overspeed_rpm"] == pytest.approx(1.2 * 12.1)
     assert "operating_rpm" in back

@@ -12,7 +12,8 @@ Public API
 * :class:`TurbineStability` -- holds the turbine and caches the FE models per pitch;
   :meth:`TurbineStability.analyse_operating_point` analyses one wind speed.
 * :func:`analyse_operating_point` / :func:`stability_map` -- one-call wrappers.
-* :func:`make_point_analyser` -- the adapter for ``windflutter run`` (``workflow.py``).
+* :func:`options_from_config` -- the options of a ``windflutter run`` analysis config (the
+  per-point adapter is :class:`windflutter.workflow.TurbinePointAnalyser`).
 """
 
 from __future__ import annotations
@@ -45,12 +46,27 @@ class TurbineOptions:
     air_density : kg/m^3.
     rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
     tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
-    n_modes : structural modes per reference speed in the projection basis (None: full model).
-    n_tracked : modes followed by the p-k search (18 = up to the first torsion of a 3-bladed
-        rotor; fewer may miss the flutter mode).
+    reduction : ``"mta"`` (modal basis + aerodynamic static-correction vectors),
+        ``"modal"`` (structural modes only, the default here; ``windflutter run`` defaults to
+        ``"mta"``) or ``"none"`` (full order, the reference).
+    n_modes : structural modes per reference speed in the projection basis; ``None`` means
+        full order (the same as ``reduction="none"``).
+    mta_wind_speeds : wind speeds (m/s) whose aero loads build the correction vectors of
+        ``reduction="mta"`` (fixed, so results do not depend on the order of the points).
+    n_tracked : modes followed by the p-k search; ``None`` (default) tracks every mode up to
+        1.25 x the frequency of the first blade-torsion mode (the classical flutter partner of
+        the flap modes); a fixed count may miss it (a whole 3-bladed turbine has ~20 modes below
+        the first torsion).
+    n_eig : eigenvalues per eigen-solve (near the p-k frequency).
     apparent_mass_scaling : viscous only, scale apparent-mass terms by Cl_alpha / 2 pi.
-    damping : ``"none"``, ``"stiffness"`` or ``"rayleigh"``; ``damping_ratio`` at
-        ``damping_reference_hz`` (Rayleigh: and at 10x it).
+    aero_distribution : ``"spline"`` (strip motion from a rigid-section fit of its skin nodes;
+        the only choice for beams) or ``"skin"`` (the seed's skin quads, shell models only;
+        ``docs/aero_distribution.md``).
+    induction : steady BEM axial/tangential induction in the inflow (frozen in the stability
+        problem); ``False`` is the thesis's ``V, Omega r``.
+    damping : ``"none"``, ``"stiffness"``, ``"rayleigh"`` or ``"modal"``; ``damping_ratio`` at
+        ``damping_reference_hz`` (Rayleigh: and at 10x it; modal: in every non-rotating
+        structural mode of the basis).
     mesh : extra :class:`~windflutter.mesh.settings.MeshSettings` fields (dict).
     """
 
@@ -63,9 +79,14 @@ class TurbineOptions:
     rpm_max: float = 40.0
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
-    n_modes: int | None = 30
-    n_tracked: int = 18
+    reduction: str = "modal"
+    n_modes: int = 30
+    mta_wind_speeds: tuple[float, ...] = (4.0, 25.0)
+    n_tracked: int | None = None
+    n_eig: int = 20
     apparent_mass_scaling: bool = False
+    aero_distribution: str = "spline"
+    induction: bool = False
     damping: str = "none"
     damping_ratio: float = 0.0
     damping_reference_hz: float = 1.0
@@ -74,9 +95,16 @@ class TurbineOptions:
     def __post_init__(self):
         for name, choices in (("model", ("beam", "shell")), ("aero", ("potential", "viscous")),
                               ("method", ("pk", "thesis")), ("physics", ("full", "thesis")),
-                              ("damping", ("none", "stiffness", "rayleigh"))):
+                              ("damping", ("none", "stiffness", "rayleigh", "modal")),
+                              ("reduction", ("mta", "modal", "none")),
+                              ("aero_distribution", ("spline", "skin"))):
             if getattr(self, name) not in choices:
                 raise InputError(name, getattr(self, name), f"one of {choices}")
+        if self.n_modes is None:  # full order
+            object.__setattr__(self, "reduction", "none")
+            object.__setattr__(self, "n_modes", 30)
+        if self.aero_distribution == "skin" and self.model != "shell":
+            raise InputError("aero_distribution", "skin", "'spline' for a beam model (skin quads need shells)")
         if not (0 <= self.rpm_min < self.rpm_max):
             raise InputError("rpm_min", self.rpm_min, f"0 <= rpm_min < rpm_max = {self.rpm_max}")
         if not self.rpm_step > 0:
@@ -85,6 +113,16 @@ class TurbineOptions:
             raise InputError("tolerance_rpm", self.tolerance_rpm, "a positive tolerance (RPM)")
         if not self.air_density > 0:
             raise InputError("air_density", self.air_density, "a positive density (kg/m^3)")
+        if not (isinstance(self.n_modes, (int, np.integer)) and self.n_modes >= 1):
+            raise InputError("n_modes", self.n_modes, "a positive number of modes")
+        if self.n_tracked is not None and not (isinstance(self.n_tracked, (int, np.integer))
+                                               and self.n_tracked >= 1):
+            raise InputError("n_tracked", self.n_tracked, "a positive number of modes, or None (auto)")
+        if not (isinstance(self.n_eig, (int, np.integer)) and self.n_eig >= 2):
+            raise InputError("n_eig", self.n_eig, "at least 2 eigenvalues per solve")
+        if self.damping == "modal" and self.reduction == "none":
+            raise InputError("damping", "modal", "'stiffness' or 'rayleigh' with reduction 'none' "
+                             "(modal damping lives in the modal basis)")
 
     def grid(self) -> np.ndarray:
         """Rotor-speed grid (RPM)."""
@@ -113,11 +151,27 @@ class PointSummary:
     mode_labels: list[str]
     onset: Onset
 
+    @property
+    def first_instability(self) -> str | None:
+        """``"flutter"``, ``"divergence"`` or None: which onset comes first in rotor speed.
+
+        A flutter crossing above the divergence speed is still reported (like a V-g plot shows
+        it), but the turbine's stability limit is the divergence: the linearization about the
+        undeformed state no longer describes an equilibrium beyond it.
+        """
+        fl, dv = self.flutter_rpm, self.divergence_rpm
+        if fl is None and dv is None:
+            return None
+        if dv is None or (fl is not None and fl <= dv):
+            return "flutter"
+        return "divergence"
+
     def as_dict(self) -> dict:
         f = (lambda v: None if v is None else float(v))
         return {"wind_speed": float(self.wind_speed), "flutter_rpm": f(self.flutter_rpm),
                 "flutter_frequency_hz": f(self.flutter_frequency_hz), "flutter_mode": self.flutter_mode,
-                "divergence_rpm": f(self.divergence_rpm), "pitch_deg": float(self.pitch_deg)}
+                "divergence_rpm": f(self.divergence_rpm), "first_instability": self.first_instability,
+                "pitch_deg": float(self.pitch_deg)}
 
 
 class TurbineStability:
@@ -152,16 +206,37 @@ class TurbineStability:
         sm = StructuralMatrices.from_structural(st)
         sm.D = self._damping(st)
         aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling)
-        am = AeroelasticModel(structure=sm, sections=sections, rotor=terms, rotor_geometry=geom, aero=aero,
-                              air_density=o.air_density, n_modes=o.n_modes,
-                              omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
+        kw = dict(structure=sm, sections=sections, rotor=terms, rotor_geometry=geom, aero=aero,
+                  air_density=o.air_density, n_modes=None if o.reduction == "none" else o.n_modes,
+                  omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
+        if o.induction:
+            kw["induction"] = True
+        skin = None
+        if o.aero_distribution == "skin":
+            from windflutter.aero.skin import skin_distribution
+
+            # the seed's skin quads as sub-strips (same strip aerodynamics, own motion rows)
+            skin = skin_distribution(fe, sections)
+            sections = kw["sections"] = skin.sections
+        if o.reduction == "mta":
+            from windflutter.solve.aero_reduction import MTAAeroelasticModel
+
+            am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds))
+        elif skin is not None:
+            from windflutter.aero.skin import SkinAeroelasticModel
+
+            am = SkinAeroelasticModel(**kw, parent=skin.parent)
+        else:
+            am = AeroelasticModel(**kw)
+        if o.damping == "modal" and o.damping_ratio > 0:
+            am.add_modal_damping(o.damping_ratio)
         self._models[key] = (fe, sections, am)
         return self._models[key]
 
     def _damping(self, st):
         o = self.options
-        if o.damping == "none" or o.damping_ratio == 0.0:
-            return None
+        if o.damping in ("none", "modal") or o.damping_ratio == 0.0:
+            return None  # modal damping is added in the modal basis (AeroelasticModel)
         from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
 
         if o.damping == "stiffness":
@@ -185,14 +260,15 @@ class TurbineStability:
         def system_at(rpm):
             return am.at(wind_speed, rpm * RPM)
 
-        if o.method == "pk":
-            on = pk_search(system_at, grid, n_track=min(o.n_tracked, am.size), xtol=o.tolerance_rpm,
-                           stop_at_onset=False)
-        else:
-            on = thesis_search(system_at, grid)
         tower = np.asarray(fe.node_groups.get("tower", []), dtype=np.int64)
         tower_dofs = (6 * tower[:, None] + np.arange(3)).ravel()
         sys_ref = system_at(grid[0])
+        if o.method == "pk":
+            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, sections, tower_dofs)
+            on = pk_search(system_at, grid, n_track=min(n_track, am.size), n_eig=o.n_eig, xtol=o.tolerance_rpm,
+                           stop_at_onset=False)
+        else:
+            on = thesis_search(system_at, grid, n_eig=o.n_eig)
 
         def lab(x):
             return label_mode(sys_ref.expand(x), sections, sys_ref.strip.P, tower_dofs)
@@ -216,6 +292,27 @@ class TurbineStability:
             damping_ratio=zeta, mode_labels=labels, onset=on)
 
 
+def auto_tracked(system, sections, tower_dofs, factor: float = 1.25) -> int:
+    """Number of modes to track: every structural mode up to ``factor`` x the first torsion.
+
+    Classical flutter of a blade couples a flap mode with a torsion mode; a whole turbine has
+    tower, drivetrain and three of each blade mode below the first torsion, so a fixed count is
+    fragile.  The modes of ``Ks(Omega) , M`` at the first rotor speed of the sweep are labelled
+    (:func:`~windflutter.stability.tracking.label_mode`); without a torsion-dominated mode all
+    modes of the basis are tracked.
+    """
+    import scipy.linalg as sla
+
+    K = system.Ks.toarray() if hasattr(system.Ks, "toarray") else np.asarray(system.Ks)
+    M = system.model.Mr.toarray() if hasattr(system.model.Mr, "toarray") else np.asarray(system.model.Mr)
+    w2, V = sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T))
+    f = np.sqrt(np.maximum(w2, 0.0))
+    for i in range(len(f)):
+        if label_mode(system.expand(V[:, i]), sections, system.strip.P, tower_dofs).startswith("torsion"):
+            return int(np.count_nonzero(f <= factor * f[i]))
+    return len(f)
+
+
 def analyse_operating_point(turbine, wind_speed: float, options: TurbineOptions | None = None) -> PointSummary:
     """One wind speed; see :meth:`TurbineStability.analyse_operating_point`."""
     return TurbineStability(turbine, options).analyse_operating_point(wind_speed)
@@ -237,46 +334,16 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
     mesh = {}
     if mtype == "beam":
         mesh["n_span"] = max(2, int(config.model.n_aero_sections))
-    dmp = config.damping.model
-    if dmp == "modal":
-        raise InputError("damping.model", dmp, "'none', 'stiffness' or 'rayleigh' with the built-in solver")
+    s = config.solver
     return TurbineOptions(model=mtype, aero=aero, method=method,
-                          physics="full" if config.solver.geometric_stiffness else "thesis",
+                          physics="full" if s.geometric_stiffness else "thesis",
                           air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
-                          tolerance_rpm=r.tolerance_rpm, n_tracked=config.solver.n_tracked,
-                          damping=dmp, damping_ratio=config.damping.ratio,
+                          tolerance_rpm=r.tolerance_rpm, reduction=s.reduction, n_modes=s.basis_modes,
+                          n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,
+                          induction=s.induction, damping=config.damping.model,
+                          damping_ratio=config.damping.ratio,
                           damping_reference_hz=config.damping.reference_hz, mesh=mesh)
 
 
-def make_point_analyser(turbine, config):
-    """Adapter for ``windflutter run``: ``analyse(point, progress=None) -> PointResult``."""
-    from windflutter.workflow import PointResult
-
-    cache: dict[tuple[str, str], TurbineStability] = {}
-
-    def analyse(point, progress=None):
-        key = (point.aero, point.method)
-        if key not in cache:
-            cache[key] = TurbineStability(turbine, options_from_config(config, point.aero, point.method))
-        ts = cache[key]
-        grid = np.asarray(point.sweep_rpm, float) if point.sweep_rpm else None
-        if progress is not None:
-            progress(0.0, f"V = {point.wind_speed:g} m/s")
-        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=grid)
-        if progress is not None:
-            progress(1.0, None)
-        nan = float("nan")
-        fe, sections, am = ts.model(ts.pitch_at(point.wind_speed))
-        return PointResult(
-            flutter_rpm=nan if s.flutter_rpm is None else s.flutter_rpm,
-            flutter_frequency_hz=nan if s.flutter_frequency_hz is None else s.flutter_frequency_hz,
-            flutter_mode=s.flutter_mode or "",
-            divergence_rpm=nan if s.divergence_rpm is None else s.divergence_rpm,
-            sweep_rpm=np.asarray(s.sweep_rpm), frequency_hz=s.frequency_hz, damping_ratio=s.damping_ratio,
-            mode_labels=s.mode_labels, info={"pitch_deg": s.pitch_deg})
-
-    return analyse
-
-
 __all__ = ["TurbineOptions", "TurbineStability", "PointSummary", "analyse_operating_point", "stability_map",
-           "make_point_analyser", "options_from_config", "replace"]
+           "auto_tracked", "options_from_config", "replace"]
