@@ -23,6 +23,16 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--n-span", type=int, default=None, help="blade elements / strips along the span")
     p.add_argument("--part", choices=("turbine", "rotor"), default="turbine",
                    help="whole turbine, or the rotor alone with the hub clamped")
+    p.add_argument("--reduction", choices=("mta", "modal", "none"), default="modal",
+                   help="modal basis (default), with aero static-correction vectors (mta), or full order")
+    p.add_argument("--basis-modes", type=int, default=30, metavar="N",
+                   help="structural modes per reference rotor speed in the basis (default 30)")
+    p.add_argument("--n-tracked", type=int, default=None, metavar="N",
+                   help="modes tracked by the p-k search (default: every mode up to 1.25 x first torsion)")
+    p.add_argument("--aero-distribution", choices=("spline", "skin"), default="spline",
+                   help="shell models: rigid-section spline (default) or the seed's skin quads")
+    p.add_argument("--induction", action="store_true",
+                   help="steady BEM axial/tangential induction in the inflow (default: none, as the thesis)")
     p.add_argument("--plot", default=None, help="write the Campbell diagram of the first wind speed here")
     p.add_argument("--json", action="store_true", help="print a JSON object")
     p.set_defaults(func=run)
@@ -41,7 +51,9 @@ def run(args: argparse.Namespace) -> int:
         mesh["n_span"] = args.n_span
     opts = TurbineOptions(model=args.model, aero=args.aero, method=args.method, physics=args.physics,
                           air_density=args.air_density, rpm_min=args.rpm[0], rpm_max=args.rpm[1],
-                          rpm_step=args.rpm[2], mesh=mesh)
+                          rpm_step=args.rpm[2], reduction=args.reduction, n_modes=args.basis_modes,
+                          n_tracked=args.n_tracked, aero_distribution=args.aero_distribution,
+                          induction=args.induction, mesh=mesh)
     turbine = load_turbine(args.turbine)
     ts = TurbineStability(turbine, opts)
     points = [ts.analyse_operating_point(v) for v in args.wind_speeds]

@@ -1,0 +1,56 @@
+"""Turbine solver options reach the model: skin distribution, reduction, bad combinations.
+
+The physics of each option is verified where it is implemented (aero/skin.py:
+tests/solver/test_skin_aero.py; reduction: tests/perf/); here: the wiring.
+"""
+
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from windflutter.errors import InputError
+from windflutter.stability.turbine import TurbineOptions, TurbineStability
+
+
+def test_bad_combinations_name_the_field():
+    with pytest.raises(InputError, match="aero_distribution"):
+        TurbineOptions(model="beam", aero_distribution="skin")
+    with pytest.raises(InputError, match="reduction"):
+        TurbineOptions(reduction="guyan")
+    with pytest.raises(InputError, match="damping"):
+        TurbineOptions(damping="modal", reduction="none")
+    assert TurbineOptions(n_modes=None).reduction == "none"  # n_modes=None: full order
+
+
+def test_skin_distribution_builds_the_seed_sub_strips():
+    from windflutter.aero.skin import SkinAeroelasticModel, skin_aeroelastic_model
+    from windflutter.model import load_turbine
+
+    mesh = {"part": "rotor", "n_chord": 8, "n_span": 4}
+    t = load_turbine("nrel5mw")
+    spline = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh))
+    skin = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh, aero_distribution="skin"))
+    fe, sec, am = spline.model(0.0)
+    fe2, sub, am2 = skin.model(0.0)
+    assert isinstance(am2, SkinAeroelasticModel)
+    # 2x2 Gauss points on every skin quad: 4 sub-strips per quad, more than the strips
+    assert sub.n_sections > 4 * sec.n_sections
+    # the same model as built by hand with skin_aeroelastic_model (docs/aero_distribution.md)
+    # from the skin model's structure and the spline model's strips (same mesh, same geometry)
+    ref = skin_aeroelastic_model(fe2, sec, None, structure=am2.structure, rotor=am2.rotor,
+                                 rotor_geometry=am2.rotor_geometry, aero=am2.aero, air_density=am2.air_density,
+                                 n_modes=am2.n_modes, omega_ref=am2.omega_ref, pitch=am2.pitch)
+    # the bases are the same subspace but not the same vectors (three blades: repeated modes,
+    # any rotation within them), so compare basis-invariant quantities: the coupled eigenvalues
+    from windflutter.solve.qep import solve_qep_dense
+
+    lam = [np.sort_complex(solve_qep_dense(*m.at(10.0, 1.5).matrices(3.0)).values) for m in (am2, ref)]
+    assert np.allclose(lam[0], lam[1], rtol=1e-8)
+
+
+def test_stability_cli_rejects_skin_on_beams():
+    bad = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--aero-distribution",
+                          "skin"], capture_output=True, text=True)
+    assert bad.returncode == 2 and "aero_distribution" in bad.stderr and "Traceback" not in bad.stderr
