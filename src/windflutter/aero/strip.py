@@ -73,6 +73,9 @@ class OperatingPoint:
     pitch : extra blade pitch (rad, positive nose-down to feather) on top of what the model's
         ``e_chord`` already holds; it only changes the reported angle of attack (the linear
         strip matrices use the inflow axes).
+    induction : optional steady induction ``(a, a')`` per strip (arrays (ns,) or scalars, -),
+        e.g. from :func:`windflutter.aero.induction.sections_induction`; None (default) keeps the
+        thesis's uninduced inflow.  Held fixed (frozen) in the linear stability problem.
     """
 
     wind_speed: float
@@ -80,6 +83,7 @@ class OperatingPoint:
     air_density: float = 1.225
     rotor: RotorGeometry | None = None
     pitch: float = 0.0
+    induction: tuple | None = None
 
 
 @dataclass(frozen=True)
@@ -127,8 +131,30 @@ def _unit(v: np.ndarray) -> np.ndarray:
     return v / np.where(n > 0, n, 1.0)
 
 
+def _induction_factors(op: OperatingPoint, ns: int):
+    """``(a, a')`` of ``op.induction`` as finite (ns,) arrays."""
+    try:
+        a, ap = op.induction
+        a = np.broadcast_to(np.asarray(a, float), (ns,))
+        ap = np.broadcast_to(np.asarray(ap, float), (ns,))
+    except (TypeError, ValueError):
+        raise InputError("induction", type(op.induction).__name__,
+                         f"a pair (a, a') of scalars or arrays of {ns} strips") from None
+    if not (np.all(np.isfinite(a)) and np.all(np.isfinite(ap))):
+        raise InputError("induction", "non-finite", "finite induction factors (a, a')")
+    return a, ap
+
+
 def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
-    """Relative speed, inflow axes and angles at every strip (see module docstring)."""
+    """Relative speed, inflow axes and angles at every strip (see module docstring).
+
+    With ``op.induction = (a, a')`` the relative flow is
+    ``U_vec = V w - a (V w . n) n - (1 + a') Omega n x (x_j - hub)`` (``n``: shaft axis; the wind
+    direction for a fixed wing), i.e. ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)`` and
+    ``phi = atan2(V (1 - a), Omega r (1 + a'))`` for an unconed, untilted rotor.
+    """
+    if op.induction is not None:
+        return _induced_section_flow(sections, op)
     if not np.isfinite(op.wind_speed) or op.wind_speed < 0:
         raise InputError("wind_speed", op.wind_speed, "a non-negative speed (m/s)")
     if not np.isfinite(op.omega):
@@ -164,6 +190,48 @@ def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
     alpha = np.arctan2(sa, ca) - op.pitch
     vrot = np.linalg.norm(blade_vel, axis=1)
     phi = np.arctan2(np.full(ns, op.wind_speed), vrot)
+    return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
+
+
+def _induced_section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
+    """:func:`section_flow` with the steady induction ``op.induction = (a, a')``."""
+    if not np.isfinite(op.wind_speed) or op.wind_speed < 0:
+        raise InputError("wind_speed", op.wind_speed, "a non-negative speed (m/s)")
+    if not np.isfinite(op.omega):
+        raise InputError("omega", op.omega, "a finite rotor speed (rad/s)")
+    if not (np.isfinite(op.air_density) and op.air_density > 0):
+        raise InputError("air_density", op.air_density, "a positive density (kg/m^3)")
+    ns = sections.n_sections
+    a, ap = _induction_factors(op, ns)
+    span = _unit(np.asarray(sections.e_span, float))
+    chord = _unit(np.asarray(sections.e_chord, float))
+    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
+    axis = wind if op.rotor is None else _unit(np.asarray(op.rotor.shaft_axis, float))
+    w = op.wind_speed * wind
+    vrel = w[None, :] - (a * float(w @ axis))[:, None] * axis[None, :]
+    blade_vel = np.zeros((ns, 3))
+    if op.omega != 0.0:
+        if op.rotor is None:
+            raise InputError("rotor", None, "a RotorGeometry when the rotor speed is not zero")
+        rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
+        blade_vel = op.omega * np.cross(axis, rvec)
+        vrel = vrel - (1.0 + ap)[:, None] * blade_vel
+    vrel = vrel - np.sum(vrel * span, axis=1, keepdims=True) * span
+    U = np.linalg.norm(vrel, axis=1)
+    if np.any(U <= 0):
+        j = int(np.argmin(U))
+        raise InputError("operating point", (op.wind_speed, op.omega), f"a non-zero relative speed at section {j}")
+    e3 = vrel / U[:, None]
+    e1 = _unit(np.cross(e3, span))
+    suction = np.cross(chord, span)
+    flip = np.sum(e1 * suction, axis=1) < 0
+    e1[flip] *= -1.0
+    e2 = np.cross(e1, e3)
+    ca = np.sum(chord * e3, axis=1)
+    sa = -np.sum(chord * e1, axis=1)
+    alpha = np.arctan2(sa, ca) - op.pitch
+    vrot = np.linalg.norm(blade_vel, axis=1)
+    phi = np.arctan2(op.wind_speed * (1.0 - a), vrot * (1.0 + ap))
     return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
 
 

@@ -1,0 +1,358 @@
+"""Steady blade-element momentum (BEM) induction of a rotor, strip by strip.
+
+The thesis (and the default solver) lets every strip see ``U = sqrt(V^2 + (Omega r)^2)``: the
+rotor does not slow the wind down.  This module computes the steady axial and tangential
+induction factors ``a`` and ``a'`` of each strip so that the inflow can be
+
+    ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)``,  ``phi = atan2(V (1 - a), Omega r (1 + a'))``
+
+(:func:`windflutter.aero.strip.section_flow` with ``OperatingPoint.induction``).
+
+Method (annular momentum balance = blade-element loads, one annulus per strip):
+
+* blade element: ``alpha = phi - theta`` (``theta`` = local twist + pitch, nose-down positive),
+  ``Cl, Cd`` from the strip's static polar, ``cn = Cl cos phi + Cd sin phi`` (normal to the rotor
+  plane), ``ct = Cl sin phi - Cd cos phi`` (in the plane, driving);
+* ``k = sigma' cn / (4 F sin^2 phi)``, ``k' = sigma' ct / (4 F sin phi cos phi)`` with the local
+  solidity ``sigma' = B c / (2 pi r)``;
+* axial: momentum ``a = k / (1 + k)`` while ``a <= 0.4`` (``k <= 2/3``); above, Buhl's (2005)
+  empirical thrust ``C_T = 8/9 + (4F - 40/9) a + (50/9 - 4F) a^2`` (equal to the momentum
+  ``4 F a (1 - a)`` in value and slope at ``a = 0.4``), solved for ``a`` in the stable form
+  :func:`buhl_axial`; tangential ``a' = k' / (1 - k')``;
+* Prandtl's tip and hub loss ``F = F_tip F_hub``,
+  ``F_tip = 2/pi acos(exp(-B (R - r) / (2 r sin phi)))``,
+  ``F_hub = 2/pi acos(exp(-B (r - R_hub) / (2 R_hub sin phi)))``;
+* one unknown per strip, the inflow angle ``phi``, root of
+  ``R(phi) = sin(phi) / (1 - a) - cos(phi) (1 - k') / lambda_r`` (``lambda_r = Omega r / V``),
+  the formulation of Ning (2014, Wind Energy 17, "A simple solution method for the blade element
+  momentum equations with guaranteed convergence"): a sign change of ``R`` is bracketed in
+  ``(0, pi/2]`` (windmill state), else ``(pi/2, pi)`` or ``[-pi/4, 0)`` (propeller brake,
+  ``a = k / (k - 1)``), and the root is found by vectorized bisection across all strips.
+
+What is frozen (linear stability): the induction is the **steady, quasi-steady** state of the
+undeformed rotor at the operating point (V, Omega, pitch).  The stability problem linearizes
+about it with ``a`` and ``a'`` held fixed: no dynamic inflow (the wake does not respond to the
+blade vibration; Theodorsen's ``C(k)`` remains the only unsteady aerodynamics), no feedback of
+the static deflection on the loads, axisymmetric inflow (no shear, yaw or tower shadow; tilt and
+precone only enter through the normal wind component and the strip geometry).
+
+Units: SI (m, s, rad, kg/m^3, N, N m, W).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from windflutter.aero.sections import AeroSections, Polar, RotorGeometry
+from windflutter.errors import InputError
+
+__all__ = ["BEMResult", "prandtl_factor", "buhl_axial", "axial_from_k", "bem_induction",
+           "sections_induction", "theta_from_geometry", "rotor_extent"]
+
+_A_SWITCH = 0.4  # momentum / Buhl switch (a); k = a / (1 - a) = 2/3 there
+_PHI_EPS = 1e-7  # rad, bracket end close to phi = 0
+
+
+@dataclass(frozen=True)
+class BEMResult:
+    """Steady BEM state (arrays over the elements, rotor totals as floats).
+
+    Attributes
+    ----------
+    a, ap : axial and tangential induction factors (-).
+    phi : inflow angle from the rotor plane (rad).  alpha : angle of attack (rad).
+    cl, cd : lift and drag coefficients at ``alpha`` (-).  F : Prandtl loss factor (-).
+    W : relative speed (m/s).
+    fn, ft : normal (thrust) and tangential (driving) force per unit span (N/m).
+    converged : (n,) bool, a bracketed root was found (False: no induction, ``a = a' = 0``).
+    thrust (N), torque (N m), power (W), cp, ct (-) : rotor totals (``n_blades`` blades).
+    tsr : tip-speed ratio ``Omega R / V`` (-).
+    """
+
+    a: np.ndarray
+    ap: np.ndarray
+    phi: np.ndarray
+    alpha: np.ndarray
+    cl: np.ndarray
+    cd: np.ndarray
+    F: np.ndarray
+    W: np.ndarray
+    fn: np.ndarray
+    ft: np.ndarray
+    converged: np.ndarray
+    thrust: float
+    torque: float
+    power: float
+    cp: float
+    ct: float
+    tsr: float
+
+
+def prandtl_factor(r, phi, n_blades: int, r_tip: float, r_hub: float | None = None,
+                   tip: bool = True, hub: bool = True) -> np.ndarray:
+    """Prandtl tip and hub loss ``F = F_tip F_hub`` (-), vectorized.
+
+    Parameters
+    ----------
+    r : radius (m).  phi : inflow angle (rad).  n_blades : B.  r_tip, r_hub : tip and hub radius (m).
+    tip, hub : include the tip / hub factor.
+
+    ``F_tip = 2/pi acos(exp(-B (R - r) / (2 r |sin phi|)))`` and the hub analogue with
+    ``(r - R_hub) / (2 R_hub |sin phi|)``; ``F -> 1`` far from both ends, ``F -> 0`` at them.
+    """
+    r = np.asarray(r, float)
+    s = np.abs(np.sin(np.asarray(phi, float)))
+    s = np.maximum(s, 1e-12)
+    F = np.ones(np.broadcast(r, s).shape)
+    with np.errstate(over="ignore", divide="ignore", invalid="ignore"):
+        if tip:
+            f = 0.5 * n_blades * np.maximum(r_tip - r, 0.0) / (np.maximum(r, 1e-12) * s)
+            F = F * (2.0 / np.pi) * np.arccos(np.clip(np.exp(-f), 0.0, 1.0))
+        if hub and r_hub is not None and r_hub > 0:
+            f = 0.5 * n_blades * np.maximum(r - r_hub, 0.0) / (r_hub * s)
+            F = F * (2.0 / np.pi) * np.arccos(np.clip(np.exp(-f), 0.0, 1.0))
+    return F
+
+
+def buhl_axial(k, F) -> np.ndarray:
+    """Axial induction in Buhl's high-thrust region, from ``k = sigma' cn / (4 F sin^2 phi)``.
+
+    Equating the blade-element thrust ``4 F k (1 - a)^2`` with Buhl's
+    ``8/9 + (4F - 40/9) a + (50/9 - 4F) a^2`` gives a quadratic in ``a``; its physical root,
+    written without the cancellation of the textbook ``(g1 - sqrt(g2)) / g3`` form, is
+    ``a = (2 F k - 4/9) / (g1 + sqrt(g2))``, ``g1 = 2 F k + F - 10/9``,
+    ``g2 = 2 F k - F (4/3 - F)`` (no special case where ``g3 = 2 F k + 2 F - 25/9`` vanishes).
+    """
+    k = np.asarray(k, float)
+    F = np.asarray(F, float)
+    g1 = 2.0 * F * k + F - 10.0 / 9.0
+    g2 = np.maximum(2.0 * F * k - F * (4.0 / 3.0 - F), 0.0)
+    return (2.0 * F * k - 4.0 / 9.0) / (g1 + np.sqrt(g2))
+
+
+def axial_from_k(k, F, high_thrust: bool = True) -> np.ndarray:
+    """Axial induction ``a`` (-) of the windmill state: momentum ``k / (1 + k)`` up to ``a = 0.4``,
+    Buhl above (``high_thrust``; else momentum everywhere)."""
+    k = np.asarray(k, float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = k / (1.0 + k)
+        if high_thrust:
+            hi = k > _A_SWITCH / (1.0 - _A_SWITCH)
+            if np.any(hi):
+                a = np.where(hi, buhl_axial(np.where(hi, k, 1.0), np.broadcast_to(F, k.shape)), a)
+    return a
+
+
+class _PolarTable:
+    """Static Cl, Cd of every element from its polar (linear interpolation, alpha wrapped to +-pi)."""
+
+    def __init__(self, polars: list[Polar], index):
+        self.index = np.asarray(index, dtype=np.int64)
+        self.groups = []
+        for p in np.unique(self.index):
+            pol = polars[int(p)]
+            al = np.asarray(pol.alpha, float)
+            self.groups.append((self.index == p, al, np.asarray(pol.cl, float), np.asarray(pol.cd, float)))
+
+    def __call__(self, alpha: np.ndarray, sel: np.ndarray | None = None):
+        alpha = np.asarray(alpha, float)
+        al = np.mod(alpha + np.pi, 2 * np.pi) - np.pi
+        cl = np.zeros_like(al)
+        cd = np.zeros_like(al)
+        for mask, a, c_l, c_d in self.groups:
+            m = mask if sel is None else mask[sel]
+            if np.any(m):
+                cl[m] = np.interp(al[m], a, c_l)
+                cd[m] = np.interp(al[m], a, c_d)
+        return cl, cd
+
+
+def _state(phi, sel, r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, tip, hub, high_thrust):
+    """Residual and induction at inflow angles ``phi`` of the elements ``sel``."""
+    alpha = phi - theta[sel]
+    cl, cd = polar(alpha, sel)
+    sp_, cp_ = np.sin(phi), np.cos(phi)
+    cn = cl * cp_ + cd * sp_
+    ctn = cl * sp_ - cd * cp_
+    F = prandtl_factor(r[sel], phi, n_blades, r_tip, r_hub, tip, hub)
+    F = np.maximum(F, 1e-12)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        k = sig[sel] * cn / (4.0 * F * sp_**2)
+        kp = sig[sel] * ctn / (4.0 * F * sp_ * cp_)
+        brake = phi < 0
+        a = np.where(brake, np.where(k > 1.0, k / (k - 1.0), np.nan), axial_from_k(k, F, high_thrust))
+        # cos(phi) (1 - k') written without the 1 / cos(phi) of k' (finite at phi = pi/2)
+        res = sp_ / (1.0 - a) - (cp_ - sig[sel] * ctn / (4.0 * F * sp_)) / lam[sel]
+        ap = kp / (1.0 - kp)
+    return res, a, ap, alpha, cl, cd, F
+
+
+def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: float, omega: float,
+                  n_blades: int, r_tip: float, r_hub: float = 0.0, dr=None, air_density: float = 1.225,
+                  tip_loss: bool = True, hub_loss: bool = True, high_thrust: bool = True,
+                  xtol: float = 1e-12) -> BEMResult:
+    """Steady BEM induction of every element (vectorized across elements).
+
+    Parameters
+    ----------
+    r : (n,) radius from the shaft axis (m).  chord : (n,) chord (m).
+    theta : (n,) local blade angle twist + pitch (rad, nose-down / towards feather positive):
+        ``alpha = phi - theta``.
+    polars : static polars; ``airfoil`` : (n,) index of each element's polar.
+    wind_speed : wind speed normal to the rotor plane (m/s).  omega : rotor speed (rad/s; sign
+        ignored).  n_blades : B.  r_tip, r_hub : tip and hub radius (m) for the Prandtl factors
+        and the rotor area ``pi r_tip^2``.
+    dr : (n,) radial length each element stands for in the rotor totals (m); for the elements of
+        one blade its strip widths, for the elements of all B blades the widths / B.  None: no
+        totals (zeros).
+    air_density : kg/m^3.  tip_loss, hub_loss, high_thrust : corrections on/off.
+    xtol : bisection tolerance on ``phi`` (rad).
+
+    Returns
+    -------
+    BEMResult.  With ``V = 0`` or ``Omega = 0`` there is no momentum balance to solve: ``a = a' = 0``
+    and ``phi = atan2(V, Omega r)`` (the uninduced inflow).  Elements without a bracketed root
+    (e.g. no lift) also get ``a = a' = 0`` and ``converged = False``.
+    """
+    r = np.atleast_1d(np.asarray(r, float))
+    n = r.size
+    chord = np.broadcast_to(np.asarray(chord, float), (n,))
+    theta = np.broadcast_to(np.asarray(theta, float), (n,))
+    idx = np.broadcast_to(np.asarray(airfoil, dtype=np.int64), (n,))
+    V = float(wind_speed)
+    Om = abs(float(omega))
+    if not (np.isfinite(V) and V >= 0):
+        raise InputError("wind_speed", wind_speed, "a non-negative speed (m/s)")
+    if not np.isfinite(Om):
+        raise InputError("omega", omega, "a finite rotor speed (rad/s)")
+    if not (isinstance(n_blades, (int, np.integer)) and n_blades >= 1):
+        raise InputError("n_blades", n_blades, "a positive number of blades")
+    if not (np.isfinite(r_tip) and r_tip > 0 and np.all(r > 0) and np.all(r <= r_tip * (1 + 1e-9))):
+        raise InputError("r_tip", r_tip, f"a tip radius >= every element radius (max {r.max():.4g} m) and > 0")
+    if not (np.all(chord >= 0) and np.all(np.isfinite(chord))):
+        raise InputError("chord", "negative or non-finite", "chords >= 0 (m)")
+    if len(polars) == 0 or idx.min() < 0 or idx.max() >= len(polars):
+        raise InputError("airfoil", (int(idx.min()), int(idx.max())) if n else (), f"indices into {len(polars)} polars")
+    polar = _PolarTable(polars, idx)
+    a = np.zeros(n)
+    ap = np.zeros(n)
+    phi = np.arctan2(np.full(n, V), Om * r)
+    conv = np.zeros(n, bool)
+    if V > 0 and Om > 0:
+        lam = Om * r / V
+        sig = n_blades * chord / (2.0 * np.pi * r)
+        args = (r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, tip_loss, hub_loss, high_thrust)
+        todo = np.ones(n, bool)
+        for lo_, hi_ in ((_PHI_EPS, 0.5 * np.pi), (0.5 * np.pi, np.pi - _PHI_EPS), (-0.25 * np.pi, -_PHI_EPS)):
+            sel = np.flatnonzero(todo)
+            if sel.size == 0:
+                break
+            lo = np.full(sel.size, lo_)
+            hi = np.full(sel.size, hi_)
+            flo = _state(lo, sel, *args)[0]
+            fhi = _state(hi, sel, *args)[0]
+            ok = np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi <= 0)
+            if not np.any(ok):
+                continue
+            sel, lo, hi, flo = sel[ok], lo[ok], hi[ok], flo[ok]
+            n_it = int(np.ceil(np.log2(max(hi_ - lo_, xtol) / xtol))) + 1
+            for _ in range(n_it):
+                mid = 0.5 * (lo + hi)
+                fm = _state(mid, sel, *args)[0]
+                left = (fm * flo <= 0) | ~np.isfinite(fm)
+                hi = np.where(left, mid, hi)
+                lo = np.where(left, lo, mid)
+                flo = np.where(left, flo, fm)
+            ph = 0.5 * (lo + hi)
+            _, aa, aap, *_ = _state(ph, sel, *args)
+            good = np.isfinite(aa) & np.isfinite(aap)
+            sel = sel[good]
+            phi[sel], a[sel], ap[sel] = ph[good], aa[good], aap[good]
+            conv[sel] = True
+            todo[sel] = False
+    alpha = phi - theta
+    cl, cd = polar(alpha)
+    F = prandtl_factor(r, phi, n_blades, r_tip, r_hub, tip_loss, hub_loss)
+    W = np.hypot(V * (1.0 - a), Om * r * (1.0 + ap))
+    q = 0.5 * air_density * W**2 * chord
+    fn = q * (cl * np.cos(phi) + cd * np.sin(phi))
+    ft = q * (cl * np.sin(phi) - cd * np.cos(phi))
+    if dr is None:
+        T = Q = 0.0
+    else:
+        dr = np.broadcast_to(np.asarray(dr, float), (n,))
+        T = float(n_blades * np.sum(fn * dr))
+        Q = float(n_blades * np.sum(ft * r * dr))
+    P = Om * Q
+    area = np.pi * r_tip**2
+    qV = 0.5 * air_density * area * V**2
+    cp = P / (qV * V) if V > 0 else float("nan")
+    ct = T / qV if V > 0 else float("nan")
+    tsr = Om * r_tip / V if V > 0 else float("inf")
+    return BEMResult(a=a, ap=ap, phi=phi, alpha=alpha, cl=cl, cd=cd, F=F, W=W, fn=fn, ft=ft, converged=conv,
+                     thrust=T, torque=Q, power=P, cp=float(cp), ct=float(ct), tsr=float(tsr))
+
+
+def theta_from_geometry(sections: AeroSections, rotor: RotorGeometry, pitch: float = 0.0) -> np.ndarray:
+    """Local blade angle twist + pitch (rad) of every strip, read from its chord direction.
+
+    The strip's angle of attack in a purely rotational inflow (``V = 0``) is ``-theta``, so
+    ``theta = -alpha(V=0, Omega=1)`` of :func:`windflutter.aero.strip.section_flow`; this holds the
+    pitch and twist the mesh already put into ``e_chord`` (plus the extra ``pitch``).
+    """
+    from windflutter.aero.strip import OperatingPoint, section_flow
+
+    op = OperatingPoint(wind_speed=0.0, omega=1.0, rotor=rotor, pitch=pitch)
+    return -section_flow(sections, op).alpha
+
+
+def rotor_extent(sections: AeroSections, rotor: RotorGeometry) -> tuple[float, float, np.ndarray]:
+    """``(r_hub, r_tip, dr)``: radial extent of the strips (m) and each strip's radial width (m).
+
+    The width is projected on the plane normal to the shaft (precone), ``r_tip`` is the largest
+    outer strip edge and ``r_hub`` the smallest inner edge.
+    """
+    axis = np.asarray(rotor.shaft_axis, float)
+    axis = axis / np.linalg.norm(axis)
+    span = np.asarray(sections.e_span, float)
+    span = span / np.linalg.norm(span, axis=1, keepdims=True)
+    radial = np.sqrt(np.maximum(1.0 - (span @ axis) ** 2, 0.0))
+    dr = np.asarray(sections.width, float) * radial
+    r = np.asarray(sections.radius, float)
+    return float(np.min(r - 0.5 * dr)), float(np.max(r + 0.5 * dr)), dr
+
+
+def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed: float, omega: float,
+                       n_blades: int | None = None, pitch: float = 0.0, air_density: float = 1.225,
+                       **kw) -> BEMResult:
+    """:func:`bem_induction` for the strips of a built model (every strip of every blade).
+
+    Parameters
+    ----------
+    sections : the model's strips; ``rotor`` : its geometry.  wind_speed (m/s), omega (rad/s).
+    n_blades : blades of the rotor (None: the blades present in ``sections``; give it for a
+        one-blade model of a B-bladed rotor).  pitch : extra pitch on top of ``e_chord`` (rad).
+    air_density : kg/m^3.  kw : passed to :func:`bem_induction` (corrections, tolerance).
+
+    The wind component normal to the rotor plane, ``V |wind . shaft|``, drives the momentum
+    balance (shaft tilt); radii, radial widths and tip/hub radius come from the strip geometry
+    (:func:`rotor_extent`), ``theta`` from :func:`theta_from_geometry`.  The totals count each
+    blade present once, scaled to ``n_blades``.
+    """
+    if rotor is None:
+        raise InputError("rotor", None, "a RotorGeometry for the BEM induction")
+    present = int(np.unique(np.asarray(sections.blade)).size)
+    B = present if n_blades is None else n_blades
+    if not (isinstance(B, (int, np.integer)) and B >= 1):
+        raise InputError("n_blades", n_blades, "a positive number of blades")
+    wind = np.asarray(rotor.wind_direction, float)
+    axis = np.asarray(rotor.shaft_axis, float)
+    vn = abs(float(wind_speed)) * abs(float(wind @ axis) / (np.linalg.norm(wind) * np.linalg.norm(axis)))
+    r_hub, r_tip, dr = rotor_extent(sections, rotor)
+    theta = theta_from_geometry(sections, rotor, pitch)
+    if not sections.polars:
+        raise InputError("sections.polars", "[]", "airfoil polars for the BEM induction")
+    return bem_induction(sections.radius, sections.chord, theta, sections.polars, sections.airfoil, vn, omega,
+                         int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
