@@ -349,7 +349,7 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
         raise InputError("n_blades", n_blades, "a positive number of blades")
     wind = np.asarray(rotor.wind_direction, float)
     axis = np.asarray(rotor.shaft_axis, float)
-    vn = abs(float(wind_speed)) * abs(float(wind @ axis) / (np.linalg.norm(wind) * np.linalg.norm(axis)))
+    vn = float(wind_speed) * abs(float(wind @ axis) / (np.linalg.norm(wind) * np.linalg.norm(axis)))
     r_hub, r_tip, dr = rotor_extent(sections, rotor)
     theta = theta_from_geometry(sections, rotor, pitch)
     if not sections.polars:
