@@ -347,6 +347,8 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
     B = present if n_blades is None else n_blades
     if not (isinstance(B, (int, np.integer)) and B >= 1):
         raise InputError("n_blades", n_blades, "a positive number of blades")
+    if not (np.isfinite(wind_speed) and wind_speed >= 0):
+        raise InputError("wind_speed", float(wind_speed), "a non-negative speed (m/s)")
     wind = np.asarray(rotor.wind_direction, float)
     axis = np.asarray(rotor.shaft_axis, float)
     vn = float(wind_speed) * abs(float(wind @ axis) / (np.linalg.norm(wind) * np.linalg.norm(axis)))
