@@ -51,10 +51,16 @@ def fit_polar(polar: Polar, max_range: float = np.radians(12.0), slope_fraction:
     a = np.asarray(polar.alpha, float)
     cl = np.asarray(polar.cl, float)
     cd = np.asarray(polar.cd, float)
-    if a.ndim != 1 or a.size < 3 or cl.shape != a.shape or cd.shape != a.shape:
-        raise InputError(f"polar[{polar.name}]", a.shape, "alpha, cl, cd arrays of equal length >= 3")
+    if a.ndim != 1 or a.size < 2 or cl.shape != a.shape or cd.shape != a.shape:
+        raise InputError(f"polar[{polar.name}]", a.shape, "alpha, cl, cd arrays of equal length >= 2")
     if np.any(np.diff(a) <= 0):
         raise InputError(f"polar[{polar.name}].alpha", "not increasing", "increasing angles of attack (rad)")
+    if np.ptp(cl) < 1e-3:
+        # no lift at any angle (a cylinder, often given by two points only, e.g. the IEA 15 MW
+        # root "circular" polar): no lift or drag slope
+        return PolarFit(0.0, 0.0, 0.0, float(a.min()), float(a.max()), int(a.size), polar.name)
+    if a.size < 3:
+        raise InputError(f"polar[{polar.name}]", a.shape, "at least 3 points for a lift slope")
     # candidate window around small angles, where attached flow lives
     win = np.abs(a) <= np.radians(20.0)
     if win.sum() < 3 or np.ptp(cl[win]) < 1e-3:
