@@ -144,3 +144,28 @@ def test_fixed_wing_strip_force_directions():
     assert K[2, theta].real == pytest.approx(q * CLA, rel=1e-12)   # lift along +z
     # pitching moment about -y? nose-up moment about +y from lift ahead of the elastic axis
     assert K[4, theta].real == pytest.approx(q * CLA * B * (A + 0.5), rel=1e-12)
+
+
+def test_cm_slope_and_aerodynamic_centre_of_a_linear_polar():
+    p = _synthetic_polar(cla=5.9)
+    p = Polar(p.alpha, p.cl, p.cd, -0.05 - 0.2 * (p.alpha - np.radians(-2.0)), name="synthetic")
+    f = fit_polar(p)
+    assert f.cm_alpha == pytest.approx(-0.2, rel=1e-10)
+    assert f.ac_shift == pytest.approx(0.2 / 5.9, rel=1e-10)  # a.c. aft of c/4: x_ac = 1/4 - Cm_a/Cl_a
+
+
+def test_ac_shift_moves_the_circulatory_lift():
+    """Lift acting at x_ac = c/4 + dx: moment arm about the elastic axis (x_ea = (1 + a) b from the
+    leading edge) is x_ea - x_ac = b (a + 1/2) - 2 b dx.  With the a.c. on the elastic axis the
+    circulatory moment vanishes (only the apparent-mass moment is left)."""
+    args = (np.array([B]), np.array([A]), np.array([U]), np.array([0.8 - 0.1j]), RHO, CLA, CDA)
+    dx = 0.03
+    M0, D0, K0 = (x[0] for x in section_matrices(*args))
+    M1, D1, K1 = (x[0] for x in section_matrices(*args, ac_shift=dx))
+    arm0, arm1 = B * (A + 0.5), B * (A + 0.5) - 2 * B * dx
+    assert K1[1, 1] == pytest.approx(K0[1, 1] * arm1 / arm0, rel=1e-13)
+    assert np.allclose(K1[[0, 2]], K0[[0, 2]]) and np.allclose(M1, M0)
+    Mn, Dn, Kn = (x[0] for x in section_matrices(*args, ac_shift=(A + 0.5) / 2))
+    Mc, Dc, Kc = (x[0] for x in section_matrices(*args[:5], 0.0, CDA))  # apparent mass alone
+    assert Kn[1] == pytest.approx(np.zeros(3), abs=1e-12)
+    assert Dn[1] == pytest.approx(Dc[1], abs=1e-12)

@@ -27,6 +27,8 @@ class PolarFit:
     cl_alpha, cd_alpha : slopes (1/rad).  alpha_zero_lift : zero-lift angle (rad).
     alpha_min, alpha_max : attached-flow range used (rad).  n_points : points in the fit.
     name : airfoil name.
+    cm_alpha : slope of the quarter-chord pitching moment over the same range as ``cl_alpha``
+        (1/rad, nose-up positive); 0 without a lift slope.
     """
 
     cl_alpha: float
@@ -36,6 +38,13 @@ class PolarFit:
     alpha_max: float
     n_points: int
     name: str = ""
+    cm_alpha: float = 0.0
+
+    @property
+    def ac_shift(self) -> float:
+        """Aerodynamic centre aft of the quarter chord, fraction of chord: ``-Cm_alpha / Cl_alpha``
+        (0 without a lift slope)."""
+        return -self.cm_alpha / self.cl_alpha if self.cl_alpha > 0 else 0.0
 
 
 def fit_polar(polar: Polar, max_range: float = np.radians(12.0), slope_fraction: float = 0.5) -> PolarFit:
@@ -99,7 +108,9 @@ def fit_polar(polar: Polar, max_range: float = np.radians(12.0), slope_fraction:
         cda = float(np.linalg.lstsq(Ap, cd[pos], rcond=None)[0][0])
     else:
         cda = float(np.linalg.lstsq(A, cd[sel], rcond=None)[0][0])
-    return PolarFit(cla, cda, float(a0), float(a[lo]), float(a[hi]), hi - lo + 1, polar.name)
+    cm = np.asarray(polar.cm, float)
+    cma = float(np.linalg.lstsq(A, cm[sel], rcond=None)[0][0]) if cm.shape == a.shape else 0.0
+    return PolarFit(cla, cda, float(a0), float(a[lo]), float(a[hi]), hi - lo + 1, polar.name, cma)
 
 
 def fit_table(polars: list[Polar]) -> list[dict]:

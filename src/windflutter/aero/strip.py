@@ -235,7 +235,7 @@ def _induced_section_flow(sections: AeroSections, op: OperatingPoint) -> Section
     return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
 
 
-def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0):
+def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0):
     """Theodorsen section matrices per unit span in ``q = (h up, alpha nose-up, s along U)``.
 
     Parameters
@@ -244,6 +244,10 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0):
     U : (ns,) relative speed (m/s).  C : (ns,) complex Theodorsen values C(k_j).
     rho : air density (kg/m^3).  cla, cda : lift and drag slopes (1/rad), scalars or (ns,).
     am_scale : factor on the apparent-mass terms (1, or Cl_alpha / 2 pi).
+    ac_shift : aerodynamic centre aft of the quarter chord (fraction of chord, ``-Cm_alpha /
+        Cl_alpha`` of a polar), scalar or (ns,); the circulatory lift acts there, so its moment
+        arm about the elastic axis is ``b (a + 1/2) - 2 b ac_shift``.  0 (default): Theodorsen's
+        quarter chord, as in the seed's eqs. 3.49-3.54.
 
     Returns
     -------
@@ -255,6 +259,7 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0):
     cla = np.broadcast_to(np.asarray(cla, float), (ns,))
     cda = np.broadcast_to(np.asarray(cda, float), (ns,))
     am = np.broadcast_to(np.asarray(am_scale, float), (ns,))
+    dac = np.broadcast_to(np.asarray(ac_shift, float), (ns,))
     Ma = np.zeros((ns, 3, 3), complex)
     Da = np.zeros((ns, 3, 3), complex)
     Ka = np.zeros((ns, 3, 3), complex)
@@ -274,7 +279,7 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0):
     wd_h = -1.0
     wd_a = b * (0.5 - a)
     wk_a = U
-    mom_arm = b * (a + 0.5)  # M_c = b (a + 1/2) L_c  (lift at quarter chord)
+    mom_arm = b * (a + 0.5 - 2.0 * dac)  # M_c = b (a + 1/2) L_c with the lift at the quarter chord
     drag = np.where(cla != 0, cda / np.where(cla != 0, cla, 1.0), 0.0)  # D = (Cd_a / Cl_a) L_c
     for row, fac in ((0, 1.0), (1, mom_arm), (2, drag)):
         Da[:, row, 0] += fac * circ * wd_h
