@@ -43,7 +43,8 @@ try:  # cloudpickle ships with dask; fall back to pickle (module-level functions
 except Exception:  # pragma: no cover - depends on the environment
     _cp = pickle
 
-__all__ = ["TaskResult", "run_tasks", "iter_tasks", "default_workers"]
+__all__ = ["TaskResult", "run_tasks", "iter_tasks", "default_workers", "check_workers", "connect",
+           "runs_in_process"]
 
 ProgressCallback = Callable[[int, int, "TaskResult"], None]
 
@@ -87,6 +88,51 @@ def default_workers() -> int:
         return max(1, os.cpu_count() or 1)
 
 
+def check_workers(workers: Any, field_name: str = "workers") -> int:
+    """``workers`` as a positive int (``None``: :func:`default_workers`); else ``InputError``."""
+    if workers is None:
+        return default_workers()
+    if isinstance(workers, bool) or not isinstance(workers, (int,)) or workers < 1:
+        raise InputError(field_name, workers, "a positive integer number of worker processes "
+                         "(1 = serial, in this process)")
+    return int(workers)
+
+
+def runs_in_process(n_tasks: int, workers: int | None = None, scheduler: Any = None) -> bool:
+    """True when :func:`iter_tasks` would run the tasks serially in this process."""
+    return scheduler is None and (check_workers(workers) == 1 or n_tasks <= 1)
+
+
+def connect(scheduler: Any, timeout: float = 10.0):
+    """A ``distributed.Client`` for ``scheduler`` (an address, a ``LocalCluster`` or a Client).
+
+    Raises
+    ------
+    InputError
+        ``dask.distributed`` is not installed, or no scheduler answers at the address within
+        ``timeout`` seconds (field ``scheduler``).
+    """
+    try:
+        from distributed import Client
+    except ImportError as exc:  # pragma: no cover - depends on the environment
+        raise InputError("scheduler", scheduler,
+                         "dask.distributed installed (pip install windflutter[dist])") from exc
+    if isinstance(scheduler, Client):
+        return scheduler
+    if hasattr(scheduler, "scheduler_address") and not hasattr(scheduler, "submit"):
+        scheduler = scheduler.scheduler_address  # a LocalCluster / SpecCluster object
+    if not isinstance(scheduler, str) or not scheduler.strip():
+        raise InputError("scheduler", scheduler, "the address of a running Dask scheduler, "
+                         "e.g. tcp://host:8786")
+    try:
+        return Client(scheduler, timeout=timeout, set_as_default=False)
+    except Exception as exc:  # noqa: BLE001 - unreachable address, bad string
+        raise InputError("scheduler", str(scheduler),
+                         f"the address of a running Dask scheduler, e.g. tcp://host:8786 "
+                         f"({type(exc).__name__}: {str(exc).strip().splitlines()[0] if str(exc).strip() else ''})"
+                         ) from exc
+
+
 def _execute(fn: Callable, index: int, task: Any, where: str) -> TaskResult:
     t0 = time.perf_counter()
     try:
@@ -104,8 +150,23 @@ def _execute(fn: Callable, index: int, task: Any, where: str) -> TaskResult:
 _WORKER_FN: Callable | None = None
 
 
+def _die_with_parent() -> None:
+    """Linux: have the kernel SIGKILL this worker when the parent process dies (e.g. a killed
+    ``windflutter run``), so no orphan keeps computing or writing files. Best effort."""
+    try:
+        import ctypes
+        import signal
+
+        libc = ctypes.CDLL(None, use_errno=True)
+        PR_SET_PDEATHSIG = 1
+        libc.prctl(PR_SET_PDEATHSIG, int(signal.SIGKILL), 0, 0, 0)
+    except Exception:  # noqa: BLE001 - not Linux / no libc: workers end with the pool instead
+        pass
+
+
 def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
     global _WORKER_FN
+    _die_with_parent()
     if blas_threads is not None:
         try:  # for the life of the worker process; see windflutter.solve.linsolve on why
             from threadpoolctl import threadpool_limits
@@ -178,6 +239,21 @@ def _iter_pool(fn, tasks, workers, start_method, blas_threads) -> Iterator[TaskR
     finally:
         # on Ctrl-C / an abandoned generator do not wait for the running tasks to end
         ex.shutdown(wait=finished, cancel_futures=True)
+        if not finished:
+            _terminate_workers(ex)
+
+
+def _terminate_workers(ex: ProcessPoolExecutor) -> None:
+    """Stop the pool's worker processes now (interrupted run: their tasks are abandoned)."""
+    term = getattr(ex, "terminate_workers", None)  # Python >= 3.14
+    if callable(term):
+        term()
+        return
+    for proc in list((getattr(ex, "_processes", None) or {}).values()):
+        try:
+            proc.terminate()
+        except Exception:  # noqa: BLE001 - already gone
+            pass
 
 
 # --- Dask ---------------------------------------------------------------------------------
@@ -195,22 +271,12 @@ def _dask_execute(fn: Callable, index: int, task: Any, blas_threads: int | None)
 
 
 def _iter_dask(fn, tasks, scheduler, connect_timeout: float, blas_threads) -> Iterator[TaskResult]:
-    try:
-        from distributed import Client, as_completed
-    except ImportError as exc:  # pragma: no cover - depends on the environment
-        raise InputError("scheduler", scheduler,
-                         "dask.distributed installed (pip install windflutter[dist])") from exc
-    own = False
-    if isinstance(scheduler, Client):
-        client = scheduler
-    else:
-        try:
-            client = Client(scheduler, timeout=connect_timeout, set_as_default=False)
-        except Exception as exc:  # noqa: BLE001 - unreachable address, bad string
-            raise InputError("scheduler", str(scheduler),
-                             f"the address of a running Dask scheduler, e.g. tcp://host:8786 "
-                             f"({type(exc).__name__}: {exc})") from exc
-        own = True
+    from distributed import Client, as_completed
+
+    own = not isinstance(scheduler, Client)
+    client = connect(scheduler, connect_timeout)
+    futs = []
+    finished = False
     try:
         fn_future = client.scatter(fn, broadcast=True, hash=False) if len(tasks) > 1 else fn
         futs = [client.submit(_dask_execute, fn_future, i, t, blas_threads, pure=False) for i, t in enumerate(tasks)]
@@ -223,7 +289,13 @@ def _iter_dask(fn, tasks, scheduler, connect_timeout: float, blas_threads) -> It
                 yield TaskResult(i, False, None, f"{type(exc).__name__}: {exc}",
                                  traceback.format_exc(), 0.0, "dask")
             fut.release()
+        finished = True
     finally:
+        if not finished and futs:
+            try:  # interrupted: do not leave the tasks running on the cluster
+                client.cancel(futs)
+            except Exception:  # noqa: BLE001
+                pass
         if own:
             client.close()
 
@@ -244,17 +316,10 @@ def iter_tasks(
     Same parameters as :func:`run_tasks`; the order is completion order (use ``.index``).
     """
     tasks = list(tasks)
-    if scheduler is not None and not isinstance(scheduler, str):
-        # a LocalCluster / SpecCluster object: connect a client to its scheduler
-        if hasattr(scheduler, "scheduler_address") and not hasattr(scheduler, "submit"):
-            scheduler = scheduler.scheduler_address
     if scheduler is not None:
         yield from _iter_dask(fn, tasks, scheduler, connect_timeout, blas_threads)
         return
-    if workers is None:
-        workers = default_workers()
-    if isinstance(workers, bool) or not isinstance(workers, int) or workers < 1:
-        raise InputError("workers", workers, "a positive integer (1 = serial, in this process)")
+    workers = check_workers(workers)
     if workers == 1 or len(tasks) <= 1:
         from windflutter.solve.linsolve import blas_limit
 

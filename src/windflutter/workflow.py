@@ -413,10 +413,16 @@ def _check_resume(outdir: Path, config: AnalysisConfig) -> None:
                          "a new output folder")
 
 
-def _analyse_one(analyse: Analyser, point: OperatingPoint, prog: RunProgress, with_progress: bool) -> PointResult:
+def _analyse_one(analyse: Analyser, point: OperatingPoint, prog: RunProgress | None,
+                 with_progress: bool) -> PointResult:
+    """Run the analyser on one point; any exception (but Ctrl-C) becomes a ``failed`` result.
+
+    ``prog`` (the run's progress display, in-process runs only) receives the fraction of the
+    point done when ``with_progress``; ``None`` in worker processes.
+    """
     t0 = time.perf_counter()
     try:
-        if with_progress:
+        if with_progress and prog is not None:
             res = analyse(point, progress=prog.update_point)
         else:
             res = analyse(point)
@@ -431,8 +437,72 @@ def _analyse_one(analyse: Analyser, point: OperatingPoint, prog: RunProgress, wi
     return res
 
 
+@dataclass
+class _PointJob:
+    """One operating point, wherever it runs (this process, a local worker, a Dask worker).
+
+    Analyses the point and returns ``(PointResult, analyser.describe())``; the describe dict
+    carries the model size learned while analysing, which a worker process cannot leave in the
+    caller's analyser object.  With ``animate`` (this process and local workers: same file
+    system) it also writes the point's mode animation, a file of its own, and drops the
+    DOF-sized flutter vector (it is not stored), so little data travels back.  Dask workers may
+    not see ``outdir``: there the caller writes the animation.  ``prog`` is set only for
+    in-process (serial) runs.
+    """
+
+    analyser: Any
+    config: AnalysisConfig
+    outdir: Path
+    with_progress: bool
+    animate: bool = True
+    prog: RunProgress | None = None
+
+    def __call__(self, point: OperatingPoint) -> tuple[PointResult, dict[str, Any]]:
+        if self.prog is not None:
+            self.prog.start_point(point.label)
+        res = _analyse_one(self.analyser, point, self.prog, self.with_progress)
+        if self.animate:
+            _write_animation(self.analyser, point, res, self.config, self.outdir)
+            res.flutter_dof_vector = None
+        return res, _describe(self.analyser)
+
+    def __getstate__(self):  # the progress display stays in the calling process
+        return {**self.__dict__, "prog": None}
+
+
+def _describe(analyser: Any) -> dict[str, Any]:
+    describe = getattr(analyser, "describe", None)
+    if not callable(describe):
+        return {}
+    try:
+        return dict(describe() or {})
+    except Exception:  # noqa: BLE001 - a description must not cost the point
+        return {}
+
+
+class _Described:
+    """The caller's analyser with the ``describe()`` entries reported by the workers added."""
+
+    def __init__(self, analyser: Any, extra: dict[str, Any]):
+        self._analyser, self._extra = analyser, extra
+
+    def describe(self) -> dict[str, Any]:
+        return {**_describe(self._analyser), **self._extra}
+
+
+def _task_point_result(task: Any) -> tuple[PointResult, dict[str, Any]]:
+    """``(PointResult, describe)`` from a :class:`windflutter.parallel.TaskResult`; a task that
+    could not run (worker died, result not transferable) becomes a ``failed`` point."""
+    if task.ok:
+        return task.value
+    res = PointResult(status="failed", reason=(task.error or "worker failed")[:500])
+    res.elapsed = float(task.elapsed)
+    return res, {}
+
+
 def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool = False,
-        progress: bool = True, analyser: Analyser | None = None, stream=None) -> xr.Dataset:
+        progress: bool = True, analyser: Analyser | None = None, stream=None,
+        workers: int | None = 1, scheduler: Any = None) -> xr.Dataset:
     """Run the analysis: every operating point, stored as it finishes; then plots and report.
 
     Parameters
@@ -446,6 +516,17 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
     progress : draw progress bars (``False``: quiet).
     analyser : per-point analyser; default :func:`make_analyser`.
     stream : where progress goes (default stderr).
+    workers : local worker processes for the operating points (1, the default here: serial in
+        this process, with progress inside each point; ``None``:
+        :func:`windflutter.parallel.default_workers`, the usable cores; ``windflutter run``
+        defaults to that).  With more than one, the analyser is sent to each worker once
+        (``cloudpickle``) and each worker builds its own models.
+    scheduler : Dask scheduler address (``"tcp://host:8786"``), ``distributed.Client`` or
+        ``LocalCluster``: run the points on that cluster (``workers`` is then ignored); its
+        workers need windflutter (and a plug-in analyser's module) installed.
+
+    Every point is stored as soon as it finishes, in completion order, whatever runs it; the
+    results equal those of a serial run (each point is a pure function of its input).
 
     Returns
     -------
@@ -455,12 +536,37 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
     Raises
     ------
     RunInterrupted
-        on Ctrl-C, after storing what was finished.
+        on Ctrl-C, after storing what was finished (running workers are stopped).
+    InputError
+        bad ``workers``, or no Dask scheduler at ``scheduler`` (checked before ``outdir`` is
+        touched).
     """
+    from windflutter import parallel  # noqa: PLC0415
+
+    if scheduler is None:
+        workers = parallel.check_workers(workers)
     outdir = Path(outdir)
-    outdir.mkdir(parents=True, exist_ok=True)
     if analyser is None:
         analyser = make_analyser(turbine, config)
+    client = own_client = None
+    if scheduler is not None:
+        client = parallel.connect(scheduler)
+        own_client = client if client is not scheduler else None
+    try:
+        return _run(turbine, config, outdir, resume, progress, analyser, stream, workers, client)
+    finally:
+        if own_client is not None:
+            own_client.close()
+
+
+def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progress: bool,
+         analyser: Any, stream, workers: int | None, client: Any) -> xr.Dataset:
+    """The body of :func:`run` (``client``: a connected Dask client or ``None``)."""
+    import contextlib  # noqa: PLC0415
+
+    from windflutter import parallel  # noqa: PLC0415
+
+    outdir.mkdir(parents=True, exist_ok=True)
     points = plan_points(config)
     info = describe_run(turbine, config, analyser)
 
@@ -486,30 +592,44 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
     store.atomic_write_text(yaml.safe_dump(run_doc, sort_keys=False), outdir / RUN_FILE)
 
     todo = [p for p in points if p.index not in done]
-    with_progress = _accepts_progress(analyser)
+    in_process = parallel.runs_in_process(len(todo), workers, client)
+    job = _PointJob(analyser, config, outdir, _accepts_progress(analyser), animate=client is None)
+    reported: dict[str, Any] = {}  # describe() entries from the workers
     point_attrs = {"config_fingerprint": config.fingerprint()}
     with RunProgress(len(points), len(done), quiet=not progress, stream=stream) as prog:
+        if in_process:
+            job.prog = prog
+        elif todo:
+            where = (f"the Dask scheduler {getattr(client.scheduler, 'address', '?')}"
+                     if client is not None else f"{min(workers, len(todo))} local worker processes")
+            prog.log(f"{len(todo)} operating points on {where}")
+        tasks = parallel.iter_tasks(job, todo, workers=workers, scheduler=client)
         try:
-            for p in todo:
-                prog.start_point(p.label)
-                res = _analyse_one(analyser, p, prog, with_progress)
-                ds = store.point_dataset(p, res, point_attrs)
-                _write_animation(analyser, p, res, config, outdir)
-                store.write_point(outdir, ds)
-                done[p.index] = ds
-                store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
-                                          outdir / store.RESULTS_FILE)
-                msg = None
-                if res.status != "ok":
-                    msg = f"[yellow]point {p.label} failed: {res.reason}[/yellow]"
-                prog.finish_point(res.status, msg)
+            with contextlib.closing(tasks):
+                for task in tasks:
+                    p = todo[task.index]
+                    res, desc = _task_point_result(task)
+                    reported.update(desc)
+                    if not in_process:
+                        prog.start_point(p.label)
+                    if not job.animate:
+                        _write_animation(analyser, p, res, config, outdir)
+                    ds = store.point_dataset(p, res, point_attrs)
+                    store.write_point(outdir, ds)
+                    done[p.index] = ds
+                    store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
+                                              outdir / store.RESULTS_FILE)
+                    msg = None
+                    if res.status != "ok":
+                        msg = f"[yellow]point {p.label} failed: {res.reason}[/yellow]"
+                    prog.finish_point(res.status, msg)
         except KeyboardInterrupt:
             if done:
                 store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
                                           outdir / store.RESULTS_FILE)
             raise RunInterrupted(len(done), len(points), outdir) from None
 
-    info = describe_run(turbine, config, analyser)
+    info = describe_run(turbine, config, _Described(analyser, reported) if reported else analyser)
     ds = assemble_dataset(done, config, info, len(points))
     ds.attrs["finished_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)

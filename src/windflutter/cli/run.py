@@ -1,4 +1,5 @@
-"""``windflutter run TURBINE [-c ANALYSIS.yaml] [-o OUTDIR] [--resume] [--quiet]``.
+"""``windflutter run TURBINE [-c ANALYSIS.yaml] [-o OUTDIR] [--resume] [--quiet] [--workers N]
+[--scheduler ADDRESS]``.
 
 Runs the whole analysis of a turbine (every wind speed, aerodynamic variant and search method of
 the analysis config), stores results point by point in ``OUTDIR/results.nc``, draws the figures
@@ -31,6 +32,12 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--resume", action="store_true",
                    help="continue an interrupted run in OUTDIR, keeping its finished points")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
+    p.add_argument("--workers", metavar="N", default=None,
+                   help="operating points in parallel on N local processes (default: the usable "
+                        "cores; 1 = serial, with progress inside each point)")
+    p.add_argument("--scheduler", metavar="ADDRESS", default=None,
+                   help="run the operating points on a Dask cluster, e.g. tcp://host:8786 "
+                        "(its workers need windflutter installed; --workers is then ignored)")
     p.add_argument("--wind-speeds", nargs="+", type=float, metavar="V",
                    help="override the config's wind speeds (m/s)")
     p.add_argument("--aero", nargs="+", choices=AERO_VARIANTS, help="override the aero variants")
@@ -52,6 +59,19 @@ def _overrides(args: argparse.Namespace) -> dict:
     if args.model:
         o["model"] = {"type": args.model}
     return o
+
+
+def parse_workers(value: str | None) -> int | None:
+    """``--workers`` as a positive int (``None``: the default, the usable cores)."""
+    if value is None:
+        return None
+    try:
+        n = int(str(value).strip())
+    except ValueError:
+        n = 0
+    if n < 1 or str(value).strip() != str(n):
+        raise InputError("--workers", value, "a positive integer number of processes (1 = serial)")
+    return n
 
 
 def load_turbine_for(arg: str, backend: str):
@@ -79,12 +99,18 @@ def run(args: argparse.Namespace) -> int:
 
         sys.stdout.write(default_config_text())
         return 0
+    from windflutter.parallel import default_workers  # noqa: PLC0415
+
+    workers = parse_workers(args.workers)
+    if workers is None:
+        workers = default_workers()
     config = load_config(args.config, _overrides(args))
     turbine = load_turbine_for(args.turbine, config.solver.backend)
     name = Path(str(getattr(turbine, "name", args.turbine))).stem.replace(" ", "_") or "turbine"
     outdir = Path(args.outdir) if args.outdir else Path("out") / name
     try:
-        ds = run_workflow(turbine, config, outdir, resume=args.resume, progress=not args.quiet)
+        ds = run_workflow(turbine, config, outdir, resume=args.resume, progress=not args.quiet,
+                          workers=workers, scheduler=args.scheduler)
     except RunInterrupted as exc:
         print(f"windflutter run: interrupted; {exc.done} of {exc.total} points stored in "
               f"{exc.outdir}; continue with: windflutter run {args.turbine}"

@@ -7,18 +7,27 @@ Two paths, same answer:
   :func:`scipy.linalg.eig` (LAPACK QZ);
 * sparse (large problems): shift-invert Arnoldi (ARPACK through :func:`scipy.sparse.linalg.eigs`)
   on the same pencil, where the 2n x 2n operator ``(A - sigma B)^{-1} B`` is applied through a
-  single sparse LU of the n x n matrix ``Q(sigma) = sigma^2 M + sigma D + K`` (SuperLU with its
-  default COLAMD ordering):
+  single sparse LU of the n x n matrix ``Q(sigma) = sigma^2 M + sigma D + K``:
 
   ``y1 = -Q(sigma)^{-1} (M z2 + (D + sigma M) z1)``, ``y2 = z1 + sigma y1``,
 
   and ``lambda = sigma + 1/nu`` for each Ritz value ``nu``.
+
+The LU comes from :class:`windflutter.solve.linsolve.Factorizer` (``lu_backend``, default
+``"auto"``, see :data:`LU_BACKEND`), with BLAS limited to one thread around the factorization
+and every solve (a multi-threaded OpenBLAS on a busy machine made one SuperLU factorization 30x
+slower, ``docs/performance.md``). One ``Factorizer`` per backend and thread is kept, so UMFPACK's
+symbolic analysis is reused by every later solve with the same sparsity pattern (the p-k
+iterations and rotor speeds of a point all share it); the numbers do not depend on that reuse.
+ARPACK gets a fixed start vector, so a solve does not depend on what ran before it in the
+process (serial and parallel runs give identical results).
 
 Eigenvalues ``lambda = s + i w`` (rad/s); damping ratio ``zeta = -s/|lambda|``.
 """
 
 from __future__ import annotations
 
+import threading
 from dataclasses import dataclass
 
 import numpy as np
@@ -26,10 +35,37 @@ import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
-from windflutter.errors import ConvergenceError, InputError
+from windflutter.errors import ConvergenceError, InputError, ModelError
+from windflutter.solve import linsolve
 
 #: problems with at most this many DOFs go to the dense QZ path by default
 DENSE_LIMIT = 600
+
+#: LU of the shift-invert path: ``"auto"`` (:func:`windflutter.solve.linsolve.default_backend`),
+#: ``"superlu"`` or ``"umfpack"``; ``ordering`` as for :class:`~windflutter.solve.linsolve.Factorizer`.
+#: Chosen by ``benchmarks/bench_qep.py`` (``docs/performance.md``).
+LU_BACKEND = "auto"
+LU_ORDERING = "COLAMD"
+
+_local = threading.local()
+
+
+def _factorizer(backend: str, ordering: str) -> linsolve.Factorizer:
+    """One :class:`~windflutter.solve.linsolve.Factorizer` per (backend, ordering) and thread."""
+    cache = getattr(_local, "factorizers", None)
+    if cache is None:
+        cache = _local.factorizers = {}
+    backend = linsolve._check_backend(backend, "lu_backend")
+    key = (backend, ordering if backend == "superlu" else "auto")  # UMFPACK orders itself
+    if key not in cache:
+        cache[key] = linsolve.Factorizer(*key)
+    return cache[key]
+
+
+def start_vector(n: int) -> np.ndarray:
+    """Fixed complex ARPACK start vector of length ``n`` (seeded, so reproducible anywhere)."""
+    rng = np.random.default_rng(20101)  # any fixed seed; the value has no meaning
+    return rng.standard_normal(n) + 1j * rng.standard_normal(n)
 
 
 @dataclass
@@ -117,17 +153,24 @@ def solve_qep_dense(M, D, K, shift: complex = 0.0, n_eig: int | None = None) -> 
 
 
 def solve_qep_sparse(M, D, K, shift: complex = 0.0, n_eig: int = 20, tol: float = 0.0,
-                     maxiter: int | None = None) -> Eigs:
-    """``n_eig`` eigenpairs nearest ``shift`` by shift-invert Arnoldi through one LU of Q(shift)."""
+                     maxiter: int | None = None, lu_backend: str | None = None,
+                     lu_ordering: str | None = None) -> Eigs:
+    """``n_eig`` eigenpairs nearest ``shift`` by shift-invert Arnoldi through one LU of Q(shift).
+
+    ``lu_backend`` / ``lu_ordering``: the sparse LU (default :data:`LU_BACKEND`,
+    :data:`LU_ORDERING`; see :mod:`windflutter.solve.linsolve`).
+    """
     n = K.shape[0]
     M = _as_csc(M, n)
     D = _as_csc(D, n)
     K = _as_csc(K, n)
     s = complex(shift)
     Q = (s * s) * M + s * D + K
+    fz = _factorizer(LU_BACKEND if lu_backend is None else lu_backend,
+                     LU_ORDERING if lu_ordering is None else lu_ordering)
     try:
-        lu = spla.splu(sp.csc_matrix(Q))
-    except RuntimeError as exc:  # exactly singular Q(shift)
+        lu = fz.factorize(Q)
+    except ModelError as exc:  # exactly singular Q(shift)
         raise ConvergenceError(f"Q(shift) is singular at shift {s}: choose another shift ({exc})") from exc
     DsM = (D + s * M).tocsr()
     Mr = M.tocsr()
@@ -142,7 +185,8 @@ def solve_qep_sparse(M, D, K, shift: complex = 0.0, n_eig: int = 20, tol: float 
     op = spla.LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=complex)
     k = min(n_eig, 2 * n - 2)
     try:
-        nu, v = spla.eigs(op, k=k, which="LM", tol=tol, maxiter=maxiter)
+        with linsolve.blas_limit(1):
+            nu, v = spla.eigs(op, k=k, which="LM", tol=tol, maxiter=maxiter, v0=start_vector(2 * n))
     except spla.ArpackNoConvergence as exc:
         raise ConvergenceError(f"ARPACK did not converge for {k} eigenvalues near {s}") from exc
     lam = s + 1.0 / nu
