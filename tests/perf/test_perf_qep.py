@@ -30,7 +30,9 @@ def problem():
     return p, ref
 
 
-CASES = [(b, o) for b in available_backends() for o in (("COLAMD", "symmetric") if b == "superlu" else ("auto",))]
+# (None, None): the defaults qep.LU_BACKEND / qep.LU_ORDERING
+CASES = [(None, None)] + [(b, o) for b in available_backends()
+                          for o in (("COLAMD", "symmetric") if b == "superlu" else ("auto",))]
 
 
 @pytest.mark.parametrize("backend,ordering", CASES)

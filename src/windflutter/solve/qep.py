@@ -41,11 +41,16 @@ from windflutter.solve import linsolve
 #: problems with at most this many DOFs go to the dense QZ path by default
 DENSE_LIMIT = 600
 
-#: LU of the shift-invert path: ``"auto"`` (:func:`windflutter.solve.linsolve.default_backend`),
-#: ``"superlu"`` or ``"umfpack"``; ``ordering`` as for :class:`~windflutter.solve.linsolve.Factorizer`.
-#: Chosen by ``benchmarks/bench_qep.py`` (``docs/performance.md``).
+#: LU of the shift-invert path: ``"auto"`` (:func:`windflutter.solve.linsolve.default_backend`:
+#: SuperLU unless ``WINDFLUTTER_LU_BACKEND`` says otherwise), ``"superlu"`` or ``"umfpack"``.
+#: Ordering as for :class:`~windflutter.solve.linsolve.Factorizer`: ``"auto"`` is SuperLU's
+#: symmetric mode for structurally symmetric patterns (FE + rotor + strip-aero matrices are) and
+#: COLAMD otherwise. Chosen by ``benchmarks/bench_qep.py`` on a 24,960-DOF complex system
+#: (``docs/performance.md``): symmetric mode 0.56x the time of the former bare COLAMD ``splu``,
+#: COLAMD through the Factorizer 1.1x, UMFPACK (kvxopt) 1.9x (its solves, with the iterative
+#: refinement kvxopt always runs, dominate an Arnoldi run).
 LU_BACKEND = "auto"
-LU_ORDERING = "COLAMD"
+LU_ORDERING = "auto"
 
 _local = threading.local()
 
