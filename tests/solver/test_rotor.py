@@ -36,7 +36,7 @@ def test_southwell_flap_frequency():
     # blade along z spinning about x (the shaft): flapwise (x) bending is untouched by Kr and G,
     # stiffened by the centrifugal prestress: w^2 = w0^2 + 1.1931 Omega^2 for the first mode of
     # a uniform cantilever without hub offset (Southwell coefficient; e.g. Wright et al., J.
-    # Sound Vib. 1982, table 1).  1 % tolerance: 16 Hermite elements + linear-N prestress.
+    # Appl. Mech. 49, 1982, table 1).  1 % tolerance: 16 Hermite elements + linear-N prestress.
     fe, st, EI, m, L = _spinning_blade()
     terms = rotor_terms(fe, st, RotorGeometry(np.zeros(3), np.array([1.0, 0, 0])), prestress=True)
     # section frame: y = global x, so EIz (= 4 EI) bends the blade along x (flapwise)
