@@ -70,3 +70,12 @@ def test_bad_lu_backend_is_an_input_error(problem):
     p, _ = problem
     with pytest.raises(InputError, match="lu_backend"):
         qep.solve_qep_sparse(p.M, p.D, p.K, shift=SHIFT, n_eig=4, lu_backend="mumps")
+
+
+def test_warm_start_gives_the_same_eigenvalues(problem):
+    p, ref = problem
+    near = qep.solve_qep_sparse(p.M, p.D, p.K, shift=SHIFT * 0.98, n_eig=N_EIG)
+    e = qep.solve_qep_sparse(p.M, p.D, p.K, shift=SHIFT, n_eig=N_EIG, v0=qep.warm_start_vector(near))
+    np.testing.assert_allclose(e.values, ref.values, rtol=1e-9)   # same tolerance as above
+    with pytest.raises(InputError, match="v0"):
+        qep.solve_qep_sparse(p.M, p.D, p.K, shift=SHIFT, n_eig=4, v0=np.zeros(3))
