@@ -154,3 +154,11 @@ output: {plots: false, report: false, animations: false, mode_shapes: false}
     assert (f[np.isfinite(f)] > 0).sum() >= 8             # a real Campbell diagram was compared
     assert_same_results(b, a)
     assert a.attrs["n_dof"] == b.attrs["n_dof"] > 0         # model size reported by the workers
+
+
+def test_cli_unreachable_scheduler_names_the_flag(tmp_path, capsys):
+    # nothing listens on port 9 (discard): refused with one line, before OUTDIR is created
+    rc = main(["run", "nrel5mw", "-o", str(tmp_path / "x"), "-q", "--scheduler", "tcp://127.0.0.1:9"])
+    err = capsys.readouterr().err
+    assert rc == 2 and "--scheduler" in err and len(err.strip().splitlines()) == 1
+    assert not (tmp_path / "x").exists()

@@ -111,6 +111,10 @@ def run(args: argparse.Namespace) -> int:
     try:
         ds = run_workflow(turbine, config, outdir, resume=args.resume, progress=not args.quiet,
                           workers=workers, scheduler=args.scheduler)
+    except InputError as exc:
+        if exc.field in ("scheduler", "workers"):  # name the flag the user typed
+            raise InputError(f"--{exc.field}", exc.value, exc.expected) from None
+        raise
     except RunInterrupted as exc:
         print(f"windflutter run: interrupted; {exc.done} of {exc.total} points stored in "
               f"{exc.outdir}; continue with: windflutter run {args.turbine}"
