@@ -60,9 +60,32 @@ def _qep(M, D, K, n_eig, shift=0.0):
 
 
 # ---------------------------------------------------------------------------- p-k
+def _excluded(vals: np.ndarray, vecs: np.ndarray, exclude) -> np.ndarray:
+    """Mask of the roots that are already taken by other tracked modes.
+
+    A root is taken when it is close in value (5 %) *and* in shape (MAC > 0.9) to one of the
+    ``exclude`` pairs ``(lambda, x)``: the value alone would also exclude the other copy of a
+    repeated root (identical blades), which has an independent shape.
+    """
+    out = np.zeros(vals.shape, bool)
+    for lam_x, x_x in exclude:
+        close = np.abs(vals - lam_x) <= 0.05 * max(abs(lam_x), 1.0)
+        if np.any(close):
+            m = mac_matrix(x_x[:, None], vecs)[0]
+            out |= close & (m > 0.9)
+    return out
+
+
 def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, maxiter: int = 40,
-            n_eig: int = 20):
+            n_eig: int = 20, exclude=()):
     """p-k iteration for one mode: solve with Theodorsen frozen at the mode's own frequency.
+
+    Parameters
+    ----------
+    system : OperatingSystem (``matrices(omega)``).
+    omega0 : starting frequency (rad/s).
+    x0 : shape to follow (working basis) or None (the root nearest ``i omega0``).
+    exclude : ``(lambda, x)`` pairs of roots taken by other tracked modes; never selected.
 
     Returns (lambda, x).  A mode whose frequency falls to zero is returned with the aero at k=0.
     """
@@ -84,8 +107,10 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
         e = cache[key]
         vals, vecs = e.values, e.vectors
         phys = vals.imag >= -1e-9 * max(1.0, abs(w))
+        if exclude:
+            phys &= ~_excluded(vals, vecs, exclude)
         if not np.any(phys):
-            phys = np.ones_like(phys)
+            return complex(np.nan, np.nan), None
         vals, vecs = vals[phys], vecs[:, phys]
         if x is not None:
             m = mac_matrix(x[:, None], vecs)[0]
@@ -128,38 +153,92 @@ def static_min_eig(system) -> float:
     return float(sK * sM * np.min(np.abs(mu)))
 
 
-def _track(system, modes, n_eig):
-    out = []
-    for w, x in modes:
-        if x is None or not np.isfinite(w):  # a mode lost earlier stays lost
-            out.append((complex(np.nan, np.nan), None))
-            continue
-        out.append(pk_mode(system, w, x, n_eig=n_eig))
+_LOST = (complex(np.nan, np.nan), None)
+
+#: damping ratio below which (as ``-NEUTRAL_ZETA``) a tracked mode counts as unstable.  The
+#: eigen-solves round Re(lambda) to ~1e-12 |lambda|, so a neutral (undamped, aerodynamically
+#: uncoupled) mode must not count; a real flutter crossing passes -1e-6 within ~1e-4 RPM of its
+#: zero (d zeta / d RPM ~ 0.03 per RPM on the NREL 5 MW), far inside the 0.01 RPM tolerance.
+NEUTRAL_ZETA = 1e-6
+
+
+def _unstable(lam: complex, zeta_tol: float = NEUTRAL_ZETA) -> bool:
+    """``Re(lambda) > zeta_tol |lambda|`` (damping ratio below ``-zeta_tol``)."""
+    return bool(np.isfinite(lam) and lam.real > zeta_tol * abs(lam))
+
+
+def _same_root(a, b, rtol: float = 1e-6) -> bool:
+    """Two tracked results that converged onto one root (same value, same shape)."""
+    if a[1] is None or b[1] is None:
+        return False
+    return abs(a[0] - b[0]) <= rtol * max(abs(a[0]), 1.0) and mac(a[1], b[1]) > 0.99
+
+
+def _track(system, seeds, n_eig):
+    """p-k for every tracked mode at one parameter, one root per mode.
+
+    ``seeds`` are ``(omega, x)`` (the mode's last known frequency and shape; ``x`` None for a
+    mode never found).  When two modes converge onto the same root, the one less similar (MAC)
+    to its own seed is solved again with that root excluded; a mode that finds no free root is
+    returned lost (NaN) for this parameter only -- its seed is kept, so it is picked up again.
+    """
+    out = [_LOST if (x is None or not np.isfinite(w)) else pk_mode(system, w, x, n_eig=n_eig)
+           for w, x in seeds]
+    n = len(out)
+    for _ in range(n):
+        clash = next(((i, j) for i in range(n) for j in range(i + 1, n) if _same_root(out[i], out[j])), None)
+        if clash is None:
+            break
+        i, j = clash
+        mi, mj = mac(out[i][1], seeds[i][1]), mac(out[j][1], seeds[j][1])
+        lose = j if mi >= mj else i
+        taken = [r for k, r in enumerate(out) if k != lose and r[1] is not None]
+        w, x = seeds[lose]
+        res = pk_mode(system, w, x, n_eig=n_eig, exclude=taken)
+        out[lose] = _LOST if res[1] is None or any(_same_root(res, r) for r in taken) else res
     return out
 
 
-def _drop_duplicates(cur, prev, rtol: float = 1e-6):
-    """Two tracked modes that landed on the same eigenvalue: keep the one more similar (MAC) to
-    its own previous shape, mark the other as lost (NaN)."""
-    n = len(cur)
-    for i in range(n):
-        for j in range(i + 1, n):
-            li, lj = cur[i][0], cur[j][0]
-            if cur[i][1] is None or cur[j][1] is None:
-                continue
-            if abs(li - lj) <= rtol * max(abs(li), 1.0) and mac(cur[i][1], cur[j][1]) > 0.99:
-                mi = mac(cur[i][1], prev[i][1]) if prev[i][1] is not None else 0.0
-                mj = mac(cur[j][1], prev[j][1]) if prev[j][1] is not None else 0.0
-                k = j if mi >= mj else i
-                cur[k] = (complex(np.nan, np.nan), None)
+def _seeds(cur, seeds_prev):
+    """Seeds for the next parameter: the current result, or the last good seed of a lost mode."""
+    return [(max(l.imag, 0.0), x) if x is not None else sp for (l, x), sp in zip(cur, seeds_prev)]
+
+
+def _similarity(a, b) -> float:
+    """Smallest MAC between consecutive results of the lightly damped modes (tracking quality)."""
+    worst = 1.0
+    for (la, xa), (lb, xb) in zip(a, b):
+        if xa is None or xb is None:
+            continue
+        if -la.real > 0.3 * abs(la) or -lb.real > 0.3 * abs(lb):  # heavily damped: not an onset candidate
+            continue
+        worst = min(worst, mac(xa, xb))
+    return worst
+
+
+def _advance(system_at, p0, cur0, seeds0, p1, n_eig, depth, max_depth=3, min_mac=0.8):
+    """Track from ``p0`` to ``p1``, halving the step where the shapes change too much.
+
+    Returns the list of ``(p, result, seeds)`` after ``p0`` (ending at ``p1``).
+    """
+    cur1 = _track(system_at(p1), _seeds(cur0, seeds0), n_eig)
+    if depth < max_depth and _similarity(cur0, cur1) < min_mac:
+        pm = 0.5 * (p0 + p1)
+        first = _advance(system_at, p0, cur0, seeds0, pm, n_eig, depth + 1, max_depth, min_mac)
+        _, cm, sm = first[-1]
+        return first + _advance(system_at, pm, cm, sm, p1, n_eig, depth + 1, max_depth, min_mac)
+    return [(p1, cur1, _seeds(cur1, _seeds(cur0, seeds0)))]
 
 
 def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_eig: int = 20,
               xtol: float = 1e-3, min_frequency: float = 1e-3, divergence: bool = True,
-              stop_at_onset: bool = True) -> Onset:
+              stop_at_onset: bool = True, max_refine: int = 3, zeta_tol: float = NEUTRAL_ZETA) -> Onset:
     """p-k search over increasing ``params``.
 
     With ``stop_at_onset=False`` the whole grid is swept (Campbell data in ``eigenvalues``).
+    Between grid points the step is halved (up to ``max_refine`` times) where a lightly damped
+    mode changes shape too much (MAC < 0.8) to be followed reliably; the flutter crossing is
+    checked on every sub-step, the results are reported on the grid.
 
     Parameters
     ----------
@@ -168,58 +247,59 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
     n_track : number of lowest structural modes followed.
     xtol : tolerance of the onset parameter (same unit as params).
     min_frequency : a mode with Im(lambda) below this (rad/s) is static, not flutter.
+    zeta_tol : a mode is unstable when its damping ratio is below ``-zeta_tol`` (see
+        :data:`NEUTRAL_ZETA`): an undamped mode without aerodynamic coupling (e.g. a tower mode
+        of a model whose tower top is held) has ``Re(lambda) = +-1e-15`` and is not flutter.
     """
     params = np.asarray(params, float)
     if params.ndim != 1 or params.size < 2 or np.any(np.diff(params) <= 0):
         raise InputError("params", params.tolist()[:5], "an increasing grid of at least 2 values")
     sys0 = system_at(params[0])
-    M, D, K = sys0.matrices(0.0)
     Ks = sys0.Ks.toarray() if hasattr(sys0.Ks, "toarray") else sys0.Ks
     Md = sys0.model.Mr.toarray() if hasattr(sys0.model.Mr, "toarray") else sys0.model.Mr
     w2, V = sla.eigh(0.5 * (Ks + Ks.T), 0.5 * (Md + Md.T))
     n_track = min(n_track, len(w2))
     modes = [(float(np.sqrt(max(w2[i], 0.0))), V[:, i].astype(complex)) for i in range(n_track)]
     lams = np.zeros((params.size, n_track), complex)
-    vecs = [None] * params.size
     res = Onset(params=params, method="pk")
     cur = _track(sys0, modes, n_eig)
+    seeds = _seeds(cur, modes)
     lams[0] = [l for l, _ in cur]
-    vecs[0] = cur
     res.vectors0 = [x for _, x in cur]
     g_prev = static_min_eig(sys0) if divergence else None
     flutter_found = False
     for ip in range(1, params.size):
         p = params[ip]
-        sysp = system_at(p)
-        prev = cur
-        cur = _track(sysp, [(max(l.imag, 0.0), x) for l, x in prev], n_eig)
-        _drop_duplicates(cur, prev)
+        steps = _advance(system_at, params[ip - 1], cur, seeds, p, n_eig, 0, max_refine)
+        chain = [(params[ip - 1], cur)] + [(q, c) for q, c, _ in steps]
+        cur, seeds = steps[-1][1], steps[-1][2]
         lams[ip] = [l for l, _ in cur]
-        vecs[ip] = cur
         if divergence and res.divergence is None:
-            g = static_min_eig(sysp)
+            g = static_min_eig(system_at(p))
             if g_prev > 0 >= g:
                 res.divergence = brentq(lambda q: static_min_eig(system_at(q)), params[ip - 1], p, xtol=xtol)
             g_prev = g
         if not flutter_found:
             cand = []
-            for i, (l, _) in enumerate(cur):
-                if prev[i][1] is None or cur[i][1] is None:
-                    continue
-                if l.real >= 0 and l.imag > min_frequency and prev[i][0].real < 0:
-                    pm = params[ip - 1]
-                    seed = prev[i]
+            for (pa, ca), (pb, cb) in zip(chain[:-1], chain[1:]):
+                for i, (l, x) in enumerate(cb):
+                    if ca[i][1] is None or x is None:
+                        continue
+                    if _unstable(l, zeta_tol) and l.imag > min_frequency and not _unstable(ca[i][0], zeta_tol):
+                        seed = ca[i]
 
-                    def f(q, seed=seed):
-                        lam, _ = pk_mode(system_at(q), max(seed[0].imag, 0.0), seed[1], n_eig=n_eig)
-                        return lam.real
+                        def f(q, seed=seed):
+                            lam, _ = pk_mode(system_at(q), max(seed[0].imag, 0.0), seed[1], n_eig=n_eig)
+                            return lam.real
 
-                    try:
-                        q0 = brentq(f, pm, p, xtol=xtol)
-                    except ValueError:
-                        q0 = p
-                    lam, x = pk_mode(system_at(q0), max(seed[0].imag, 0.0), seed[1], n_eig=n_eig)
-                    cand.append((q0, lam, x, i))
+                        try:
+                            q0 = brentq(f, pa, pb, xtol=xtol)
+                        except ValueError:
+                            q0 = pb
+                        lam, xq = pk_mode(system_at(q0), max(seed[0].imag, 0.0), seed[1], n_eig=n_eig)
+                        cand.append((q0, lam, xq, i))
+                if cand:
+                    break
             if cand:
                 q0, lam, x, i = min(cand, key=lambda c: c[0])
                 res.flutter, res.flutter_frequency, res.flutter_vector, res.flutter_mode = q0, lam.imag, x, i

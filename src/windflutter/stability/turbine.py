@@ -281,6 +281,10 @@ class TurbineStability:
         if mode is not None and on.flutter_mode is not None and on.flutter_mode < len(labels):
             # the structural mode it grew from, and the shape at onset
             mode = f"{labels[on.flutter_mode]} -> {mode}"
+        if mode is not None and on.divergence is not None and on.flutter > on.divergence:
+            # reported like a V-g plot shows it, but the stability limit is the divergence: beyond
+            # it the linearization about the undeformed rotor describes no equilibrium
+            mode = f"{mode} (above divergence)"
         lam = on.eigenvalues
         with np.errstate(invalid="ignore", divide="ignore"):
             zeta = -lam.real / np.abs(lam)
