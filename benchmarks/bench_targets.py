@@ -1,0 +1,180 @@
+"""The issue-7 targets on the bundled NREL 5 MW turbine, measured on this machine.
+
+Targets (2 cores): shell model (>= 26k DOF) built and assembled < 10 s; one coupled 20-mode
+eigen-solve < 2 s; the full map (12 wind speeds, potential + viscous) < 60 s with reduction;
+peak memory < 4 GB; 1 vs 2 workers.
+
+Cases, each in its own forked process (BLAS 1 thread; peak RSS = that process's):
+A. beam model build + assemble [baseline of B];
+B. default shell model (MeshSettings(model="shell"): 40 x 30 skin quads per blade, 3-element webs,
+   20 x 22 tower shells) build + assemble;
+C. shell, full order (``reduction="none"``): one coupled eigen-solve, 20 eigenvalues nearest
+   i*omega at V = 10 m/s, 12.1 RPM (sparse shift-invert Arnoldi) [baseline of D];
+D. shell, reduced (``reduction="mta"``, 30 modes per reference speed, the ``windflutter run``
+   default): one-off basis, then the same 20-eigenvalue solve (dense companion of the basis);
+E. one operating point of the map, beam model with the ``windflutter run`` defaults (mta,
+   rotor speeds 2-40 RPM in 20 points, p-k, auto tracked modes), potential and viscous, serial
+   [baseline of F] -- counts the eigen-solves;
+F. the same 2 points on 2 local workers (``windflutter.workflow.run(workers=2)``).
+The full 24-point map time is extrapolated from E (time per point x 24), not run: see the docs.
+Every case prints the 1-min load average when it started (the machine is shared).
+Usage: python benchmarks/bench_targets.py [--quick] [--only A,B,...]
+``--quick``: a coarse shell (12 x 10 skin quads, 1-element webs, 8 x 6 tower) for B-D.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _benchutil import QUICK, header, isolated, maxrss_mb, table  # noqa: E402
+
+RPM = math.pi / 30
+V_SOLVE, RPM_SOLVE, F_SOLVE_HZ = 10.0, 12.1, 0.7   # operating point and shift of the single solve
+SHELL_MESH = dict(n_chord=12, n_span=10, n_web=1, n_tower_circ=8, n_tower_axial=6) if QUICK else {}
+MAP_WINDS = [10.0]
+
+
+def _turbine():
+    from windflutter.model import load_turbine
+
+    return load_turbine("nrel5mw")
+
+
+def case_build(model: str) -> dict:
+    from windflutter.mesh.settings import MeshSettings
+    from windflutter.mesh.turbine import build_model
+    from windflutter.structure.assembly import assemble
+
+    tb = _turbine()
+    t0 = time.perf_counter()
+    fe, sections = build_model(tb, MeshSettings(model=model, **(SHELL_MESH if model == "shell" else {})))
+    t_build = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    st = assemble(fe)
+    t_asm = time.perf_counter() - t0
+    return dict(n_dof=6 * len(fe.nodes), nq=int(st.T.shape[1]), t_build=t_build, t_asm=t_asm,
+                t=t_build + t_asm, nnz_K=int(st.K.nnz) if hasattr(st, "K") else -1)
+
+
+def case_solve(reduction: str) -> dict:
+    import windflutter.stability.turbine as tmod
+    from windflutter.solve import qep
+
+    tb = _turbine()
+    ts = tmod.TurbineStability(tb, tmod.TurbineOptions(model="shell", reduction=reduction, n_modes=30,
+                                                       mesh=SHELL_MESH, rpm_max=40.0))
+    t0 = time.perf_counter()
+    fe, sections, am = ts.model(0.0)
+    t_model = time.perf_counter() - t0
+    sys_ = am.at(V_SOLVE, RPM_SOLVE * RPM)
+    w = 2 * math.pi * F_SOLVE_HZ
+    t0 = time.perf_counter()
+    M, D, K = sys_.matrices(w)
+    t_mat = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    e = qep.solve_qep(M, D, K, shift=1j * w, n_eig=20)
+    t_solve = time.perf_counter() - t0
+    return dict(n_dof=6 * len(fe.nodes), nq=int(am.size), t_model=t_model, t_mat=t_mat, t=t_solve,
+                lam=np.sort_complex(e.values))
+
+
+class _Counter:
+    """Wraps ``qep.solve_qep`` in this (benchmark) process to count the eigen-solves."""
+
+    def __init__(self, fn):
+        self.fn, self.n, self.t = fn, 0, 0.0
+
+    def __call__(self, *a, **kw):
+        t0 = time.perf_counter()
+        try:
+            return self.fn(*a, **kw)
+        finally:
+            self.n += 1
+            self.t += time.perf_counter() - t0
+
+
+def case_map(workers: int) -> dict:
+    import windflutter.stability.search as search
+    from windflutter.config import load_config
+    from windflutter.workflow import run
+
+    cfg = load_config(None, {"wind_speeds": MAP_WINDS, "aero": ["potential", "viscous"],
+                             "output": {"plots": False, "report": False, "animations": False}})
+    counter = None
+    if workers == 1:
+        counter = search.solve_qep = _Counter(search.solve_qep)  # this forked child only
+    tb = _turbine()
+    with tempfile.TemporaryDirectory() as tmp:
+        t0 = time.perf_counter()
+        ds = run(tb, cfg, tmp, progress=False, workers=workers)
+        wall = time.perf_counter() - t0
+    out = dict(n_points=int(ds.sizes["point"]), t=wall, status=list(map(str, ds["status"].values)),
+               onsets=[float(x) for x in np.r_[ds["flutter_rpm"].values, ds["divergence_rpm"].values]],
+               n_dof=int(ds.attrs.get("n_dof", -1)), nq=int(ds.attrs.get("n_reduced_dof", -1)),
+               point_elapsed=[float(x) for x in ds["elapsed"].values])
+    if counter is not None:
+        out.update(n_solves=counter.n, t_solves=counter.t)
+    return out
+
+
+CASES = {
+    "A": ("beam build + assemble [baseline of B]", case_build, ("beam",)),
+    "B": ("shell build + assemble", case_build, ("shell",)),
+    "C": ("shell full order, one 20-eig solve [baseline of D]", case_solve, ("none",)),
+    "D": ("shell reduced (mta, 30 modes), one 20-eig solve", case_solve, ("mta",)),
+    "E": ("map points, beam, run defaults, serial [baseline of F]", case_map, (1,)),
+    "F": ("map points, beam, run defaults, 2 workers", case_map, (2,)),
+}
+BASELINE = {"B": "A", "D": "C", "F": "E"}
+
+
+def main() -> int:
+    only = None
+    if "--only" in sys.argv:
+        only = sys.argv[sys.argv.index("--only") + 1].split(",")
+    header("bench_targets: issue-7 targets on the NREL 5 MW", shell_mesh=SHELL_MESH or "default",
+           solve=f"V={V_SOLVE} m/s, {RPM_SOLVE} RPM, shift i*2pi*{F_SOLVE_HZ} Hz, 20 eigenvalues",
+           map_winds=MAP_WINDS)
+    rows = {}
+    for key, (label, fn, args) in CASES.items():
+        if only and key not in only:
+            continue
+        load = os.getloadavg()
+        try:
+            out, wall, rss = isolated(fn, *args)
+        except RuntimeError as exc:
+            print(f"  {key} {label}: FAILED\n{exc}", flush=True)
+            continue
+        out.update(case=f"{key}. {label}", rss=rss, load=f"{load[0]:.1f}/{load[1]:.1f}")
+        rows[key] = out
+        extra = {k: v for k, v in out.items() if k not in ("lam", "case")}
+        print(f"  {key} {label}: {extra}", flush=True)
+    for key, base in BASELINE.items():
+        if key in rows and base in rows:
+            rows[key]["ratio"] = rows[key]["t"] / rows[base]["t"]
+    if "C" in rows and "D" in rows:
+        a, b = rows["C"]["lam"], rows["D"]["lam"]
+        print("  D vs C eigenvalues (sorted):")
+        for x, y in zip(a, b):
+            print(f"    full {x:.5f}   reduced {y:.5f}")
+    if "E" in rows:
+        e = rows["E"]
+        e["per_point"] = e["t"] / max(e["n_points"], 1)
+        e["map_24_extrapolated"] = 24 * e["per_point"]
+    table(list(rows.values()), ["case", "n_dof", "nq", "t", "ratio", "rss", "load"])
+    print("t: the timed step (s) -- B: build + assemble; C, D: one eigen-solve (model set-up in "
+          "t_model above); E, F: wall time of the points; rss: peak RSS of the case's process (MB); "
+          f"load: 1/5-min load average at the start; parent rss {maxrss_mb():.0f} MB")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
