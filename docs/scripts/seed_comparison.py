@@ -12,10 +12,12 @@ Usage::
 
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR [--turbines nrel5mw ...]
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --plot-only
+    OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --candidates
 
 writes ``OUTDIR/maps.csv`` (one row per turbine, variant and wind speed; appended as it goes, so
 a run can be split by turbine), ``OUTDIR/maps.md`` (the same as a markdown table) and
-``OUTDIR/<turbine>_flutter.png`` / ``OUTDIR/<turbine>_divergence.png``.
+``OUTDIR/<turbine>_flutter.png`` / ``OUTDIR/<turbine>_divergence.png``; ``--candidates`` runs the
+study of why the seed's viscous onset is above its potential one (``candidates.csv/.md``).
 """
 
 from __future__ import annotations
@@ -31,9 +33,9 @@ CASES = {
     "nrel5mw": dict(wind=(4, 6, 8, 10, 12, 15, 20, 25), rpm=(8.0, 36.0, 2.0),
                     variants=(("potential", "thesis"), ("potential", "full"),
                               ("viscous", "thesis"), ("viscous", "full"))),
-    "seed20mw": dict(wind=(4, 7, 10, 13, 18, 25), rpm=(2.0, 20.0, 1.5),
+    "seed20mw": dict(wind=(4, 10, 16, 25), rpm=(2.0, 20.0, 1.5),
                      variants=(("potential", "full"), ("viscous", "full"))),
-    "iea15mw": dict(wind=(4, 7, 10, 13, 18, 25), rpm=(2.0, 20.0, 1.5),
+    "iea15mw": dict(wind=(4, 10, 16, 25), rpm=(2.0, 20.0, 1.5),
                     variants=(("potential", "full"), ("viscous", "full"))),
 }
 RATED_RPM = {"nrel5mw": 12.1, "seed20mw": 6.31, "iea15mw": 7.56}
@@ -115,14 +117,132 @@ def plot(rows: list[dict], outdir: Path) -> None:
             plt.close(fig)
 
 
+# ------------------------------------------------------------------------------------------
+# Part 1: why the seed's viscous onset lies above its potential one (NREL 5 MW, 10 m/s)
+
+def _stall_fit(polar, start: str) -> float:
+    """Cl_alpha of a straight line fitted from ``start`` ("alpha0": the zero-lift angle, "m15":
+    -15 deg) up to the angle of maximum lift below 25 deg: readings of the seed's "until the
+    separation angle of attack" that reach into the rounded top of the lift curve."""
+    import numpy as np
+
+    from windflutter.aero.polars import fit_polar
+
+    f = fit_polar(polar)
+    if f.cl_alpha == 0:
+        return 0.0
+    a, cl = polar.alpha, polar.cl
+    m = (a > f.alpha_zero_lift) & (a < np.radians(25.0))
+    a_stall = a[np.where(m)[0][np.argmax(cl[m])]]
+    a_lo = f.alpha_zero_lift if start == "alpha0" else np.radians(-15.0)
+    sel = (a >= a_lo) & (a <= a_stall)
+    return float(np.polyfit(a[sel], cl[sel], 1)[0])
+
+
+def candidates(outdir: Path, wind: float = 10.0) -> list[dict]:
+    """Onset at one wind speed for each candidate explanation; rows also written to
+    ``outdir/candidates.csv`` / ``.md``.  The variants change only the strip slopes (public
+    ``AeroOptions.lift_slope/drag_slope`` of the built model) or, for the a.c. shift and the
+    flat-plate drag, wrap ``strip.section_matrices`` inside this script."""
+    import numpy as np
+    from dataclasses import replace
+
+    import windflutter.aero.strip as strip
+    from windflutter.aero.polars import fit_polar
+    from windflutter.model.windio import load_turbine
+    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+
+    turbine = load_turbine("nrel5mw")
+    base_sm = strip.section_matrices
+
+    def flat_plate_drag(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0):
+        # the seed's eqs. 3.46-3.48: alpha_unsteady = L_flat_plate / (2 pi rho U^2 b), including
+        # the non-circulatory terms (ours: circulatory lift only)
+        Ma, Da, Ka = base_sm(b, a, U, C, rho, cla, 0.0, am_scale, ac_shift)
+        Mf, Df, Kf = base_sm(b, a, U, C, rho, 2 * np.pi, 0.0, 1.0)
+        f = np.broadcast_to(np.asarray(cda, float), (len(b),))[:, None] / (2 * np.pi)
+        for X, Y in ((Ma, Mf), (Da, Df), (Ka, Kf)):
+            X[:, 2, :] = f * Y[:, 0, :]
+        return Ma, Da, Ka
+
+    def case(label, aero="potential", ams=False, cla=None, cda=None, ac=False, sm=None):
+        opts = TurbineOptions(model="beam", aero=aero, apparent_mass_scaling=ams, mesh={"part": "rotor"},
+                              rpm_min=10.0, rpm_max=32.0, rpm_step=2.0)
+        ts = TurbineStability(turbine, opts)
+        fe, sec, am = ts.model(ts.pitch_at(wind))
+        fits = [fit_polar(p) for p in sec.polars]
+        idx = np.asarray(sec.airfoil)
+        if aero == "viscous":
+            c0, d0 = np.asarray(am.aero.lift_slope, float), np.asarray(am.aero.drag_slope, float)
+            c1 = c0 if cla is None else np.asarray(cla(c0, sec), float)
+            d1 = d0 if cda is None else np.asarray(cda(d0), float)
+            am.aero = replace(am.aero, lift_slope=c1, drag_slope=d1)
+        wrap = sm
+        if ac:
+            dx = np.array([fits[i].ac_shift for i in idx])
+            inner = sm or base_sm
+            wrap = (lambda *a, **k: inner(*a, **{**k, "ac_shift": dx}))
+        strip.section_matrices = wrap or base_sm
+        try:
+            p = ts.analyse_operating_point(wind)
+        finally:
+            strip.section_matrices = base_sm
+        tip = np.asarray(am.aero.lift_slope)[np.argmax(sec.radius)] if aero == "viscous" else 2 * np.pi
+        row = dict(candidate=label, tip_cl_alpha=f"{tip:.2f}", flutter_rpm=f"{p.flutter_rpm:.2f}" if p.flutter_rpm else "",
+                   flutter_hz=f"{p.flutter_frequency_hz:.3f}" if p.flutter_frequency_hz else "",
+                   divergence_rpm=f"{p.divergence_rpm:.2f}" if p.divergence_rpm else "")
+        print(row, flush=True)
+        return row
+
+    def uniform(c):
+        return lambda c0, sec: np.where(c0 > 0, c, 0.0)
+
+    def stall_fit(start):
+        return lambda c0, sec: np.array([_stall_fit(sec.polars[i], start) for i in np.asarray(sec.airfoil)])
+
+    rows = [case("potential (2 pi, no drag)"),
+            case("viscous as fitted (default)", "viscous"),
+            case("viscous, drag off", "viscous", cda=lambda d: 0 * d),
+            case("viscous, drag x10", "viscous", cda=lambda d: 10 * d),
+            case("viscous, drag x(-10)", "viscous", cda=lambda d: -10 * d),
+            case("viscous, seed's flat-plate alpha_unsteady in the drag", "viscous", sm=flat_plate_drag),
+            case("viscous, Cl_alpha = 2 pi (drag only)", "viscous", cla=uniform(2 * np.pi)),
+            case("viscous + apparent-mass scaling Cl_alpha/2pi", "viscous", ams=True)]
+    for c in (5.0, 5.5, 6.0, 7.0):
+        rows.append(case(f"viscous, Cl_alpha = {c} everywhere", "viscous", cla=uniform(c)))
+    rows.append(case("viscous, Cl_alpha = 5.0 everywhere + am scaling", "viscous", ams=True, cla=uniform(5.0)))
+    rows.append(case("viscous, Cl_alpha fitted -15 deg .. Cl_max", "viscous", cla=stall_fit("m15")))
+    rows.append(case("viscous, Cl_alpha fitted alpha_0 .. Cl_max", "viscous", cla=stall_fit("alpha0")))
+    rows.append(case("viscous, Cl_alpha fitted -15 deg .. Cl_max + am scaling", "viscous", ams=True,
+                     cla=stall_fit("m15")))
+    rows.append(case("viscous + a.c. from Cm_alpha", "viscous", ac=True))
+    rows.append(case("viscous + a.c. from Cm_alpha + am scaling", "viscous", ams=True, ac=True))
+    rows.append(case("potential + a.c. from Cm_alpha (not a model: isolates the a.c.)", ac=True))
+    with (outdir / "candidates.csv").open("w", newline="") as fh:
+        w = csv.DictWriter(fh, list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    lines = ["| candidate (NREL 5 MW, rotor alone, beam, p-k, full physics, %g m/s) | tip Cl_alpha (1/rad) | flutter (RPM) | f (Hz) | divergence (RPM) |" % wind,
+             "|---|---|---|---|---|"]
+    lines += [f"| {r['candidate']} | {r['tip_cl_alpha']} | {r['flutter_rpm'] or '-'} | {r['flutter_hz'] or '-'} | "
+              f"{r['divergence_rpm'] or '-'} |" for r in rows]
+    (outdir / "candidates.md").write_text("\n".join(lines) + "\n")
+    return rows
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("outdir")
     ap.add_argument("--turbines", nargs="+", choices=sorted(CASES), default=list(CASES))
     ap.add_argument("--plot-only", action="store_true", help="only redo maps.md and the PNGs from maps.csv")
+    ap.add_argument("--candidates", action="store_true",
+                    help="only the candidate study (NREL 5 MW, 10 m/s) -> candidates.csv/.md")
     a = ap.parse_args(argv)
     out = Path(a.outdir)
     out.mkdir(parents=True, exist_ok=True)
+    if a.candidates:
+        candidates(out)
+        return 0
     csv_path = out / "maps.csv"
     if not a.plot_only:
         for name in a.turbines:
