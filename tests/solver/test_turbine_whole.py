@@ -167,28 +167,41 @@ def test_all_three_torsion_modes_tracked(whole):
 
 
 def test_flutter_above_divergence_is_labelled(nrel5mw):
-    # Tracking too few modes (12: no torsion mode) the whole turbine's only flutter crossing is an
-    # edgewise one above the divergence speed; it is still reported (V-g style), but the label
-    # and first_instability must say that divergence comes first.
-    p = _analyse(nrel5mw, "turbine", n_tracked=12, rpm_max=36.0)
-    assert p.divergence_rpm is not None
-    if p.flutter_rpm is not None and p.flutter_rpm > p.divergence_rpm:
-        assert p.first_instability == "divergence"
-        assert "above divergence" in p.flutter_mode
-        assert p.as_dict()["first_instability"] == "divergence"
-    else:  # the crossing must then be below divergence and labelled plainly
-        assert p.flutter_rpm is None or "above divergence" not in p.flutter_mode
+    # Tracking only the 8 lowest modes (no torsion, no 2nd flap: what a fixed count did before
+    # the automatic one) the whole turbine's only flutter crossing is the edgewise one near
+    # 31 RPM, 1.0 Hz, above the divergence (~25 RPM).  It is still reported (as a V-g plot
+    # shows it), but the label and first_instability must say that divergence comes first.
+    p = _analyse(nrel5mw, "turbine", n_tracked=8, rpm_max=40.0)
+    assert p.divergence_rpm is not None and p.flutter_rpm is not None
+    assert p.flutter_rpm > p.divergence_rpm
+    assert p.first_instability == "divergence"
+    assert p.flutter_mode.endswith("(above divergence)")
+    d = p.as_dict()
+    assert d["first_instability"] == "divergence" and d["flutter_rpm"] == pytest.approx(p.flutter_rpm)
 
 
 @pytest.mark.slow
-def test_full_order_whole_turbine_agrees_with_reduced(nrel5mw):
-    # Reduced (modal basis) vs full order, whole turbine, 10 elements per blade: the projected
-    # model must reproduce the full-order onsets.  Tolerance 3 %, the basis-truncation error
-    # stated for the rotor in docs/performance.md sec. 5.
-    full = _analyse(nrel5mw, "turbine", n_span=10, reduction="none")
-    red = _analyse(nrel5mw, "turbine", n_span=10, n_modes=60)
-    assert full.flutter_rpm is not None and full.flutter_rpm < full.divergence_rpm
-    assert red.flutter_rpm == pytest.approx(full.flutter_rpm, rel=0.03)
-    assert red.divergence_rpm == pytest.approx(full.divergence_rpm, rel=0.03)
-    assert red.flutter_frequency_hz == pytest.approx(full.flutter_frequency_hz, rel=0.03)
+def test_full_order_whole_turbine(nrel5mw):
+    # Full order (reduction "none", dense QEP) vs the projected model, whole turbine (6 elements
+    # per blade, 8 tower elements, to keep the dense full-order solves affordable), and vs the
+    # full-order rotor alone.  Tolerances: reduced with 60 modes per reference speed within 1 %
+    # of full order (measured 0.1-0.2 % on the 10-element model); the whole turbine's blade
+    # flutter within 2 % of the rotor alone's (the tower coupling is a small physical effect
+    # here: +0.04 RPM at full order on the 10-element model, docs/stability.md); divergence 2 %.
+    mesh = {"n_tower_axial": 8}
+    kw = dict(n_span=6, rpm_min=18.0, rpm_max=28.0, rpm_step=2.0)
+    o = dict(model="beam", rpm_min=18.0, rpm_max=28.0, rpm_step=2.0)
+    full = TurbineStability(nrel5mw, TurbineOptions(reduction="none", mesh={"n_span": 6, "part": "turbine", **mesh},
+                                                    **o)).analyse_operating_point(10.0)
+    red = TurbineStability(nrel5mw, TurbineOptions(n_modes=60, mesh={"n_span": 6, "part": "turbine", **mesh},
+                                                   **o)).analyse_operating_point(10.0)
+    rot = _analyse(nrel5mw, "rotor", reduction="none", **kw)
+    for p in (full, red, rot):
+        assert p.flutter_rpm is not None and p.divergence_rpm is not None
+        assert p.first_instability == "flutter" and 3.0 < p.flutter_frequency_hz < 4.0
+    assert red.flutter_rpm == pytest.approx(full.flutter_rpm, rel=0.01)
+    assert red.divergence_rpm == pytest.approx(full.divergence_rpm, rel=0.01)
+    assert red.flutter_frequency_hz == pytest.approx(full.flutter_frequency_hz, rel=0.01)
+    assert full.flutter_rpm == pytest.approx(rot.flutter_rpm, rel=0.02)
+    assert full.divergence_rpm == pytest.approx(rot.divergence_rpm, rel=0.02)
     assert not math.isnan(full.flutter_frequency_hz)

@@ -277,7 +277,8 @@ class TurbineStability:
         if on.flutter_vector is not None:
             s_on = system_at(on.flutter)
             mode = label_mode(s_on.expand(on.flutter_vector), sections, s_on.strip.P, tower_dofs)
-        labels = [lab(x) for x in on.vectors0] if on.vectors0 is not None else []
+        # a mode without a free root at the first grid point (lost there) has no shape yet
+        labels = [lab(x) if x is not None else "lost" for x in on.vectors0] if on.vectors0 is not None else []
         if mode is not None and on.flutter_mode is not None and on.flutter_mode < len(labels):
             # the structural mode it grew from, and the shape at onset
             mode = f"{labels[on.flutter_mode]} -> {mode}"
