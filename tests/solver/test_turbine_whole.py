@@ -140,8 +140,9 @@ def test_stiff_tower_converges_to_rotor_alone(nrel5mw, rotor_alone, whole, monke
 def test_whole_turbine_finds_blade_flutter(whole, rotor_alone):
     # The issue: the whole turbine reported no flap-torsion flutter below divergence.  It must
     # find the 1st-torsion -> flap-torsion flutter near the rotor-alone one: same mode family
-    # (3-4 Hz), below divergence, within 3 RPM of the rotor alone (the tower coupling and the
-    # modal truncation move it by ~1-1.5 RPM on this model, docs/stability.md).
+    # (3-4 Hz), below divergence, within 3 RPM of the rotor alone.  (At full order the two agree
+    # to 0.05 RPM; the default 30-mode basis puts the whole turbine ~1.5 RPM high, which is
+    # why the bound is not tighter -- docs/stability.md.)
     p = whole
     assert p.flutter_rpm is not None and p.divergence_rpm is not None
     assert p.first_instability == "flutter" and p.flutter_rpm < p.divergence_rpm
@@ -185,20 +186,20 @@ def test_full_order_whole_turbine(nrel5mw):
     # Full order (reduction "none", dense QEP) vs the projected model, whole turbine (6 elements
     # per blade, 8 tower elements, to keep the dense full-order solves affordable), and vs the
     # full-order rotor alone.  Tolerances: reduced with 60 modes per reference speed within 1 %
-    # of full order (measured 0.1-0.2 % on the 10-element model); the whole turbine's blade
-    # flutter within 2 % of the rotor alone's (the tower coupling is a small physical effect
-    # here: +0.04 RPM at full order on the 10-element model, docs/stability.md); divergence 2 %.
+    # of full order (measured 0.1-0.3 % on the 10- and 30-element models); the whole turbine's
+    # blade flutter within 2 % of the rotor alone's (the tower coupling is a small physical
+    # effect here: +0.04 RPM at full order on the 30-element model, docs/stability.md);
+    # divergence 2 %.
     mesh = {"n_tower_axial": 8}
-    kw = dict(n_span=6, rpm_min=18.0, rpm_max=28.0, rpm_step=2.0)
     o = dict(model="beam", rpm_min=18.0, rpm_max=28.0, rpm_step=2.0)
     full = TurbineStability(nrel5mw, TurbineOptions(reduction="none", mesh={"n_span": 6, "part": "turbine", **mesh},
                                                     **o)).analyse_operating_point(10.0)
     red = TurbineStability(nrel5mw, TurbineOptions(n_modes=60, mesh={"n_span": 6, "part": "turbine", **mesh},
                                                    **o)).analyse_operating_point(10.0)
-    rot = _analyse(nrel5mw, "rotor", reduction="none", **kw)
-    for p in (full, red, rot):
+    rot = _analyse(nrel5mw, "rotor", reduction="none", n_span=6, **{k: o[k] for k in ("rpm_min", "rpm_max", "rpm_step")})
+    for p in (full, red, rot):  # the same flap-torsion family, ~3.0-3.1 Hz on this coarse mesh
         assert p.flutter_rpm is not None and p.divergence_rpm is not None
-        assert p.first_instability == "flutter" and 3.0 < p.flutter_frequency_hz < 4.0
+        assert p.first_instability == "flutter" and 2.5 < p.flutter_frequency_hz < 4.0
     assert red.flutter_rpm == pytest.approx(full.flutter_rpm, rel=0.01)
     assert red.divergence_rpm == pytest.approx(full.divergence_rpm, rel=0.01)
     assert red.flutter_frequency_hz == pytest.approx(full.flutter_frequency_hz, rel=0.01)
