@@ -132,10 +132,18 @@ def plot(rows: list[dict], outdir: Path) -> None:
             fig, ax = plt.subplots(figsize=(5.2, 3.6))
             for (aero, physics), (color, fmt) in styles.items():
                 sel = [r for r in rows if r["turbine"] == name and r["aero"] == aero and r["physics"] == physics]
-                pts = [(float(r["wind_speed"]), float(r[key])) for r in sel if r[key]]
+
+                def edgewise(r):  # onset shape a pure in-plane mode (nearly undamped in this model)
+                    return key == "flutter_rpm" and r["flutter_mode"].split(" -> ")[-1].startswith("edge ")
+
+                pts = [(float(r["wind_speed"]), float(r[key])) for r in sel if r[key] and not edgewise(r)]
                 if pts:
                     x, y = zip(*pts)
                     ax.plot(x, y, fmt, color=color, ms=4, label=f"{aero}, {physics} physics")
+                edge = [(float(r["wind_speed"]), float(r[key])) for r in sel if r[key] and edgewise(r)]
+                if edge:
+                    x, y = zip(*edge)
+                    ax.plot(x, y, "x", color=color, ms=7, label=f"{aero}: edgewise mode (undamped model)")
             ax.axhline(RATED_RPM[name], color="k", lw=0.8, ls=":", label=f"rated {RATED_RPM[name]} RPM")
             if name == "nrel5mw" and key == "flutter_rpm":
                 # the only values the seed's text gives for fig. 4.9 (at 10 m/s)
