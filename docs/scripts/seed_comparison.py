@@ -12,6 +12,7 @@ Usage::
 
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR [--turbines nrel5mw ...]
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --plot-only
+    OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --fits nrel5mw
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --candidates
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --damping-check iea15mw 10
 
@@ -307,6 +308,32 @@ def damping_check(outdir: Path, name: str = "iea15mw", wind: float = 10.0) -> li
     return rows
 
 
+def fits(outdir: Path, name: str = "nrel5mw") -> str:
+    """The polar fits of one turbine beside a central difference of each table at its zero-lift
+    angle (+-2 deg); written to ``outdir/fits_<name>.md``."""
+    import numpy as np
+
+    from windflutter.aero.polars import fit_polar
+    from windflutter.model.windio import load_turbine
+
+    t = load_turbine(name)
+    lines = ["| airfoil | fit Cl_alpha (1/rad) | table slope at alpha0 +- 2 deg | range (deg) | Cd_alpha (1/rad) | "
+             "Cm_alpha (1/rad) | a.c. (x/c) |", "|---|---|---|---|---|---|---|"]
+    h = np.radians(2.0)
+    for af in t.airfoils.values():
+        p = af.polar
+        f = fit_polar(p)
+        if f.cl_alpha == 0:
+            continue
+        fd = (np.interp(f.alpha_zero_lift + h, p.alpha, p.cl) - np.interp(f.alpha_zero_lift - h, p.alpha, p.cl)) / (2 * h)
+        lines.append(f"| {af.name} | {f.cl_alpha:.2f} | {fd:.2f} | {np.degrees(f.alpha_min):.1f} ... "
+                     f"{np.degrees(f.alpha_max):.1f} | {f.cd_alpha:.3f} | {f.cm_alpha:.2f} | {0.25 + f.ac_shift:.3f} |")
+    text = "\n".join(lines) + "\n"
+    (outdir / f"fits_{name}.md").write_text(text)
+    print(text)
+    return text
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("outdir")
@@ -317,9 +344,13 @@ def main(argv=None) -> int:
     ap.add_argument("--damping-check", nargs=2, metavar=("TURBINE", "V"), default=None,
                     help="only one point (e.g. iea15mw 10) without/with 0.5 %% modal damping -> "
                          "damping_check_TURBINE_V.md")
+    ap.add_argument("--fits", metavar="TURBINE", default=None, help="only the polar-fit table -> fits_TURBINE.md")
     a = ap.parse_args(argv)
     out = Path(a.outdir)
     out.mkdir(parents=True, exist_ok=True)
+    if a.fits:
+        fits(out, a.fits)
+        return 0
     if a.candidates:
         candidates(out)
         return 0
