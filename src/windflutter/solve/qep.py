@@ -40,6 +40,9 @@ from windflutter.solve import linsolve
 
 #: problems with at most this many DOFs go to the dense QZ path by default
 DENSE_LIMIT = 600
+#: below this many eigenvalues wanted per ``2 n`` the dense path uses shift-invert Arnoldi
+#: through a dense LU instead of computing the whole spectrum (``solve_qep_dense_near``)
+NEAR_FRACTION = 0.25
 
 #: LU of the shift-invert path: ``"auto"`` (:func:`windflutter.solve.linsolve.default_backend`:
 #: SuperLU unless ``WINDFLUTTER_LU_BACKEND`` says otherwise), ``"superlu"`` or ``"umfpack"``.
@@ -157,6 +160,46 @@ def solve_qep_dense(M, D, K, shift: complex = 0.0, n_eig: int | None = None) -> 
     return Eigs(values=w[order], vectors=_normalize(v[:, order]), shift=complex(shift))
 
 
+def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20) -> Eigs:
+    """The ``n_eig`` eigenpairs nearest ``shift`` of a small dense QEP by shift-invert Arnoldi.
+
+    The same operator as :func:`solve_qep_sparse` (``(A - shift B)^-1 B`` of the companion
+    pencil applied through one LU of ``Q(shift) = shift^2 M + shift D + K``) with a dense LAPACK
+    LU: for the projected models of the p-k search (n ~ 100-200, 20 of 2n eigenvalues) it costs
+    a sixth of the full QZ/geev spectrum (NREL 5 MW beam, n = 169: 15 ms vs 85 ms) and gives the
+    same eigenvalues (to ~1e-13; ``tests/solver/test_qep.py``).  Falls back to
+    :func:`solve_qep_dense` when ARPACK does not converge or ``Q(shift)`` is singular.
+    """
+    Md = M.toarray() if sp.issparse(M) else np.asarray(M)
+    Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
+    n = Kd.shape[0]
+    Dd = np.zeros((n, n)) if D is None else (D.toarray() if sp.issparse(D) else np.asarray(D))
+    k = min(int(n_eig), 2 * n - 2)
+    s = complex(shift)
+    Md, Dd, Kd = (np.asarray(A, dtype=complex) for A in (Md, Dd, Kd))
+    Q = (s * s) * Md + s * Dd + Kd
+    with linsolve.blas_limit(1):
+        lu, piv = sla.lu_factor(Q, check_finite=False)
+        if not np.all(np.isfinite(lu)) or np.min(np.abs(np.diag(lu))) <= 1e-14 * np.max(np.abs(np.diag(lu))):
+            return solve_qep_dense(M, D, K, shift, n_eig)
+        DsM = Dd + s * Md
+
+        def matvec(z):
+            z = np.asarray(z).ravel()
+            z1, z2 = z[:n], z[n:]
+            y1 = -sla.lu_solve((lu, piv), Md @ z2 + DsM @ z1, check_finite=False)
+            return np.concatenate([y1, z1 + s * y1])
+
+        op = spla.LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=complex)
+        try:
+            nu, v = spla.eigs(op, k=k, which="LM", v0=start_vector(2 * n))
+        except spla.ArpackNoConvergence:
+            return solve_qep_dense(M, D, K, shift, n_eig)
+    lam = s + 1.0 / nu
+    order = np.argsort(np.abs(lam - s), kind="stable")
+    return Eigs(values=lam[order], vectors=_normalize(v[:n, order]), shift=s)
+
+
 def warm_start_vector(previous: Eigs) -> np.ndarray:
     """A companion-space start vector ``sum_j [x_j, lambda_j x_j]`` from an earlier solve."""
     x, lam = previous.vectors, previous.values
@@ -232,7 +275,9 @@ def solve_qep(M, D, K, shift: complex = 0.0, n_eig: int = 20, method: str = "aut
         ``D`` may be ``None``.
     shift : complex shift (rad/s); 0 gives the eigenvalues of smallest modulus (the seed's choice).
     n_eig : number of eigenvalues wanted.
-    method : ``"auto"`` (dense up to ``dense_limit`` DOFs), ``"dense"`` or ``"sparse"``.
+    method : ``"auto"`` (dense up to ``dense_limit`` DOFs: shift-invert Arnoldi through a dense
+        LU when fewer than ``NEAR_FRACTION * 2n`` eigenvalues are wanted, else the whole
+        spectrum), ``"dense"`` (whole spectrum) or ``"sparse"``.
 
     Returns
     -------
@@ -250,5 +295,7 @@ def solve_qep(M, D, K, shift: complex = 0.0, n_eig: int = 20, method: str = "aut
     if method not in ("auto", "dense", "sparse"):
         raise InputError("method", method, "'auto', 'dense' or 'sparse'")
     if method == "dense" or (method == "auto" and (n <= dense_limit or 2 * n - 2 <= n_eig)):
+        if method == "auto" and n >= 40 and n_eig < NEAR_FRACTION * 2 * n:
+            return solve_qep_dense_near(M, D, K, shift, n_eig)
         return solve_qep_dense(M, D, K, shift, n_eig)
     return solve_qep_sparse(M, D, K, shift, n_eig)
