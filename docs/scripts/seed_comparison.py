@@ -14,6 +14,7 @@ Usage::
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --plot-only
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --fits nrel5mw
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --candidates
+    OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --divergence-full
     OMP_NUM_THREADS=1 .venv/bin/python docs/scripts/seed_comparison.py OUTDIR --damping-check iea15mw 10
 
 writes ``OUTDIR/maps.csv`` (one row per turbine, variant and wind speed; appended as it goes, so
@@ -134,8 +135,16 @@ def plot(rows: list[dict], outdir: Path) -> None:
             for (aero, physics), (color, fmt) in styles.items():
                 sel = [r for r in rows if r["turbine"] == name and r["aero"] == aero and r["physics"] == physics]
 
-                def edgewise(r):  # onset shape a pure in-plane mode (nearly undamped in this model)
-                    return key == "flutter_rpm" and r["flutter_mode"].split(" -> ")[-1].startswith("edge ")
+                f_ref = [float(r["flutter_hz"]) for r in sorted(sel, key=lambda r: float(r["wind_speed"]))
+                         if r["flutter_hz"]][:1]
+
+                def edgewise(r):
+                    """An onset of another, nearly undamped mode: a pure in-plane shape, or a frequency
+                    50 % away from the flutter mode at the lowest wind speed (checked by --damping-check)."""
+                    if key != "flutter_rpm":
+                        return False
+                    other = bool(f_ref) and r["flutter_hz"] and abs(float(r["flutter_hz"]) / f_ref[0] - 1) > 0.5
+                    return r["flutter_mode"].split(" -> ")[-1].startswith("edge ") or bool(other)
 
                 pts = [(float(r["wind_speed"]), float(r[key])) for r in sel if r[key] and not edgewise(r)]
                 if pts:
@@ -144,7 +153,15 @@ def plot(rows: list[dict], outdir: Path) -> None:
                 edge = [(float(r["wind_speed"]), float(r[key])) for r in sel if r[key] and edgewise(r)]
                 if edge:
                     x, y = zip(*edge)
-                    ax.plot(x, y, "x", color=color, ms=7, label=f"{aero}: edgewise mode (undamped model)")
+                    ax.plot(x, y, "x", color=color, ms=7, label=f"{aero}: other mode, nearly undamped (see text)")
+            full = outdir / "divergence_full.csv"
+            if key == "divergence_rpm" and full.exists():
+                for aero, color in (("potential", "C0"), ("viscous", "C3")):
+                    fr = [r for r in read_rows(full) if r["turbine"] == name and r["aero"] == aero
+                          and r["physics"] == "full" and r["divergence_full_rpm"]]
+                    if fr:
+                        ax.plot([float(r["wind_speed"]) for r in fr], [float(r["divergence_full_rpm"]) for r in fr],
+                                "+", color=color, ms=9, mew=1.5, label=f"{aero}, full order (static)")
             ax.axhline(RATED_RPM[name], color="k", lw=0.8, ls=":", label=f"rated {RATED_RPM[name]} RPM")
             if name == "nrel5mw" and key == "flutter_rpm":
                 # the only values the seed's text gives for fig. 4.9 (at 10 m/s)
@@ -334,6 +351,49 @@ def fits(outdir: Path, name: str = "nrel5mw") -> str:
     return text
 
 
+def divergence_full(outdir: Path, names) -> list[dict]:
+    """Static divergence at full order (``reduction="none"``): the first + -> - sign change of
+    ``static_min_eig`` (sign(det Kt(k=0)) x least |eigenvalue|) on the case's rotor-speed grid,
+    located by Brent.  Cheap (static eigenproblems only) and independent of the modal basis,
+    which the p-k maps use; rows in ``outdir/divergence_full.csv``."""
+    import numpy as np
+    from scipy.optimize import brentq
+
+    from windflutter.model.windio import load_turbine
+    from windflutter.stability.search import static_min_eig
+    from windflutter.stability.turbine import RPM, TurbineOptions, TurbineStability
+
+    rows = []
+    for name in names:
+        case = CASES[name]
+        lo, hi, step = case["rpm"]
+        turbine = load_turbine(name)
+        for aero, physics in case["variants"]:
+            ts = TurbineStability(turbine, TurbineOptions(model="beam", aero=aero, physics=physics, reduction="none",
+                                                          rpm_min=lo, rpm_max=hi, rpm_step=step, mesh={"part": "rotor"}))
+            for v in case["wind"]:
+                fe, sec, am = ts.model(ts.pitch_at(float(v)))
+
+                def g(rpm):
+                    return static_min_eig(am.at(float(v), rpm * RPM))
+
+                grid = np.arange(lo, hi + 1e-9, step / 2)
+                vals = [g(r) for r in grid]
+                div = None
+                for i in range(1, len(grid)):
+                    if vals[i - 1] > 0 >= vals[i]:
+                        div = brentq(g, grid[i - 1], grid[i], xtol=0.01)
+                        break
+                rows.append(dict(turbine=name, aero=aero, physics=physics, wind_speed=v,
+                                 divergence_full_rpm="" if div is None else f"{div:.2f}"))
+                print(rows[-1], flush=True)
+    with (outdir / "divergence_full.csv").open("w", newline="") as fh:
+        w = csv.DictWriter(fh, list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    return rows
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("outdir")
@@ -345,11 +405,16 @@ def main(argv=None) -> int:
                     help="only one point (e.g. iea15mw 10) without/with 0.5 %% modal damping -> "
                          "damping_check_TURBINE_V.md")
     ap.add_argument("--fits", metavar="TURBINE", default=None, help="only the polar-fit table -> fits_TURBINE.md")
+    ap.add_argument("--divergence-full", action="store_true",
+                    help="only the full-order static divergence of --turbines -> divergence_full.csv")
     a = ap.parse_args(argv)
     out = Path(a.outdir)
     out.mkdir(parents=True, exist_ok=True)
     if a.fits:
         fits(out, a.fits)
+        return 0
+    if a.divergence_full:
+        divergence_full(out, a.turbines)
         return 0
     if a.candidates:
         candidates(out)
