@@ -182,15 +182,11 @@ def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20) -> Eigs
         lu, piv = sla.lu_factor(Q, check_finite=False)
         if not np.all(np.isfinite(lu)) or np.min(np.abs(np.diag(lu))) <= 1e-14 * np.max(np.abs(np.diag(lu))):
             return solve_qep_dense(M, D, K, shift, n_eig)
-        DsM = Dd + s * Md
-
-        def matvec(z):
-            z = np.asarray(z).ravel()
-            z1, z2 = z[:n], z[n:]
-            y1 = -sla.lu_solve((lu, piv), Md @ z2 + DsM @ z1, check_finite=False)
-            return np.concatenate([y1, z1 + s * y1])
-
-        op = spla.LinearOperator((2 * n, 2 * n), matvec=matvec, dtype=complex)
+        # the shift-inverted companion operator as one dense 2n x 2n matrix (one LU solve with
+        # 2n right-hand sides; then every Arnoldi step is a single matrix-vector product)
+        X = sla.lu_solve((lu, piv), np.hstack([Dd + s * Md, Md]), check_finite=False)
+        X1, X2 = X[:, :n], X[:, n:]
+        op = np.block([[-X1, -X2], [np.eye(n) - s * X1, -s * X2]])
         try:
             nu, v = spla.eigs(op, k=k, which="LM", v0=start_vector(2 * n))
         except spla.ArpackNoConvergence:
