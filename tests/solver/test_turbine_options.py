@@ -30,8 +30,9 @@ def test_skin_distribution_builds_the_seed_sub_strips():
 
     mesh = {"part": "rotor", "n_chord": 8, "n_span": 4}
     t = load_turbine("nrel5mw")
-    spline = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh))
-    skin = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh, aero_distribution="skin"))
+    spline = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh, reduction="modal"))
+    skin = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh, aero_distribution="skin",
+                                              reduction="modal"))
     fe, sec, am = spline.model(0.0)
     fe2, sub, am2 = skin.model(0.0)
     assert isinstance(am2, SkinAeroelasticModel)

@@ -23,8 +23,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--n-span", type=int, default=None, help="blade elements / strips along the span")
     p.add_argument("--part", choices=("turbine", "rotor"), default="turbine",
                    help="whole turbine, or the rotor alone with the hub clamped")
-    p.add_argument("--reduction", choices=("mta", "modal", "none"), default="modal",
-                   help="modal basis (default), with aero static-correction vectors (mta), or full order")
+    p.add_argument("--reduction", choices=("mta", "modal", "none"), default="mta",
+                   help="modal basis with aero static-correction vectors (mta, default), structural "
+                        "modes only (modal), or full order (none)")
     p.add_argument("--basis-modes", type=int, default=30, metavar="N",
                    help="structural modes per reference rotor speed in the basis (default 30)")
     p.add_argument("--n-tracked", type=int, default=None, metavar="N",
