@@ -145,35 +145,9 @@ def _induction_factors(op: OperatingPoint, ns: int):
     return a, ap
 
 
-def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
-    """Relative speed, inflow axes and angles at every strip (see module docstring).
-
-    With ``op.induction = (a, a')`` the relative flow is
-    ``U_vec = V w - a (V w . n) n - (1 + a') Omega n x (x_j - hub)`` (``n``: shaft axis; the wind
-    direction for a fixed wing), i.e. ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)`` and
-    ``phi = atan2(V (1 - a), Omega r (1 + a'))`` for an unconed, untilted rotor.
-    """
-    if op.induction is not None:
-        return _induced_section_flow(sections, op)
-    if not np.isfinite(op.wind_speed) or op.wind_speed < 0:
-        raise InputError("wind_speed", op.wind_speed, "a non-negative speed (m/s)")
-    if not np.isfinite(op.omega):
-        raise InputError("omega", op.omega, "a finite rotor speed (rad/s)")
-    if not (np.isfinite(op.air_density) and op.air_density > 0):
-        raise InputError("air_density", op.air_density, "a positive density (kg/m^3)")
-    ns = sections.n_sections
-    span = _unit(np.asarray(sections.e_span, float))
-    chord = _unit(np.asarray(sections.e_chord, float))
-    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
-    vrel = np.tile(op.wind_speed * wind, (ns, 1))
-    blade_vel = np.zeros((ns, 3))
-    if op.omega != 0.0:
-        if op.rotor is None:
-            raise InputError("rotor", None, "a RotorGeometry when the rotor speed is not zero")
-        axis = _unit(np.asarray(op.rotor.shaft_axis, float))
-        rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
-        blade_vel = op.omega * np.cross(axis, rvec)
-        vrel = vrel - blade_vel
+def _inflow_axes(vrel: np.ndarray, span: np.ndarray, chord: np.ndarray, op: OperatingPoint):
+    """Relative speed U (m/s), lift/span/drag axes e1, e2, e3 and angle of attack (rad) of each
+    strip from its relative wind ``vrel`` (m/s, (ns, 3)); the spanwise component is dropped."""
     vrel = vrel - np.sum(vrel * span, axis=1, keepdims=True) * span
     U = np.linalg.norm(vrel, axis=1)
     if np.any(U <= 0):
@@ -188,19 +162,46 @@ def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
     ca = np.sum(chord * e3, axis=1)
     sa = -np.sum(chord * e1, axis=1)
     alpha = np.arctan2(sa, ca) - op.pitch
-    vrot = np.linalg.norm(blade_vel, axis=1)
-    phi = np.arctan2(np.full(ns, op.wind_speed), vrot)
-    return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
+    return U, e1, e2, e3, alpha
 
 
-def _induced_section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
-    """:func:`section_flow` with the steady induction ``op.induction = (a, a')``."""
+def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
+    """Relative speed, inflow axes and angles at every strip (see module docstring).
+
+    With ``op.induction = (a, a')`` the relative flow is
+    ``U_vec = V w - a (V w . n) n - (1 + a') Omega n x (x_j - hub)`` (``n``: shaft axis; the wind
+    direction for a fixed wing), i.e. ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)`` and
+    ``phi = atan2(V (1 - a), Omega r (1 + a'))`` for an unconed, untilted rotor.
+    """
     if not np.isfinite(op.wind_speed) or op.wind_speed < 0:
         raise InputError("wind_speed", op.wind_speed, "a non-negative speed (m/s)")
     if not np.isfinite(op.omega):
         raise InputError("omega", op.omega, "a finite rotor speed (rad/s)")
     if not (np.isfinite(op.air_density) and op.air_density > 0):
         raise InputError("air_density", op.air_density, "a positive density (kg/m^3)")
+    if op.induction is not None:
+        return _induced_section_flow(sections, op)
+    ns = sections.n_sections
+    span = _unit(np.asarray(sections.e_span, float))
+    chord = _unit(np.asarray(sections.e_chord, float))
+    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
+    vrel = np.tile(op.wind_speed * wind, (ns, 1))
+    blade_vel = np.zeros((ns, 3))
+    if op.omega != 0.0:
+        if op.rotor is None:
+            raise InputError("rotor", None, "a RotorGeometry when the rotor speed is not zero")
+        axis = _unit(np.asarray(op.rotor.shaft_axis, float))
+        rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
+        blade_vel = op.omega * np.cross(axis, rvec)
+        vrel = vrel - blade_vel
+    U, e1, e2, e3, alpha = _inflow_axes(vrel, span, chord, op)
+    vrot = np.linalg.norm(blade_vel, axis=1)
+    phi = np.arctan2(np.full(ns, op.wind_speed), vrot)
+    return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
+
+
+def _induced_section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
+    """:func:`section_flow` with the steady induction ``op.induction = (a, a')`` (``op`` checked there)."""
     ns = sections.n_sections
     a, ap = _induction_factors(op, ns)
     span = _unit(np.asarray(sections.e_span, float))
@@ -216,20 +217,7 @@ def _induced_section_flow(sections: AeroSections, op: OperatingPoint) -> Section
         rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
         blade_vel = op.omega * np.cross(axis, rvec)
         vrel = vrel - (1.0 + ap)[:, None] * blade_vel
-    vrel = vrel - np.sum(vrel * span, axis=1, keepdims=True) * span
-    U = np.linalg.norm(vrel, axis=1)
-    if np.any(U <= 0):
-        j = int(np.argmin(U))
-        raise InputError("operating point", (op.wind_speed, op.omega), f"a non-zero relative speed at section {j}")
-    e3 = vrel / U[:, None]
-    e1 = _unit(np.cross(e3, span))
-    suction = np.cross(chord, span)
-    flip = np.sum(e1 * suction, axis=1) < 0
-    e1[flip] *= -1.0
-    e2 = np.cross(e1, e3)
-    ca = np.sum(chord * e3, axis=1)
-    sa = -np.sum(chord * e1, axis=1)
-    alpha = np.arctan2(sa, ca) - op.pitch
+    U, e1, e2, e3, alpha = _inflow_axes(vrel, span, chord, op)
     vrot = np.linalg.norm(blade_vel, axis=1)
     phi = np.arctan2(op.wind_speed * (1.0 - a), vrot * (1.0 + ap))
     return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
