@@ -179,31 +179,9 @@ def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
         raise InputError("omega", op.omega, "a finite rotor speed (rad/s)")
     if not (np.isfinite(op.air_density) and op.air_density > 0):
         raise InputError("air_density", op.air_density, "a positive density (kg/m^3)")
-    if op.induction is not None:
-        return _induced_section_flow(sections, op)
     ns = sections.n_sections
-    span = _unit(np.asarray(sections.e_span, float))
-    chord = _unit(np.asarray(sections.e_chord, float))
-    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
-    vrel = np.tile(op.wind_speed * wind, (ns, 1))
-    blade_vel = np.zeros((ns, 3))
-    if op.omega != 0.0:
-        if op.rotor is None:
-            raise InputError("rotor", None, "a RotorGeometry when the rotor speed is not zero")
-        axis = _unit(np.asarray(op.rotor.shaft_axis, float))
-        rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
-        blade_vel = op.omega * np.cross(axis, rvec)
-        vrel = vrel - blade_vel
-    U, e1, e2, e3, alpha = _inflow_axes(vrel, span, chord, op)
-    vrot = np.linalg.norm(blade_vel, axis=1)
-    phi = np.arctan2(np.full(ns, op.wind_speed), vrot)
-    return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
-
-
-def _induced_section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
-    """:func:`section_flow` with the steady induction ``op.induction = (a, a')`` (``op`` checked there)."""
-    ns = sections.n_sections
-    a, ap = _induction_factors(op, ns)
+    # no induction: a = a' = 0, which gives the thesis's V, Omega r exactly (bit for bit)
+    a, ap = (np.zeros(ns), np.zeros(ns)) if op.induction is None else _induction_factors(op, ns)
     span = _unit(np.asarray(sections.e_span, float))
     chord = _unit(np.asarray(sections.e_chord, float))
     wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
