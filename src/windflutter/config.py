@@ -444,8 +444,7 @@ def config_from_dict(data: dict | None, source: str | None = None,
     if dm["model"] == "modal" and dm["ratio"] > 0 and s["reduction"] == "none":
         raise InputError("damping.model", "modal", "stiffness or rayleigh with solver.reduction none "
                          "(modal damping is applied in the modal basis)", src)
-    m_aero = m["type"]
-    if s["aero_distribution"] == "skin" and m_aero != "shell":
+    if s["aero_distribution"] == "skin" and m["type"] != "shell":
         raise InputError("solver.aero_distribution", "skin", "spline unless model.type is shell "
                          "(skin quads need a shell model)", src)
 

@@ -99,11 +99,7 @@ def run(args: argparse.Namespace) -> int:
 
         sys.stdout.write(default_config_text())
         return 0
-    from windflutter.parallel import default_workers  # noqa: PLC0415
-
-    workers = parse_workers(args.workers)
-    if workers is None:
-        workers = default_workers()
+    workers = parse_workers(args.workers)  # None: the usable cores (workflow.run resolves it)
     config = load_config(args.config, _overrides(args))
     turbine = load_turbine_for(args.turbine, config.solver.backend)
     name = Path(str(getattr(turbine, "name", args.turbine))).stem.replace(" ", "_") or "turbine"

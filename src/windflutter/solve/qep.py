@@ -121,6 +121,14 @@ def _as_csc(A, n: int) -> sp.csc_matrix:
     return sp.csc_matrix(A, dtype=complex)
 
 
+def _dense_mdk(M, D, K):
+    """``M, D, K`` as dense arrays (``D = None``: zeros)."""
+    M = M.toarray() if sp.issparse(M) else np.asarray(M)
+    K = K.toarray() if sp.issparse(K) else np.asarray(K)
+    D = np.zeros(K.shape) if D is None else (D.toarray() if sp.issparse(D) else np.asarray(D))
+    return M, D, K
+
+
 def qep_residual(M, D, K, lam: complex, x: np.ndarray) -> float:
     """Relative residual ``|Q(lam) x| / ((|lam|^2 |M| + |lam| |D| + |K|) |x|)`` (Frobenius norms)."""
 
@@ -134,10 +142,8 @@ def qep_residual(M, D, K, lam: complex, x: np.ndarray) -> float:
 
 def solve_qep_dense(M, D, K, shift: complex = 0.0, n_eig: int | None = None) -> Eigs:
     """All finite eigenpairs by QZ on the companion pencil; keep the ``n_eig`` nearest ``shift``."""
-    M = M.toarray() if sp.issparse(M) else np.asarray(M)
-    K = K.toarray() if sp.issparse(K) else np.asarray(K)
+    M, D, K = _dense_mdk(M, D, K)
     n = K.shape[0]
-    D = np.zeros((n, n)) if D is None else (D.toarray() if sp.issparse(D) else np.asarray(D))
     Z = np.zeros((n, n))
     I = np.eye(n)
     w = v = None
@@ -170,13 +176,10 @@ def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20) -> Eigs
     same eigenvalues (to ~1e-13; ``tests/solver/test_qep.py``).  Falls back to
     :func:`solve_qep_dense` when ARPACK does not converge or ``Q(shift)`` is singular.
     """
-    Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-    Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
+    Md, Dd, Kd = (np.asarray(A, dtype=complex) for A in _dense_mdk(M, D, K))
     n = Kd.shape[0]
-    Dd = np.zeros((n, n)) if D is None else (D.toarray() if sp.issparse(D) else np.asarray(D))
     k = min(int(n_eig), 2 * n - 2)
     s = complex(shift)
-    Md, Dd, Kd = (np.asarray(A, dtype=complex) for A in (Md, Dd, Kd))
     Q = (s * s) * Md + s * Dd + Kd
     with linsolve.blas_limit(1):
         lu, piv = sla.lu_factor(Q, check_finite=False)
