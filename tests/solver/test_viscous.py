@@ -12,7 +12,7 @@ import scipy.sparse as sp
 
 from windflutter.aero.polars import fit_polar
 from windflutter.aero.sections import AeroSections, Polar, RotorGeometry
-from windflutter.aero.strip import AeroOptions, OperatingPoint, aero_matrices, section_matrices
+from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero, aero_matrices, section_matrices
 from windflutter.errors import InputError
 
 
@@ -169,3 +169,28 @@ def test_ac_shift_moves_the_circulatory_lift():
     Mc, Dc, Kc = (x[0] for x in section_matrices(*args[:5], 0.0, CDA))  # apparent mass alone
     assert Kn[1] == pytest.approx(np.zeros(3), abs=1e-12)
     assert Dn[1] == pytest.approx(Dc[1], abs=1e-12)
+
+
+@pytest.mark.parametrize("model, am_scaling", [("potential", False), ("viscous", True)])
+def test_projected_aero_equals_the_assembled_matrices_projected(model, am_scaling):
+    # StripAero.projected uses that the circulatory terms are rank one per strip (one downwash,
+    # one lift): it must equal Phi^T A(omega) Phi of the assembled sparse matrices (no such
+    # structure used) to round-off, on several rotating strips of different size, slope and flow
+    rng = np.random.default_rng(7)
+    ns = 5
+    pol = _synthetic_polar()
+    sec = AeroSections(blade=np.zeros(ns, int), radius=np.linspace(10.0, 60.0, ns), width=np.full(ns, 12.0),
+                       chord=np.linspace(4.0, 1.5, ns), elastic_axis=np.linspace(-0.3, 0.1, ns),
+                       origin=np.stack([np.zeros(ns), np.zeros(ns), np.linspace(10.0, 60.0, ns)], axis=1),
+                       e_chord=np.tile([1.0, 0, 0], (ns, 1)), e_span=np.tile([0, 0, 1.0], (ns, 1)),
+                       airfoil=np.zeros(ns, int), polars=[pol], twist=np.linspace(0.2, 0.0, ns),
+                       motion_map=sp.identity(6 * ns, format="csr"))
+    rot = RotorGeometry(np.zeros(3), np.array([1.0, 0, 0]), np.array([0, 0, 1.0]))
+    op = OperatingPoint(9.0, 1.2, RHO, rot)
+    strip = StripAero(sec, op, AeroOptions(model, apparent_mass_scaling=am_scaling))
+    Phi = rng.standard_normal((6 * ns, 7))
+    f = strip.projected(Phi)
+    for omega in (0.0, 3.1, 40.0):
+        for A, B in zip(f(omega), strip.matrices(omega)):
+            ref = Phi.T @ (B @ Phi)
+            assert np.abs(A - ref).max() < 1e-12 * np.abs(ref).max()

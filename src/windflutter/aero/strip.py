@@ -201,6 +201,63 @@ def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
     return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
 
 
+@dataclass(frozen=True)
+class SectionParts:
+    """The frequency-independent pieces of the Theodorsen section matrices (per unit span).
+
+    ``Ma`` and ``Da_nc`` (ns, 3, 3) are the apparent-mass terms.  The circulatory part is rank
+    one per section -- one downwash ``Q`` drives one lift, whose moment and drag are fixed
+    multiples of it: ``Da_c = C circ row col_d^T``, ``Ka_c = C circ row col_k^T`` with
+    ``circ = cla rho U b`` (ns,), ``row = (1, moment arm, Cd_a / Cl_a)`` and the downwash
+    coefficients ``col_d = (-1, b (1/2 - a), 0)`` (of q'), ``col_k = (0, U, 0)`` (of q), all (ns, 3).
+    """
+
+    Ma: np.ndarray
+    Da_nc: np.ndarray
+    circ: np.ndarray
+    row: np.ndarray
+    col_d: np.ndarray
+    col_k: np.ndarray
+
+    def matrices(self, C):
+        """``(Ma, Da, Ka)`` (ns, 3, 3) complex for Theodorsen values ``C`` (ns,)."""
+        q = (np.asarray(C) * self.circ)[:, None, None]
+        Da = self.Da_nc + q * (self.row[:, :, None] * self.col_d[:, None, :])
+        Ka = q * (self.row[:, :, None] * self.col_k[:, None, :])
+        return self.Ma.astype(complex), Da, Ka
+
+
+def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0) -> SectionParts:
+    """Frequency-independent pieces of :func:`section_matrices` (same parameters, no ``C``)."""
+    b, a, U = (np.asarray(x, float) for x in (b, a, U))
+    ns = b.shape[0]
+    cla = np.broadcast_to(np.asarray(cla, float), (ns,))
+    cda = np.broadcast_to(np.asarray(cda, float), (ns,))
+    am = np.broadcast_to(np.asarray(am_scale, float), (ns,))
+    dac = np.broadcast_to(np.asarray(ac_shift, float), (ns,))
+    Ma = np.zeros((ns, 3, 3))
+    Da = np.zeros((ns, 3, 3))
+    pr = np.pi * rho
+    # non-circulatory (apparent mass) part, h_down = -h:
+    # L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
+    # M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
+    Ma[:, 0, 0] = -pr * b**2 * am
+    Ma[:, 0, 1] = -pr * b**3 * a * am
+    Ma[:, 1, 0] = -pr * b**3 * a * am
+    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
+    Da[:, 0, 1] = pr * b**2 * U * am
+    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
+    # circulatory: Q = C [h_down' + U alpha + b (1/2 - a) alpha'] -> L_c = cla rho U b Q; the
+    # moment about the elastic axis is b (a + 1/2) L_c with the lift at the quarter chord, the
+    # drag D = (Cd_a / Cl_a) L_c
+    drag = np.where(cla != 0, cda / np.where(cla != 0, cla, 1.0), 0.0)
+    row = np.stack([np.ones(ns), b * (a + 0.5 - 2.0 * dac), drag], axis=1)
+    zero = np.zeros(ns)
+    col_d = np.stack([-np.ones(ns), b * (0.5 - a), zero], axis=1)
+    col_k = np.stack([zero, U, zero], axis=1)
+    return SectionParts(Ma=Ma, Da_nc=Da, circ=cla * rho * U * b, row=row, col_d=col_d, col_k=col_k)
+
+
 def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0):
     """Theodorsen section matrices per unit span in ``q = (h up, alpha nose-up, s along U)``.
 
@@ -218,40 +275,10 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_s
     Returns
     -------
     Ma, Da, Ka : (ns, 3, 3) complex, so that the section forces (lift along e1 (N/m), moment
-    about e2 (N m/m), drag along e3 (N/m)) are ``Ma q'' + Da q' + Ka q``.
+    about e2 (N m/m), drag along e3 (N/m)) are ``Ma q'' + Da q' + Ka q``.  The pieces that do
+    not depend on ``C`` are :func:`section_parts`.
     """
-    b, a, U, C = (np.asarray(x) for x in (b, a, U, C))
-    ns = b.shape[0]
-    cla = np.broadcast_to(np.asarray(cla, float), (ns,))
-    cda = np.broadcast_to(np.asarray(cda, float), (ns,))
-    am = np.broadcast_to(np.asarray(am_scale, float), (ns,))
-    dac = np.broadcast_to(np.asarray(ac_shift, float), (ns,))
-    Ma = np.zeros((ns, 3, 3), complex)
-    Da = np.zeros((ns, 3, 3), complex)
-    Ka = np.zeros((ns, 3, 3), complex)
-    pr = np.pi * rho
-    # non-circulatory (apparent mass) part, h_down = -h:
-    # L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
-    # M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
-    Ma[:, 0, 0] = -pr * b**2 * am
-    Ma[:, 0, 1] = -pr * b**3 * a * am
-    Ma[:, 1, 0] = -pr * b**3 * a * am
-    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
-    Da[:, 0, 1] = pr * b**2 * U * am
-    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
-    # circulatory: Q = C [h_down' + U alpha + b (1/2 - a) alpha'] -> L_c = cla rho U b Q
-    # the circulatory "downwash" row w = [d/dt coeffs (h, alpha), static coeffs]
-    circ = cla * rho * U * b * C  # (ns,)
-    wd_h = -1.0
-    wd_a = b * (0.5 - a)
-    wk_a = U
-    mom_arm = b * (a + 0.5 - 2.0 * dac)  # M_c = b (a + 1/2) L_c with the lift at the quarter chord
-    drag = np.where(cla != 0, cda / np.where(cla != 0, cla, 1.0), 0.0)  # D = (Cd_a / Cl_a) L_c
-    for row, fac in ((0, 1.0), (1, mom_arm), (2, drag)):
-        Da[:, row, 0] += fac * circ * wd_h
-        Da[:, row, 1] += fac * circ * wd_a
-        Ka[:, row, 1] += fac * circ * wk_a
-    return Ma, Da, Ka
+    return section_parts(b, a, U, rho, cla, cda, am_scale, ac_shift).matrices(C)
 
 
 def section_map(sections: AeroSections, flow: SectionFlow) -> sp.csr_matrix:
@@ -349,25 +376,47 @@ class StripAero:
         Ma, Da, Ka = self.section_blocks(omega)
         return self._assemble(Ma), self._assemble(Da), self._assemble(Ka)
 
+    def parts(self) -> SectionParts:
+        """The frequency-independent section pieces (:func:`section_parts`) of these strips."""
+        return section_parts(self.b, self.a, self.flow.U, self.op.air_density, self.cla, self.cda, self.am)
+
     def projected(self, Phi: np.ndarray):
         """Return a function ``omega -> (Ma, Da, Ka)`` projected on the basis ``Phi`` (n_dof, m).
 
-        ``Phi`` is in the unconstrained DOF numbering; cheap per call (dense m x m).
+        ``Phi`` is in the unconstrained DOF numbering.  The apparent-mass terms are projected
+        once; the circulatory terms are rank one per strip (:class:`SectionParts`), so a call
+        costs two real ``(m x ns) (ns x 2m)`` products: ``A^T diag(q) [Bd Bk]`` with
+        ``A_j = row_j^T R_j``, ``B_j = col_j^T R_j`` and ``q_j = C(k_j) circ_j width_j``.
         """
-        PPhi = np.asarray(self.P @ Phi)  # (3 ns, m)
+        PPhi = self.P @ Phi
+        PPhi = PPhi.toarray() if sp.issparse(PPhi) else np.asarray(PPhi)
         ns = self.sections.n_sections
-        R = PPhi.reshape(ns, 3, -1)
+        R = PPhi.reshape(ns, 3, -1)  # (ns, 3, m)
+        m = R.shape[2]
+        pt = self.parts()
+        w = self.width[:, None, None]
+        Rf = R.reshape(3 * ns, m).T
 
-        Rf = PPhi.T  # (m, 3 ns)
-        if sp.issparse(Rf):
-            Rf = Rf.toarray()
+        def nc(blk):
+            return Rf @ np.matmul(blk * w, R).reshape(3 * ns, m)
+
+        Ma_p, Dnc_p = nc(pt.Ma), nc(pt.Da_nc)
+        A = np.einsum("ja,jam->jm", pt.row, R)
+        B = np.concatenate([np.einsum("ja,jam->jm", pt.col_d, R), np.einsum("ja,jam->jm", pt.col_k, R)], axis=1)
+        qs = pt.circ * self.width
+        if np.iscomplexobj(A) or np.iscomplexobj(B):
+            def circulatory(C):
+                return (A * (C * qs)[:, None]).T @ B
+        else:
+            def circulatory(C):
+                Aq = A * (C * qs)[:, None]
+                return Aq.real.T @ B + 1j * (Aq.imag.T @ B)
+
+        Ma_c = Ma_p.astype(complex)
 
         def f(omega: float):
-            out = []
-            for blk in self.section_blocks(omega):
-                X = np.matmul(blk, R)  # (ns, 3, m)
-                out.append(Rf @ X.reshape(3 * ns, -1))
-            return tuple(out)
+            DK = circulatory(theodorsen_c(self.reduced_frequency(omega)))
+            return Ma_c, Dnc_p + DK[:, :m], DK[:, m:]
 
         return f
 
