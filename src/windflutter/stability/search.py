@@ -125,7 +125,7 @@ def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-9, maxite
 
 
 def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, maxiter: int = 40,
-            n_eig: int = 20, exclude=(), lam0: complex | None = None):
+            n_eig: int = 20, exclude=(), lam0: complex | None = None, near: float | None = None):
     """p-k iteration for one mode: solve with Theodorsen frozen at the mode's own frequency.
 
     Parameters
@@ -139,12 +139,16 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
         and accepted when it converges onto a free root of that shape (MAC >= 0.8 to ``x0``,
         ``Im >= 0``); otherwise (and always with ``exclude``) the frozen-frequency eigen-solves
         below pick the root of best shape among the ``n_eig`` nearest ``i omega``.
+    near : for a member of a cluster of near-repeated roots (:func:`_clusters`), whose shape
+        may rotate inside the cluster: the Newton root is also accepted when it lies within
+        ``near |lam0|`` of ``lam0``, whatever its MAC.
 
     Returns (lambda, x).  A mode whose frequency falls to zero is returned with the aero at k=0.
     """
     if lam0 is not None and x0 is not None and not exclude and system.Ks.shape[0] <= NEWTON_LIMIT:
         lam, x, ok = newton_mode(system, lam0, x0)
-        if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and mac(x, x0) >= 0.8:
+        if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and (
+                mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
             return lam, x
     w = max(float(omega0), 0.0)
     lam, x = None, x0
@@ -212,6 +216,9 @@ def static_min_eig(system) -> float:
 
 _LOST = (complex(np.nan, np.nan), None)
 
+#: roots closer than this (relative) belong to one cluster of near-repeated modes
+CLUSTER_REL = 0.03
+
 #: damping ratio below which (as ``-NEUTRAL_ZETA``) a tracked mode counts as unstable.  The
 #: eigen-solves round Re(lambda) to ~1e-12 |lambda|, so a neutral (undamped, aerodynamically
 #: uncoupled) mode must not count; a real flutter crossing passes -1e-6 within ~1e-4 RPM of its
@@ -239,9 +246,16 @@ def _track(system, seeds, n_eig):
     to its own seed is solved again with that root excluded; a mode that finds no free root is
     returned lost (NaN) for this parameter only -- its seed is kept, so it is picked up again.
     """
-    out = [_LOST if (x is None or not np.isfinite(lam)) else pk_mode(system, max(lam.imag, 0.0), x, n_eig=n_eig,
-                                                                    lam0=lam)
-           for lam, x in seeds]
+    lams = np.array([l if x is not None else np.nan for l, x in seeds], complex)
+
+    def clustered(i):
+        d = np.abs(lams - lams[i])
+        d[i] = np.inf
+        return bool(np.any(d <= CLUSTER_REL * np.abs(lams[i])))
+
+    out = [_LOST if (x is None or not np.isfinite(lam)) else
+           pk_mode(system, max(lam.imag, 0.0), x, n_eig=n_eig, lam0=lam, near=CLUSTER_REL if clustered(i) else None)
+           for i, (lam, x) in enumerate(seeds)]
     n = len(out)
     for _ in range(n):
         clash = next(((i, j) for i in range(n) for j in range(i + 1, n) if _same_root(out[i], out[j])), None)
@@ -262,15 +276,83 @@ def _seeds(cur, seeds_prev):
     return [(l, x) if x is not None else sp for (l, x), sp in zip(cur, seeds_prev)]
 
 
-def _similarity(a, b) -> float:
-    """Smallest MAC between consecutive results of the lightly damped modes (tracking quality)."""
+def _light(lam) -> bool:
+    """A lightly damped root (damping ratio <= 0.3): a possible onset, tracked with care."""
+    return bool(np.isfinite(lam) and -lam.real <= 0.3 * abs(lam))
+
+
+def _clusters(a, b, rel: float = CLUSTER_REL) -> list[list[int]]:
+    """Groups of tracked modes whose roots lie within ``rel`` of each other (at ``a`` or ``b``).
+
+    Such near-repeated roots (the copies of a blade mode on a 3-bladed rotor) have shapes that
+    rotate freely inside the group's subspace as the parameter changes: their individual MAC
+    says nothing about tracking quality, the subspace does.  Singletons are listed too.
+    """
+    n = len(b)
+    parent = list(range(n))
+
+    def find(i):
+        while parent[i] != i:
+            parent[i] = parent[parent[i]]
+            i = parent[i]
+        return i
+
+    for res in (a, b):
+        lam = np.array([l if x is not None else np.nan for l, x in res], complex)
+        for i in range(n):
+            for j in range(i + 1, n):
+                if np.isfinite(lam[i]) and np.isfinite(lam[j]) and \
+                        abs(lam[i] - lam[j]) <= rel * max(abs(lam[i]), abs(lam[j])):
+                    parent[find(i)] = find(j)
+    groups: dict[int, list[int]] = {}
+    for i in range(n):
+        groups.setdefault(find(i), []).append(i)
+    return list(groups.values())
+
+
+def _orth(X: np.ndarray) -> np.ndarray:
+    return np.linalg.qr(X)[0]
+
+
+def _subspace_mac(Xa: np.ndarray, Xb: np.ndarray) -> float:
+    """Smallest squared cosine of the principal angles between span(Xa) and span(Xb) (0..1)."""
+    s = np.linalg.svd(_orth(Xa).conj().T @ _orth(Xb), compute_uv=False)
+    return float(np.min(s) ** 2)
+
+
+def _relabel(prev, cur, clusters):
+    """Permute ``cur`` inside each cluster so that every mode keeps the shape nearest its own."""
+    from scipy.optimize import linear_sum_assignment
+
+    out = list(cur)
+    for g in clusters:
+        g = [i for i in g if prev[i][1] is not None and cur[i][1] is not None]
+        if len(g) < 2:
+            continue
+        m = mac_matrix(np.stack([prev[i][1] for i in g], 1), np.stack([cur[i][1] for i in g], 1))
+        _, col = linear_sum_assignment(-m)
+        for k, i in enumerate(g):
+            out[i] = cur[g[col[k]]]
+    return out
+
+
+def _similarity(a, b, clusters=None) -> float:
+    """Tracking quality between consecutive results: the smallest MAC of the lightly damped modes.
+
+    For a cluster of near-repeated roots (:func:`_clusters`) the subspace MAC of the group
+    replaces the members' individual values.
+    """
+    clusters = _clusters(a, b) if clusters is None else clusters
     worst = 1.0
-    for (la, xa), (lb, xb) in zip(a, b):
-        if xa is None or xb is None:
+    for g in clusters:
+        g = [i for i in g if a[i][1] is not None and b[i][1] is not None
+             and _light(a[i][0]) and _light(b[i][0])]  # heavily damped: not an onset candidate
+        if not g:
             continue
-        if -la.real > 0.3 * abs(la) or -lb.real > 0.3 * abs(lb):  # heavily damped: not an onset candidate
-            continue
-        worst = min(worst, mac(xa, xb))
+        if len(g) == 1:
+            worst = min(worst, mac(a[g[0]][1], b[g[0]][1]))
+        else:
+            worst = min(worst, _subspace_mac(np.stack([a[i][1] for i in g], 1), np.stack([b[i][1] for i in g], 1)))
     return worst
 
 
@@ -280,12 +362,50 @@ def _advance(system_at, p0, cur0, seeds0, p1, n_eig, depth, max_depth=3, min_mac
     Returns the list of ``(p, result, seeds)`` after ``p0`` (ending at ``p1``).
     """
     cur1 = _track(system_at(p1), _seeds(cur0, seeds0), n_eig)
-    if depth < max_depth and _similarity(cur0, cur1) < min_mac:
+    groups = _clusters(cur0, cur1)
+    cur1 = _relabel(cur0, cur1, groups)
+    if depth < max_depth and _similarity(cur0, cur1, groups) < min_mac:
         pm = 0.5 * (p0 + p1)
         first = _advance(system_at, p0, cur0, seeds0, pm, n_eig, depth + 1, max_depth, min_mac)
         _, cm, sm = first[-1]
         return first + _advance(system_at, pm, cm, sm, p1, n_eig, depth + 1, max_depth, min_mac)
     return [(p1, cur1, _seeds(cur1, _seeds(cur0, seeds0)))]
+
+
+def _cluster_root(res):
+    """The least stable root ``(lambda, x, member)`` of a cluster's tracked results ``res``.
+
+    Its real part is continuous in the parameter even where the members exchange shapes, so it
+    is what the onset root-finding follows.
+    """
+    ok = [k for k, (l, x) in enumerate(res) if x is not None and np.isfinite(l)]
+    if not ok:
+        return complex(np.nan, np.nan), None, 0
+    k = max(ok, key=lambda k: res[k][0].real)
+    return res[k][0], res[k][1], k
+
+
+def _cluster_onset(system_at, pa, pb, ca, cb, g, n_eig, xtol):
+    """Onset ``(q0, lambda, x, mode)`` of cluster ``g`` between ``pa`` (stable) and ``pb``.
+
+    Brent's method on the real part of the cluster's least stable root; each evaluation tracks
+    the cluster from the nearest parameter already solved (continuation: small steps, so the
+    Newton refinement converges and the members are not lost).
+    """
+    known = {pa: [ca[i] for i in g], pb: [cb[i] for i in g]}
+
+    def solve(q):
+        q_near = min(known, key=lambda k: abs(k - q))
+        if q not in known:
+            known[q] = _track(system_at(q), known[q_near], n_eig)
+        return _cluster_root(known[q])
+
+    try:
+        q0 = brentq(lambda q: solve(q)[0].real, pa, pb, xtol=xtol)
+    except ValueError:  # no sign change of the followed root (lost between the points)
+        q0 = pb
+    lam, xq, k = solve(q0)
+    return q0, lam, xq, g[k]
 
 
 def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_eig: int = 20,
@@ -340,24 +460,20 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
         if not flutter_found:
             cand = []
             for (pa, ca), (pb, cb) in zip(chain[:-1], chain[1:]):
-                for i, (l, x) in enumerate(cb):
-                    if ca[i][1] is None or x is None:
+                for g in _clusters(ca, cb):
+                    g = [i for i in g if ca[i][1] is not None and cb[i][1] is not None]
+                    new = [i for i in g if _unstable(cb[i][0], zeta_tol) and cb[i][0].imag > min_frequency]
+                    if not new:
                         continue
-                    if _unstable(l, zeta_tol) and l.imag > min_frequency and not _unstable(ca[i][0], zeta_tol):
-                        seed = ca[i]
-
-                        def f(q, seed=seed):
-                            lam, _ = pk_mode(system_at(q), max(seed[0].imag, 0.0), seed[1], n_eig=n_eig,
-                                             lam0=seed[0])
-                            return lam.real
-
-                        try:
-                            q0 = brentq(f, pa, pb, xtol=xtol)
-                        except ValueError:
-                            q0 = pb
-                        lam, xq = pk_mode(system_at(q0), max(seed[0].imag, 0.0), seed[1], n_eig=n_eig,
-                                          lam0=seed[0])
-                        cand.append((q0, lam, xq, i))
+                    if any(_unstable(ca[i][0], zeta_tol) for i in g):
+                        # a member unstable already (from the first grid point on): follow each
+                        # newly unstable mode on its own
+                        groups = [[i] for i in new if not _unstable(ca[i][0], zeta_tol)]
+                    else:
+                        # the onset is where the least stable root of the cluster crosses: a
+                        # continuous function of q even when near-repeated members swap shapes
+                        groups = [g]
+                    cand += [_cluster_onset(system_at, pa, pb, ca, cb, g, n_eig, xtol) for g in groups]
                 if cand:
                     break
             if cand:
