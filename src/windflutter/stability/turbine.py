@@ -46,6 +46,9 @@ class TurbineOptions:
     air_density : kg/m^3.
     rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
     tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
+    full_sweep : p-k: sweep the whole grid (Campbell data beyond the instabilities); ``False``
+        stops at the first grid speed past both the flutter and the divergence onsets (same
+        onsets, less work).
     reduction : ``"mta"`` (modal basis + aerodynamic static-correction vectors, the default:
         NREL 5 MW whole turbine, beam, 10 m/s: 21.985 / 23.597 RPM flutter / divergence vs
         21.99 / 23.60 at full order), ``"modal"`` (structural modes only: 23.60 / 25.73 RPM with
@@ -80,6 +83,7 @@ class TurbineOptions:
     rpm_max: float = 40.0
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
+    full_sweep: bool = False
     reduction: str = "mta"
     n_modes: int = 30
     mta_wind_speeds: tuple[float, ...] = (4.0, 25.0)
@@ -267,7 +271,7 @@ class TurbineStability:
         if o.method == "pk":
             n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, sections, tower_dofs)
             on = pk_search(system_at, grid, n_track=min(n_track, am.size), n_eig=o.n_eig, xtol=o.tolerance_rpm,
-                           stop_at_onset=False)
+                           stop_at_onset=not o.full_sweep)
         else:
             on = thesis_search(system_at, grid, n_eig=o.n_eig)
 
@@ -344,7 +348,7 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
     return TurbineOptions(model=mtype, aero=aero, method=method,
                           physics="full" if s.geometric_stiffness else "thesis",
                           air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
-                          tolerance_rpm=r.tolerance_rpm, reduction=s.reduction, n_modes=s.basis_modes,
+                          tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction, n_modes=s.basis_modes,
                           n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,
                           induction=s.induction, damping=config.damping.model,
                           damping_ratio=config.damping.ratio,
