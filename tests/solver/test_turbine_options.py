@@ -55,3 +55,18 @@ def test_stability_cli_rejects_skin_on_beams():
     bad = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--aero-distribution",
                           "skin"], capture_output=True, text=True)
     assert bad.returncode == 2 and "aero_distribution" in bad.stderr and "Traceback" not in bad.stderr
+
+
+def test_config_reaches_the_turbine_options():
+    # every solver / rotor-speed setting of a run config arrives in TurbineOptions
+    from windflutter.config import config_from_dict
+    from windflutter.stability.turbine import options_from_config
+
+    c = config_from_dict({"rotor_speed": {"full_sweep": True},
+                          "solver": {"correction_tol": 1e-6, "basis_modes": 12, "n_eig": 8, "reduction": "modal"}})
+    o = options_from_config(c, "viscous", "pk")
+    assert (o.full_sweep, o.mta_tol, o.n_modes, o.n_eig, o.reduction, o.aero) == (True, 1e-6, 12, 8, "modal", "viscous")
+    d = options_from_config(config_from_dict({}), "potential", "pk")
+    assert (d.full_sweep, d.mta_tol) == (TurbineOptions().full_sweep, TurbineOptions().mta_tol) == (False, 1e-4)
+    with pytest.raises(InputError, match="mta_tol"):
+        TurbineOptions(mta_tol=0.0)

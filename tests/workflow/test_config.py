@@ -61,6 +61,9 @@ BAD = [
     ({"air_density": "heavy"}, "air_density", "positive number"),
     ({"output": {"formats": ["gif"]}}, "output.formats[0]", "png"),
     ({"rotor_speed": 5}, "rotor_speed", "mapping"),
+    ({"rotor_speed": {"full_sweep": "yes"}}, "rotor_speed.full_sweep", "true or false"),
+    ({"solver": {"correction_tol": 0}}, "solver.correction_tol", "positive number"),
+    ({"solver": {"correction_tol": 2.0}}, "solver.correction_tol", "(0, 1)"),
 ]
 
 

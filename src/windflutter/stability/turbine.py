@@ -57,6 +57,9 @@ class TurbineOptions:
         full order (the same as ``reduction="none"``).
     mta_wind_speeds : wind speeds (m/s) whose aero loads build the correction vectors of
         ``reduction="mta"`` (fixed, so results do not depend on the order of the points).
+    mta_tol : relative cut-off of those correction directions
+        (:class:`~windflutter.solve.aero_reduction.MTAAeroelasticModel`); 1e-4 keeps those
+        carrying more than 1 % of the largest one's amplitude.
     n_tracked : modes followed by the p-k search; ``None`` (default) tracks every mode up to
         1.25 x the frequency of the first blade-torsion mode (the classical flutter partner of
         the flap modes); a fixed count may miss it (a whole 3-bladed turbine has ~20 modes below
@@ -87,6 +90,7 @@ class TurbineOptions:
     reduction: str = "mta"
     n_modes: int = 30
     mta_wind_speeds: tuple[float, ...] = (4.0, 25.0)
+    mta_tol: float = 1e-4
     n_tracked: int | None = None
     n_eig: int = 20
     apparent_mass_scaling: bool = False
@@ -123,6 +127,8 @@ class TurbineOptions:
         if self.n_tracked is not None and not (isinstance(self.n_tracked, (int, np.integer))
                                                and self.n_tracked >= 1):
             raise InputError("n_tracked", self.n_tracked, "a positive number of modes, or None (auto)")
+        if not (0.0 < self.mta_tol < 1.0):
+            raise InputError("mta_tol", self.mta_tol, "a relative cut-off in (0, 1), e.g. 1e-4")
         if not (isinstance(self.n_eig, (int, np.integer)) and self.n_eig >= 2):
             raise InputError("n_eig", self.n_eig, "at least 2 eigenvalues per solve")
         if self.damping == "modal" and self.reduction == "none":
@@ -226,7 +232,7 @@ class TurbineStability:
         if o.reduction == "mta":
             from windflutter.solve.aero_reduction import MTAAeroelasticModel
 
-            am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds))
+            am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds), mta_tol=o.mta_tol)
         elif skin is not None:
             from windflutter.aero.skin import SkinAeroelasticModel
 
@@ -348,7 +354,8 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
     return TurbineOptions(model=mtype, aero=aero, method=method,
                           physics="full" if s.geometric_stiffness else "thesis",
                           air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
-                          tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction, n_modes=s.basis_modes,
+                          tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction,
+                          n_modes=s.basis_modes, mta_tol=s.correction_tol,
                           n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,
                           induction=s.induction, damping=config.damping.model,
                           damping_ratio=config.damping.ratio,
