@@ -95,3 +95,48 @@ def test_cluster_subspace_and_relabel():
     assert _similarity(a, b, groups) == pytest.approx(1.0, abs=1e-12)
     swapped = [b[1], b[0], b[2]]
     assert [r[0] for r in _relabel(a, swapped, groups)] == [b[0][0], b[1][0], b[2][0]]
+
+
+def test_newton_sparse_path_equals_dense():
+    # full-order models hand sparse matrices to the Newton iteration (sparse LU per step)
+    import scipy.sparse as sp
+
+    s = _FreqSystem(seed=3)
+    sparse = type("S", (), {"Ks": sp.csr_matrix(s.Ks), "model": s.model,
+                            "matrices": lambda self, w: tuple(sp.csr_matrix(A) for A in s.matrices(w))})()
+    e0 = solve_qep_dense(*s.matrices(0.0))
+    i = int(np.argmax(e0.values.imag > 0))
+    a = newton_mode(s, e0.values[i], e0.vectors[:, i])
+    b = newton_mode(sparse, e0.values[i], e0.vectors[:, i])
+    assert a[2] and b[2]
+    assert abs(a[0] - b[0]) <= 1e-12 * abs(a[0])
+
+
+def test_static_distance_lu_path_equals_the_spectrum():
+    # above STATIC_DENSE_LIMIT DOFs the signed distance from static singularity comes from one
+    # LU (sign of det) and Arnoldi (min |mu|); below, from the whole spectrum.  Same value (to
+    # the 1e-8 of ARPACK's convergence) on both sides of a zero crossing: K = K0 - p diag(e_0)
+    # becomes singular at p = K0[0, 0] - (coupling) for this diagonally dominant K0.
+    import windflutter.stability.search as search
+
+    rng = np.random.default_rng(2)
+    n = 320
+    A = rng.standard_normal((n, n)) * 0.01
+    K0 = np.diag(np.linspace(1.0, 50.0, n)) + A
+    M = np.eye(n) + 0.001 * (A + A.T)
+    vals = []
+    for p in (0.5, 1.5):
+        K = K0.copy()
+        K[0, 0] -= p
+        sysp = type("S", (), {"matrices": lambda self, w, K=K: (M, None, K)})()
+        old = search.STATIC_DENSE_LIMIT
+        try:
+            search.STATIC_DENSE_LIMIT = 10 * n
+            dense = search.static_min_eig(sysp)
+            search.STATIC_DENSE_LIMIT = n - 1
+            lu = search.static_min_eig(sysp)
+        finally:
+            search.STATIC_DENSE_LIMIT = old
+        assert lu == pytest.approx(dense, rel=1e-8)
+        vals.append(lu)
+    assert vals[0] > 0 > vals[1]  # the crossing is seen by both

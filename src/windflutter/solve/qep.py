@@ -166,7 +166,7 @@ def solve_qep_dense(M, D, K, shift: complex = 0.0, n_eig: int | None = None) -> 
     return Eigs(values=w[order], vectors=_normalize(v[:, order]), shift=complex(shift))
 
 
-def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20) -> Eigs:
+def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20, v0: np.ndarray | None = None) -> Eigs:
     """The ``n_eig`` eigenpairs nearest ``shift`` of a small dense QEP by shift-invert Arnoldi.
 
     The same operator as :func:`solve_qep_sparse` (``(A - shift B)^-1 B`` of the companion
@@ -175,6 +175,7 @@ def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20) -> Eigs
     a sixth of the full QZ/geev spectrum (NREL 5 MW beam, n = 169: 15 ms vs 85 ms) and gives the
     same eigenvalues (to ~1e-13; ``tests/solver/test_qep.py``).  Falls back to
     :func:`solve_qep_dense` when ARPACK does not converge or ``Q(shift)`` is singular.
+    ``v0``: ARPACK start vector as for :func:`solve_qep_sparse`.
     """
     Md, Dd, Kd = (np.asarray(A, dtype=complex) for A in _dense_mdk(M, D, K))
     n = Kd.shape[0]
@@ -191,7 +192,7 @@ def solve_qep_dense_near(M, D, K, shift: complex = 0.0, n_eig: int = 20) -> Eigs
         X1, X2 = X[:, :n], X[:, n:]
         op = np.block([[-X1, -X2], [np.eye(n) - s * X1, -s * X2]])
         try:
-            nu, v = spla.eigs(op, k=k, which="LM", v0=start_vector(2 * n))
+            nu, v = spla.eigs(op, k=k, which="LM", v0=_start(v0, n, s))
         except spla.ArpackNoConvergence:
             return solve_qep_dense(M, D, K, shift, n_eig)
     lam = s + 1.0 / nu
@@ -227,7 +228,9 @@ def solve_qep_sparse(M, D, K, shift: complex = 0.0, n_eig: int = 20, tol: float 
     (then ``[x, shift x]``); default :func:`start_vector`.  A warm start from a nearby solve,
     e.g. ``warm_start_vector(previous)``, saved 15-27 % of the operator applications (LU solves)
     on a 4,800-DOF tube for shift steps of 0.1-5 %, same eigenvalues to 1e-14
-    (``docs/performance.md``).  The p-k search does not pass one yet.
+    (``docs/performance.md``).  The p-k search does not use it: its Newton refinement already
+    starts every root from the previous rotor speed, and starting the remaining Arnoldi solves
+    from the tracked shape saved 3 % of a full-order point (within the noise).
     """
     n = K.shape[0]
     M = _as_csc(M, n)
@@ -265,7 +268,7 @@ def solve_qep_sparse(M, D, K, shift: complex = 0.0, n_eig: int = 20, tol: float 
 
 
 def solve_qep(M, D, K, shift: complex = 0.0, n_eig: int = 20, method: str = "auto",
-              dense_limit: int = DENSE_LIMIT) -> Eigs:
+              dense_limit: int = DENSE_LIMIT, v0: np.ndarray | None = None) -> Eigs:
     """Eigenpairs of ``(lambda^2 M + lambda D + K) x = 0`` nearest ``shift``.
 
     Parameters
@@ -277,6 +280,8 @@ def solve_qep(M, D, K, shift: complex = 0.0, n_eig: int = 20, method: str = "aut
     method : ``"auto"`` (dense up to ``dense_limit`` DOFs: shift-invert Arnoldi through a dense
         LU when fewer than ``NEAR_FRACTION * 2n`` eigenvalues are wanted, else the whole
         spectrum), ``"dense"`` (whole spectrum) or ``"sparse"``.
+    v0 : ARPACK start vector of the shift-invert paths (``(n,)`` shape or ``(2n,)`` companion
+        vector, see :func:`solve_qep_sparse`); ignored by the whole-spectrum path.
 
     Returns
     -------
@@ -295,6 +300,6 @@ def solve_qep(M, D, K, shift: complex = 0.0, n_eig: int = 20, method: str = "aut
         raise InputError("method", method, "'auto', 'dense' or 'sparse'")
     if method == "dense" or (method == "auto" and (n <= dense_limit or 2 * n - 2 <= n_eig)):
         if method == "auto" and n >= 40 and n_eig < NEAR_FRACTION * 2 * n:
-            return solve_qep_dense_near(M, D, K, shift, n_eig)
+            return solve_qep_dense_near(M, D, K, shift, n_eig, v0=v0)
         return solve_qep_dense(M, D, K, shift, n_eig)
-    return solve_qep_sparse(M, D, K, shift, n_eig)
+    return solve_qep_sparse(M, D, K, shift, n_eig, v0=v0)

@@ -21,9 +21,12 @@ from typing import Callable
 
 import numpy as np
 import scipy.linalg as sla
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 from scipy.optimize import brentq
 
-from windflutter.errors import ConvergenceError, InputError
+from windflutter.errors import ConvergenceError, InputError, ModelError
+from windflutter.solve.linsolve import factorize
 from windflutter.solve.qep import solve_qep
 from windflutter.stability.tracking import mac_matrix, mac
 
@@ -77,13 +80,30 @@ def _excluded(vals: np.ndarray, vecs: np.ndarray, exclude) -> np.ndarray:
     return out
 
 
-#: largest working-basis size solved by the local Newton iteration (dense LU per step); larger
-#: (full-order sparse) systems use the shift-invert Arnoldi solve, one LU per p-k step
-NEWTON_LIMIT = 600
+#: largest working-basis size refined by the Newton iteration of :func:`newton_mode` (0: never,
+#: every root by frozen-frequency Arnoldi solves -- the former search, kept for comparison)
+NEWTON_LIMIT = 10**9
 
 
 def _dense(A) -> np.ndarray:
     return A.toarray() if hasattr(A, "toarray") else np.asarray(A)
+
+
+def _solve_near_singular(T, b):
+    """``T^-1 b`` for a ``T`` that is near-singular by design (inverse iteration); None if singular.
+
+    Dense: LAPACK LU without the condition-number warning of ``solve``; sparse (full-order
+    models): the project's sparse LU (:func:`windflutter.solve.linsolve.factorize`).
+    """
+    if sp.issparse(T):
+        try:
+            return factorize(T.tocsc()).solve(b)
+        except ModelError:
+            return None
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", sla.LinAlgWarning)
+        lu = sla.lu_factor(T, check_finite=False)
+    return sla.lu_solve(lu, b, check_finite=False)
 
 
 def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-9, maxiter: int = 12):
@@ -94,8 +114,9 @@ def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-9, maxite
     at ``w = Im(lam)`` of the current iterate, so the fixed point is the p-k root (the frozen-
     frequency eigenvalue whose imaginary part is that frequency).  Quadratic in ``lam`` at fixed
     ``w``; the frequency coupling converges like the plain p-k iteration (the aero terms vary
-    slowly with ``w``).  One dense LU of the n x n ``T`` per step, against a shift-invert
-    Arnoldi solve per p-k step (NREL 5 MW whole turbine, n = 169: ~1 ms against ~15 ms).
+    slowly with ``w``).  One LU of the n x n ``T`` per step (dense for projected models, sparse
+    at full order), against a shift-invert Arnoldi solve per p-k step (NREL 5 MW whole turbine,
+    n = 169: ~1 ms against ~15 ms).
 
     Returns ``(lam, x, converged)``: converged when the step in ``lam`` is below
     ``tol |lam|`` -- or, as in :func:`pk_mode`, after 4 steps for a heavily damped root
@@ -106,15 +127,11 @@ def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-9, maxite
     x = np.asarray(x0, dtype=complex)
     c = x.conj() / np.vdot(x, x).real  # normalisation c^H x = 1
     for it in range(maxiter):
-        M, D, K = (_dense(A) for A in system.matrices(max(lam.imag, 0.0)))
-        T = (lam * lam) * M + lam * D + K
-        # T is near-singular by design close to the root (inverse iteration): LU without the
-        # condition-number check of ``solve``
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", sla.LinAlgWarning)
-            lu = sla.lu_factor(T, check_finite=False)
-        y = sla.lu_solve(lu, (2.0 * lam) * (M @ x) + D @ x, check_finite=False)
-        cy = c @ y
+        M, D, K = system.matrices(max(lam.imag, 0.0))
+        if not (sp.issparse(M) and sp.issparse(D) and sp.issparse(K)):
+            M, D, K = _dense(M), _dense(D), _dense(K)
+        y = _solve_near_singular((lam * lam) * M + lam * D + K, (2.0 * lam) * (M @ x) + D @ x)
+        cy = np.nan if y is None else c @ y
         if not (np.isfinite(cy) and cy != 0):
             return lam, x, False
         step = (c @ x) / cy
@@ -196,21 +213,39 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
     return lam, x
 
 
+#: above this many DOFs :func:`static_min_eig` uses one LU and Arnoldi instead of the spectrum
+STATIC_DENSE_LIMIT = 300
+
+
 def static_min_eig(system) -> float:
     """Signed distance of the static stiffness from singularity (divergence when it crosses 0).
 
     ``sign(det Kt(k=0)) * min |mu|`` over the eigenvalues of ``Kt x = mu M x``: continuous, and
     it changes sign exactly when a real eigenvalue crosses zero (complex pairs never flip the
-    sign of the determinant).
+    sign of the determinant).  Up to :data:`STATIC_DENSE_LIMIT` DOFs from the whole dense
+    spectrum; above (full-order models), from one LU of ``Kt``: the sign of its determinant
+    from the LU and ``min |mu|`` by Arnoldi on ``Kt^-1 M`` (its largest eigenvalue is
+    ``1 / min |mu|``), the whole spectrum only if that does not converge.
     """
     M, D, K = system.matrices(0.0)
-    Md = M.toarray() if hasattr(M, "toarray") else np.asarray(M)
-    Kd = K.toarray() if hasattr(K, "toarray") else np.asarray(K)
-    Kd, Md = Kd.real, Md.real
+    Kd, Md = _dense(K).real, _dense(M).real
+    sM, _ = np.linalg.slogdet(Md)
+    if Kd.shape[0] > STATIC_DENSE_LIMIT:
+        lu, piv = sla.lu_factor(Kd, check_finite=False)
+        d = np.diag(lu)
+        if not np.all(d != 0):
+            return 0.0
+        sK = np.prod(np.sign(d)) * (-1.0) ** np.count_nonzero(piv != np.arange(piv.size))
+        op = spla.LinearOperator(Kd.shape, matvec=lambda v: sla.lu_solve((lu, piv), Md @ v, check_finite=False),
+                                 dtype=float)
+        try:
+            nu = spla.eigs(op, k=1, which="LM", v0=np.ones(Kd.shape[0]), return_eigenvectors=False)
+            return float(sK * sM / np.abs(nu[0]))
+        except spla.ArpackNoConvergence:
+            pass
     mu = sla.eig(Kd, Md, right=False)
     mu = mu[np.isfinite(mu)]
     sK, _ = np.linalg.slogdet(Kd)
-    sM, _ = np.linalg.slogdet(Md)
     return float(sK * sM * np.min(np.abs(mu)))
 
 
