@@ -125,6 +125,9 @@ class SolverConfig:
         ``false`` reproduces the thesis.
     induction : account for axial and tangential induction (steady BEM, frozen in the
         stability problem) in the inflow; ``false`` is the thesis's ``V, Omega r``.
+    steady_loads : add the quasi-steady damping of the mean lift, drag and moment (the airfoil
+        polars at each strip's steady angle of attack): the edgewise aerodynamic damping of the
+        blades; ``false`` is the thesis's model.
     """
 
     backend: str = "windflutter"
@@ -136,6 +139,7 @@ class SolverConfig:
     aero_distribution: str = "spline"
     geometric_stiffness: bool = True
     induction: bool = False
+    steady_loads: bool = False
 
 
 @dataclass(frozen=True)
@@ -450,7 +454,7 @@ def config_from_dict(data: dict | None, source: str | None = None,
         s["n_eig"] = _integer("solver.n_eig", d["n_eig"], src, 2)
     if "n_tracked" in d:
         s["n_tracked"] = None if d["n_tracked"] is None else _integer("solver.n_tracked", d["n_tracked"], src, 1)
-    for k in ("geometric_stiffness", "induction"):
+    for k in ("geometric_stiffness", "induction", "steady_loads"):
         if k in d:
             s[k] = _boolean(f"solver.{k}", d[k], src)
     if s["reduction"] != "none" and s["n_tracked"] is not None and s["n_tracked"] > s["basis_modes"]:

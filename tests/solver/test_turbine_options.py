@@ -63,10 +63,34 @@ def test_config_reaches_the_turbine_options():
     from windflutter.stability.turbine import options_from_config
 
     c = config_from_dict({"rotor_speed": {"full_sweep": True},
-                          "solver": {"correction_tol": 1e-6, "basis_modes": 12, "n_eig": 8, "reduction": "modal"}})
+                          "solver": {"correction_tol": 1e-6, "basis_modes": 12, "n_eig": 8, "reduction": "modal",
+                                     "steady_loads": True}})
     o = options_from_config(c, "viscous", "pk")
-    assert (o.full_sweep, o.mta_tol, o.n_modes, o.n_eig, o.reduction, o.aero) == (True, 1e-6, 12, 8, "modal", "viscous")
+    assert (o.full_sweep, o.mta_tol, o.n_modes, o.n_eig, o.reduction, o.aero, o.steady_loads) == (
+        True, 1e-6, 12, 8, "modal", "viscous", True)
     d = options_from_config(config_from_dict({}), "potential", "pk")
-    assert (d.full_sweep, d.mta_tol) == (TurbineOptions().full_sweep, TurbineOptions().mta_tol) == (False, 1e-4)
+    assert (d.full_sweep, d.mta_tol, d.steady_loads) == (TurbineOptions().full_sweep, TurbineOptions().mta_tol,
+                                                         TurbineOptions().steady_loads) == (False, 1e-4, False)
     with pytest.raises(InputError, match="mta_tol"):
         TurbineOptions(mta_tol=0.0)
+
+
+def test_steady_loads_reach_the_strips_and_need_polars():
+    # the option arrives in the model's strips (mean coefficients at the strips' angles of
+    # attack); without polars it is a clear error naming the field
+    from windflutter.aero.sections import AeroSections
+    from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero
+    from windflutter.model import load_turbine
+    import scipy.sparse as sp
+
+    ts = TurbineStability(load_turbine("nrel5mw"), TurbineOptions(steady_loads=True, mesh={"n_span": 6}))
+    _, _, am = ts.model(0.0)
+    st = am.strip(10.0, 1.2)
+    assert am.aero.steady_loads and st.steady is not None and np.all(np.isfinite(st.steady))
+    assert np.any(st.steady[0] > 0.5) and np.all(st.steady[1] > 0)  # lifting tip, positive drag
+    bare = AeroSections(blade=np.array([0]), radius=np.array([1.0]), width=np.array([1.0]), chord=np.array([1.0]),
+                        elastic_axis=np.array([0.0]), origin=np.zeros((1, 3)), e_chord=np.array([[1.0, 0, 0]]),
+                        e_span=np.array([[0, 1.0, 0]]), airfoil=np.array([0]), polars=[], twist=np.zeros(1),
+                        motion_map=sp.identity(6, format="csr"))
+    with pytest.raises(InputError, match="polars"):
+        StripAero(bare, OperatingPoint(10.0), AeroOptions(steady_loads=True))

@@ -194,3 +194,50 @@ def test_projected_aero_equals_the_assembled_matrices_projected(model, am_scalin
         for A, B in zip(f(omega), strip.matrices(omega)):
             ref = Phi.T @ (B @ Phi)
             assert np.abs(A - ref).max() < 1e-12 * np.abs(ref).max()
+
+
+@pytest.mark.parametrize("model", ["viscous", "potential"])
+def test_mean_load_damping_is_the_linearised_quasi_steady_force(model):
+    # Independent reference: central finite differences of the *nonlinear* quasi-steady force
+    # of a strip moving with (h', s') across / along the wind -- relative wind (U - s', -h'),
+    # lift Cl(alpha) perpendicular to it, drag Cd(alpha) along it, dynamic pressure from its
+    # magnitude, moment arm x lift + q c^2 Cm -- with the tabulated polar (linear lift and drag
+    # here, so Cl_alpha / Cd_alpha of the fit are the table's).  At k = 0 (C = 1) the h and s
+    # columns of Da must be its derivatives: Theodorsen's circulatory terms (the change of
+    # angle of attack) plus the mean-load terms of steady_loads.  Potential flow: its 2 pi
+    # slope and no drag for the angle-of-attack part, the polar's mean loads for the rest.
+    # Tolerance 1e-7 relative: the O(dv^2) error of the differences (dv = 1e-3 m/s).
+    alpha0 = np.radians(4.0)
+    pol = _synthetic_polar(cla=5.9, a0_deg=-2.0, cd0=0.007, cda=0.03)
+    pol = Polar(pol.alpha, pol.cl, pol.cd, np.full_like(pol.alpha, -0.08), name="cm")
+    chord_dir = np.array([[np.cos(alpha0), 0.0, -np.sin(alpha0)]])  # trailing edge low: nose up
+    sec = AeroSections(blade=np.array([0]), radius=np.array([1.0]), width=np.array([2.0]),
+                       chord=np.array([2 * B]), elastic_axis=np.array([A]), origin=np.zeros((1, 3)),
+                       e_chord=chord_dir, e_span=np.array([[0, 1.0, 0]]), airfoil=np.array([0]),
+                       polars=[pol], twist=np.zeros(1), motion_map=sp.identity(6, format="csr"))
+    op = OperatingPoint(U, 0.0, RHO, RotorGeometry(np.zeros(3), np.array([0, 0, 1.0]), np.array([1.0, 0, 0])))
+    strip = StripAero(sec, op, AeroOptions(model, steady_loads=True))
+    assert strip.flow.alpha[0] == pytest.approx(alpha0, rel=1e-12)
+    Da = strip.matrices(0.0)[1].toarray().real / 2.0  # per unit span
+    cla = 5.9 if model == "viscous" else 2 * np.pi
+    cda = 0.03 if model == "viscous" else 0.0
+    c, arm = 2 * B, B * (A + 0.5)
+
+    def force(hd, sd):
+        Wl, Wd = -hd, U - sd  # relative wind on (e1 = lift, e3 = drag) axes
+        W = np.hypot(Wl, Wd)
+        w_hat, n_hat = np.array([Wl, Wd]) / W, np.array([Wd, -Wl]) / W
+        da = np.arctan2(-hd, U - sd)  # change of the angle of attack
+        cl0, cd0, cm0 = (np.interp(alpha0, pol.alpha, t) for t in (pol.cl, pol.cd, pol.cm))
+        cl, cd = cl0 + cla * da, cd0 + cda * da  # the model's slopes for the alpha part
+        q = 0.5 * RHO * W**2
+        F = q * c * (cl * n_hat + cd * w_hat)
+        return np.array([F[0], arm * F[0] + q * c**2 * cm0, F[1]])  # lift, moment, drag
+
+    dv = 1e-3
+    for col, dof in ((0, 2), (1, 0)):  # h' (global uz) and s' (global ux)
+        e = np.zeros(2)
+        e[col] = dv
+        fd = (force(*e) - force(*(-e))) / (2 * dv)
+        got = Da[[2, 4, 0], dof]  # lift (z), moment (about y), drag (x) rows
+        assert np.allclose(got, fd, rtol=1e-7, atol=1e-7 * np.abs(fd).max())

@@ -63,6 +63,7 @@ BAD = [
     ({"rotor_speed": 5}, "rotor_speed", "mapping"),
     ({"rotor_speed": {"full_sweep": "yes"}}, "rotor_speed.full_sweep", "true or false"),
     ({"solver": {"correction_tol": 0}}, "solver.correction_tol", "positive number"),
+    ({"solver": {"steady_loads": 1}}, "solver.steady_loads", "true or false"),
     ({"solver": {"correction_tol": 2.0}}, "solver.correction_tol", "(0, 1)"),
 ]
 

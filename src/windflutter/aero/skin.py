@@ -388,7 +388,9 @@ class SkinStripAero(StripAero):
         r = self._rep
         b, U = self.b[r], self.flow.U[r]
         C = theodorsen_c(abs(omega) * b / U)
-        return section_matrices(b, self.a[r], U, C, self.op.air_density, self.cla[r], self.cda[r], self.am[r])
+        steady = None if self.steady is None else tuple(x[r] for x in self.steady)
+        return section_matrices(b, self.a[r], U, C, self.op.air_density, self.cla[r], self.cda[r], self.am[r],
+                                steady=steady)
 
     def projected(self, Phi: np.ndarray):
         PPhi = self.P @ Phi

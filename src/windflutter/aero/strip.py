@@ -98,12 +98,19 @@ class AeroOptions:
     lift_slope : optional per-section ``Cl_alpha`` (1/rad) overriding the polar fits (viscous),
         shape (ns,) or scalar.
     drag_slope : optional per-section ``Cd_alpha`` (1/rad), same rules.
+    steady_loads : add the quasi-steady damping of the *mean* loads (HAWCStab2 has it, the seed
+        does not): a section moving with ``s'`` along the relative wind and ``h'`` across it
+        changes the dynamic pressure (``2 U s'``) and turns the wind (by ``-h'/U``), so the mean
+        lift, drag and moment ``Cl0, Cd0, Cm0`` -- from the airfoil polars at each strip's
+        steady angle of attack, in both models -- give forces proportional to the section
+        velocity: the edgewise aerodynamic damping of a rotor blade.  Needs polars.
     """
 
     model: str = "potential"
     apparent_mass_scaling: bool = False
     lift_slope: np.ndarray | float | None = None
     drag_slope: np.ndarray | float | None = None
+    steady_loads: bool = False
 
     def __post_init__(self):
         if self.model not in ("potential", "viscous"):
@@ -205,7 +212,8 @@ def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
 class SectionParts:
     """The frequency-independent pieces of the Theodorsen section matrices (per unit span).
 
-    ``Ma`` and ``Da_nc`` (ns, 3, 3) are the apparent-mass terms.  The circulatory part is rank
+    ``Ma`` and ``Da_nc`` (ns, 3, 3) are the apparent-mass terms (``Da_nc`` also holds the
+    quasi-steady damping of the mean loads, when given).  The circulatory part is rank
     one per section -- one downwash ``Q`` drives one lift, whose moment and drag are fixed
     multiples of it: ``Da_c = C circ row col_d^T``, ``Ka_c = C circ row col_k^T`` with
     ``circ = cla rho U b`` (ns,), ``row = (1, moment arm, Cd_a / Cl_a)`` and the downwash
@@ -227,8 +235,19 @@ class SectionParts:
         return self.Ma.astype(complex), Da, Ka
 
 
-def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0) -> SectionParts:
-    """Frequency-independent pieces of :func:`section_matrices` (same parameters, no ``C``)."""
+def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0,
+                  steady=None) -> SectionParts:
+    """Frequency-independent pieces of :func:`section_matrices` (same parameters, no ``C``).
+
+    ``steady``: optional ``(Cl0, Cd0, Cm0)`` mean coefficients per section (scalars or (ns,);
+    ``Cm0`` about the quarter chord).  With the section velocity ``h'`` (along e1, across the
+    wind) and ``s'`` (along e3, with the wind) the relative wind is ``(U - s') e3 - h' e1``: the
+    dynamic pressure changes by ``-rho U s'`` and the wind turns by ``-h'/U``, which tilts the
+    mean lift towards e3 and the mean drag towards -e1.  To first order (the change of the
+    angle of attack, ``-h'/U``, is Theodorsen's circulatory term already):
+    ``dL = -rho c U (Cd0 h' / 2 + Cl0 s')``, ``dD = rho c U (Cl0 h' / 2 - Cd0 s')``,
+    ``dM = arm dL - rho c^2 U Cm0 s'`` (``arm``: the lift's moment arm about the elastic axis).
+    """
     b, a, U = (np.asarray(x, float) for x in (b, a, U))
     ns = b.shape[0]
     cla = np.broadcast_to(np.asarray(cla, float), (ns,))
@@ -251,14 +270,25 @@ def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0
     # moment about the elastic axis is b (a + 1/2) L_c with the lift at the quarter chord, the
     # drag D = (Cd_a / Cl_a) L_c
     drag = np.where(cla != 0, cda / np.where(cla != 0, cla, 1.0), 0.0)
-    row = np.stack([np.ones(ns), b * (a + 0.5 - 2.0 * dac), drag], axis=1)
+    arm = b * (a + 0.5 - 2.0 * dac)
+    row = np.stack([np.ones(ns), arm, drag], axis=1)
+    if steady is not None:
+        cl0, cd0, cm0 = (np.broadcast_to(np.asarray(x, float), (ns,)) for x in steady)
+        rcu = rho * 2.0 * b * U  # rho c U
+        dL_h, dL_s = -0.5 * rcu * cd0, -rcu * cl0
+        Da[:, 0, 0] += dL_h
+        Da[:, 0, 2] += dL_s
+        Da[:, 2, 0] += 0.5 * rcu * cl0
+        Da[:, 2, 2] += -rcu * cd0
+        Da[:, 1, 0] += arm * dL_h
+        Da[:, 1, 2] += arm * dL_s - rcu * 2.0 * b * cm0
     zero = np.zeros(ns)
     col_d = np.stack([-np.ones(ns), b * (0.5 - a), zero], axis=1)
     col_k = np.stack([zero, U, zero], axis=1)
     return SectionParts(Ma=Ma, Da_nc=Da, circ=cla * rho * U * b, row=row, col_d=col_d, col_k=col_k)
 
 
-def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0):
+def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0, steady=None):
     """Theodorsen section matrices per unit span in ``q = (h up, alpha nose-up, s along U)``.
 
     Parameters
@@ -271,6 +301,8 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_s
         Cl_alpha`` of a polar), scalar or (ns,); the circulatory lift acts there, so its moment
         arm about the elastic axis is ``b (a + 1/2) - 2 b ac_shift``.  0 (default): Theodorsen's
         quarter chord, as in the seed's eqs. 3.49-3.54.
+    steady : optional mean ``(Cl0, Cd0, Cm0)``: the quasi-steady mean-load damping of
+        :func:`section_parts`; None (default) is the seed's model.
 
     Returns
     -------
@@ -278,7 +310,7 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_s
     about e2 (N m/m), drag along e3 (N/m)) are ``Ma q'' + Da q' + Ka q``.  The pieces that do
     not depend on ``C`` are :func:`section_parts`.
     """
-    return section_parts(b, a, U, rho, cla, cda, am_scale, ac_shift).matrices(C)
+    return section_parts(b, a, U, rho, cla, cda, am_scale, ac_shift, steady).matrices(C)
 
 
 def section_map(sections: AeroSections, flow: SectionFlow) -> sp.csr_matrix:
@@ -296,6 +328,24 @@ def section_map(sections: AeroSections, flow: SectionFlow) -> sp.csr_matrix:
     if mm.shape[0] != 6 * ns:
         raise InputError("sections.motion_map", mm.shape, f"{6 * ns} rows (6 per section)")
     return (E @ mm).tocsr()
+
+
+def mean_coefficients(sections: AeroSections, alpha: np.ndarray):
+    """Mean ``(Cl0, Cd0, Cm0)`` (ns,) of every strip from its polar table at angle ``alpha`` (rad).
+
+    Linear interpolation of the tabulated polar (``Polar.alpha`` increasing); angles outside a
+    table take its end values.
+    """
+    if not sections.polars:
+        raise InputError("sections.polars", "[]", "airfoil polars for the mean-load damping (steady_loads)")
+    idx = np.asarray(sections.airfoil, dtype=np.int64)
+    alpha = np.asarray(alpha, float)
+    out = np.zeros((3, sections.n_sections))
+    for k in np.unique(idx):  # one pass per airfoil, vectorized over its strips
+        p, sel = sections.polars[int(k)], idx == k
+        for row, c in enumerate((p.cl, p.cd, p.cm)):
+            out[row, sel] = np.interp(alpha[sel], np.asarray(p.alpha, float), np.asarray(c, float))
+    return out[0], out[1], out[2]
 
 
 def lift_drag_slopes(sections: AeroSections, options: AeroOptions):
@@ -331,7 +381,8 @@ class StripAero:
     Attributes
     ----------
     flow : the section flow.  P : (3 ns, n_dof) section-motion map.  width : strip widths (m).
-    cla, cda : slopes used (1/rad).
+    cla, cda : slopes used (1/rad).  steady : mean ``(Cl0, Cd0, Cm0)`` at the strips' angles of
+    attack with ``options.steady_loads``, else None.
     """
 
     sections: AeroSections
@@ -350,6 +401,7 @@ class StripAero:
             self.am = self.cla / (2 * np.pi)
         else:
             self.am = np.ones_like(self.cla)
+        self.steady = mean_coefficients(self.sections, self.flow.alpha) if self.options.steady_loads else None
         ns = self.sections.n_sections
         self._rows = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, :, None]) * np.ones((1, 1, 3), int)
         self._cols = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, None, :]) * np.ones((1, 3, 1), int)
@@ -360,9 +412,7 @@ class StripAero:
 
     def section_blocks(self, omega: float):
         """(ns, 3, 3) Ma, Da, Ka blocks (times strip width) at circular frequency ``omega`` (rad/s)."""
-        C = theodorsen_c(self.reduced_frequency(omega))
-        Ma, Da, Ka = section_matrices(self.b, self.a, self.flow.U, C, self.op.air_density,
-                                      self.cla, self.cda, self.am)
+        Ma, Da, Ka = self.parts().matrices(theodorsen_c(self.reduced_frequency(omega)))
         w = self.width[:, None, None]
         return Ma * w, Da * w, Ka * w
 
@@ -378,7 +428,8 @@ class StripAero:
 
     def parts(self) -> SectionParts:
         """The frequency-independent section pieces (:func:`section_parts`) of these strips."""
-        return section_parts(self.b, self.a, self.flow.U, self.op.air_density, self.cla, self.cda, self.am)
+        return section_parts(self.b, self.a, self.flow.U, self.op.air_density, self.cla, self.cda, self.am,
+                             steady=self.steady)
 
     def projected(self, Phi: np.ndarray):
         """Return a function ``omega -> (Ma, Da, Ka)`` projected on the basis ``Phi`` (n_dof, m).

@@ -32,6 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                    help="modes tracked by the p-k search (default: every mode up to 1.25 x first torsion)")
     p.add_argument("--aero-distribution", choices=("spline", "skin"), default="spline",
                    help="shell models: rigid-section spline (default) or the seed's skin quads")
+    p.add_argument("--steady-loads", action="store_true",
+                   help="quasi-steady damping of the mean lift/drag/moment (edgewise aero damping; default: off, as the thesis)")
     p.add_argument("--induction", action="store_true",
                    help="steady BEM axial/tangential induction in the inflow (default: none, as the thesis)")
     p.add_argument("--plot", default=None, help="write the Campbell diagram of the first wind speed here")
@@ -54,7 +56,7 @@ def run(args: argparse.Namespace) -> int:
                           air_density=args.air_density, rpm_min=args.rpm[0], rpm_max=args.rpm[1],
                           rpm_step=args.rpm[2], reduction=args.reduction, n_modes=args.basis_modes,
                           n_tracked=args.n_tracked, aero_distribution=args.aero_distribution,
-                          induction=args.induction, mesh=mesh)
+                          induction=args.induction, steady_loads=args.steady_loads, mesh=mesh)
     turbine = load_turbine(args.turbine)
     ts = TurbineStability(turbine, opts)
     points = [ts.analyse_operating_point(v) for v in args.wind_speeds]

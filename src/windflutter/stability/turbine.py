@@ -69,6 +69,9 @@ class TurbineOptions:
     aero_distribution : ``"spline"`` (strip motion from a rigid-section fit of its skin nodes;
         the only choice for beams) or ``"skin"`` (the seed's skin quads, shell models only;
         ``docs/aero_distribution.md``).
+    steady_loads : add the quasi-steady damping of the mean lift, drag and moment (polars at the
+        strips' steady angles of attack; :class:`~windflutter.aero.strip.AeroOptions`): the
+        edgewise aerodynamic damping; ``False`` is the thesis's model.
     induction : steady BEM axial/tangential induction in the inflow (frozen in the stability
         problem); ``False`` is the thesis's ``V, Omega r``.
     damping : ``"none"``, ``"stiffness"``, ``"rayleigh"`` or ``"modal"``; ``damping_ratio`` at
@@ -96,6 +99,7 @@ class TurbineOptions:
     apparent_mass_scaling: bool = False
     aero_distribution: str = "spline"
     induction: bool = False
+    steady_loads: bool = False
     damping: str = "none"
     damping_ratio: float = 0.0
     damping_reference_hz: float = 1.0
@@ -216,7 +220,7 @@ class TurbineStability:
         terms = rotor_terms(fe, st, geom, prestress=(o.physics == "full"))
         sm = StructuralMatrices.from_structural(st)
         sm.D = self._damping(st)
-        aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling)
+        aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling, steady_loads=o.steady_loads)
         kw = dict(structure=sm, sections=sections, rotor=terms, rotor_geometry=geom, aero=aero,
                   air_density=o.air_density, n_modes=None if o.reduction == "none" else o.n_modes,
                   omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
@@ -357,7 +361,7 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
                           tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction,
                           n_modes=s.basis_modes, mta_tol=s.correction_tol,
                           n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,
-                          induction=s.induction, damping=config.damping.model,
+                          induction=s.induction, steady_loads=s.steady_loads, damping=config.damping.model,
                           damping_ratio=config.damping.ratio,
                           damping_reference_hz=config.damping.reference_hz, mesh=mesh)
 
