@@ -70,7 +70,7 @@ def test_config_reaches_the_turbine_options():
         True, 1e-6, 12, 8, "modal", "viscous", True)
     d = options_from_config(config_from_dict({}), "potential", "pk")
     assert (d.full_sweep, d.mta_tol, d.steady_loads) == (TurbineOptions().full_sweep, TurbineOptions().mta_tol,
-                                                         TurbineOptions().steady_loads) == (False, 1e-4, False)
+                                                         TurbineOptions().steady_loads) == (False, 1e-8, False)
     with pytest.raises(InputError, match="mta_tol"):
         TurbineOptions(mta_tol=0.0)
 

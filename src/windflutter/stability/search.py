@@ -154,22 +154,16 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
     lam0 : estimate of the root (e.g. the mode's value at the previous parameter): with ``x0``
         and a small working basis, the root is first refined locally by :func:`newton_mode`
         and accepted when it converges onto a free root of that shape (MAC >= 0.8 to ``x0``,
-        ``Im >= 0``); otherwise (and always with ``exclude``) the frozen-frequency eigen-solves
-        below pick the root of best shape among the ``n_eig`` nearest ``i omega``.
+        ``Im >= 0``); otherwise one frozen-frequency eigen-solve at ``omega0`` picks the root of
+        best shape among the ``n_eig`` nearest ``i omega0`` and Newton refines that one; only if
+        that fails too (and always with ``exclude``) the plain p-k iteration of frozen-frequency
+        eigen-solves below runs.
     near : for a member of a cluster of near-repeated roots (:func:`_clusters`), whose shape
         may rotate inside the cluster: the Newton root is also accepted when it lies within
         ``near |lam0|`` of ``lam0``, whatever its MAC.
 
     Returns (lambda, x).  A mode whose frequency falls to zero is returned with the aero at k=0.
     """
-    if lam0 is not None and x0 is not None and not exclude and system.Ks.shape[0] <= NEWTON_LIMIT:
-        lam, x, ok = newton_mode(system, lam0, x0)
-        if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and (
-                mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
-            return lam, x
-    w = max(float(omega0), 0.0)
-    lam, x = None, x0
-    change = np.inf
     cache = getattr(system, "_qep_cache", None)
     if cache is None:
         cache = {}
@@ -177,7 +171,9 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
             system._qep_cache = cache  # identical frequencies (symmetric blades) share solves
         except AttributeError:
             pass
-    for it in range(maxiter):
+
+    def pick(w, x, exclude):
+        """The frozen-frequency root at ``w`` of best shape match to ``x`` (None: none free)."""
         key = (w, n_eig)
         if key not in cache:
             M, D, K = system.matrices(w)
@@ -188,7 +184,7 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
         if exclude:
             phys &= ~_excluded(vals, vecs, exclude)
         if not np.any(phys):
-            return complex(np.nan, np.nan), None
+            return None
         vals, vecs = vals[phys], vecs[:, phys]
         if x is not None:
             m = mac_matrix(x[:, None], vecs)[0]
@@ -196,7 +192,28 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
         else:
             score = -np.abs(vals - 1j * w)
         i = int(np.argmax(score))
-        lam, x_new = vals[i], vecs[:, i]
+        return vals[i], vecs[:, i]
+
+    w = max(float(omega0), 0.0)
+    if lam0 is not None and x0 is not None and not exclude and system.Ks.shape[0] <= NEWTON_LIMIT:
+        lam, x, ok = newton_mode(system, lam0, x0)
+        if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and (
+                mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
+            return lam, x
+        # the Newton root is not the tracked one: choose the root of best shape at w by one
+        # frozen-frequency solve, and refine that one by Newton (it starts on an eigenpair)
+        got = pick(w, x0, ())
+        if got is not None:
+            lam, x, ok = newton_mode(system, got[0], got[1])
+            if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and mac(x, got[1]) >= 0.9:
+                return lam, x
+    lam, x = None, x0
+    change = np.inf
+    for it in range(maxiter):
+        got = pick(w, x, exclude)
+        if got is None:
+            return complex(np.nan, np.nan), None
+        lam, x_new = got
         w_new = max(lam.imag, 0.0)
         change = abs(w_new - w) / max(abs(w_new), 1.0)
         if change <= tol:
@@ -394,7 +411,9 @@ def _similarity(a, b, clusters=None) -> float:
 def _advance(system_at, p0, cur0, seeds0, p1, n_eig, depth, max_depth=3, min_mac=0.8):
     """Track from ``p0`` to ``p1``, halving the step where the shapes change too much.
 
-    Returns the list of ``(p, result, seeds)`` after ``p0`` (ending at ``p1``).
+    Returns the list of ``(p, result, seeds)`` after ``p0`` (ending at ``p1``).  (A linear
+    predictor of the roots at ``p1`` from the previous step was tried as the Newton start: 5 %
+    fewer Newton steps, no measurable gain, not kept.)
     """
     cur1 = _track(system_at(p1), _seeds(cur0, seeds0), n_eig)
     groups = _clusters(cur0, cur1)
