@@ -463,13 +463,51 @@ class StripAero:
                 Aq = A * (C * qs)[:, None]
                 return Aq.real.T @ B + 1j * (Aq.imag.T @ B)
 
-        Ma_c = Ma_p.astype(complex)
+        return ProjectedAero(Ma=Ma_p.astype(complex), Dnc=Dnc_p, A=A, B=B, qs=qs, circulatory=circulatory,
+                             k_of=self.reduced_frequency)
 
-        def f(omega: float):
-            DK = circulatory(theodorsen_c(self.reduced_frequency(omega)))
-            return Ma_c, Dnc_p + DK[:, :m], DK[:, m:]
 
-        return f
+@dataclass
+class ProjectedAero:
+    """Strip aero projected on a basis (:meth:`StripAero.projected`): ``omega -> (Ma, Da, Ka)``.
+
+    ``Ma``, ``Dnc`` (m, m): the frequency-independent terms; the circulatory ones are
+    ``A^T diag(C(k) qs) [Bd Bk]`` with ``A`` (ns, m) and ``B = [Bd Bk]`` (ns, 2m).
+    """
+
+    Ma: np.ndarray
+    Dnc: np.ndarray
+    A: np.ndarray
+    B: np.ndarray
+    qs: np.ndarray
+    circulatory: object
+    k_of: object
+
+    def __call__(self, omega: float):
+        m = self.Ma.shape[0]
+        DK = self.circulatory(theodorsen_c(self.k_of(omega)))
+        return self.Ma, self.Dnc + DK[:, :m], DK[:, m:]
+
+    def qep_parts(self, omega: float, lam: complex):
+        """``lam Da + Ka`` of the aero at ``omega`` and ``x -> Da x``, without forming ``Da``, ``Ka``.
+
+        ``lam Da_c + Ka_c = A^T diag(C qs) (lam Bd + Bk)``: one (m x ns)(ns x m) product against
+        the two (m x ns)(ns x 2m) of :meth:`__call__` (the Newton steps of the p-k search).
+        """
+        m = self.Ma.shape[0]
+        cq = theodorsen_c(self.k_of(omega)) * self.qs
+        Bd, Bk = self.B[:, :m], self.B[:, m:]
+        G = cq[:, None] * (lam * Bd + Bk)
+        if np.iscomplexobj(self.A):
+            LK = self.A.T @ G
+        else:
+            LK = self.A.T @ G.real + 1j * (self.A.T @ G.imag)
+        Dnc = self.Dnc
+
+        def apply_Da(x):
+            return Dnc @ x + self.A.T @ (cq * (Bd @ x))
+
+        return lam * Dnc + LK, apply_Da
 
 
 def aero_matrices(sections: AeroSections, op: OperatingPoint, omega: float,

@@ -229,6 +229,27 @@ class OperatingSystem:
 
             self._aero = f
 
+    def newton_pencil(self, lam: complex, omega: float):
+        """``T = lam^2 Mt + lam Dt + Kt`` at frequency ``omega`` and ``x -> T'(lam) x = (2 lam Mt + Dt) x``.
+
+        The same numbers as from :meth:`matrices`, cheaper on projected models (the aero's
+        circulatory part enters ``lam Da + Ka`` as one product; :class:`~windflutter.aero.strip.
+        ProjectedAero`); otherwise formed from :meth:`matrices`.
+        """
+        qp = getattr(self._aero, "qep_parts", None)
+        if qp is None or sp.issparse(self.Ks):
+            M, D, K = self.matrices(omega)
+            return (lam * lam) * M + lam * D + K, lambda x: (2.0 * lam) * (M @ x) + D @ x
+        if not hasattr(self, "_mt"):
+            m = self.model
+            self._mt = np.asarray(m.Mr - self._aero.Ma)
+            self._d0 = np.asarray(self.Ds.toarray() if sp.issparse(self.Ds) else self.Ds)
+            self._k0 = np.asarray(self.Ks)
+        LK, apply_Da = qp(omega, lam)
+        Mt, D0 = self._mt, self._d0
+        T = (lam * lam) * Mt + lam * D0 + self._k0 - LK
+        return T, lambda x: (2.0 * lam) * (Mt @ x) + D0 @ x - apply_Da(x)
+
     def matrices(self, omega: float):
         """``(Mt, Dt, Kt)`` with Theodorsen frozen at frequency ``omega`` (rad/s)."""
         Ma, Da, Ka = self._aero(omega)

@@ -106,7 +106,18 @@ def _solve_near_singular(T, b):
     return sla.lu_solve(lu, b, check_finite=False)
 
 
-def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-9, maxiter: int = 12):
+def _pencil(system, lam, w):
+    """``T(lam)`` at frequency ``w`` and ``x -> T'(lam) x`` (``OperatingSystem.newton_pencil`` if any)."""
+    f = getattr(system, "newton_pencil", None)
+    if f is not None:
+        return f(lam, w)
+    M, D, K = system.matrices(w)
+    if not (sp.issparse(M) and sp.issparse(D) and sp.issparse(K)):
+        M, D, K = _dense(M), _dense(D), _dense(K)
+    return (lam * lam) * M + lam * D + K, lambda x: (2.0 * lam) * (M @ x) + D @ x
+
+
+def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-8, maxiter: int = 12):
     """The p-k root near ``(lam0, x0)`` by nonlinear inverse iteration (Ruhe 1973).
 
     ``x <- T(lam)^-1 T'(lam) x``, ``lam <- lam - c^H x / c^H T(lam)^-1 T'(lam) x`` with
@@ -127,10 +138,8 @@ def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-9, maxite
     x = np.asarray(x0, dtype=complex)
     c = x.conj() / np.vdot(x, x).real  # normalisation c^H x = 1
     for it in range(maxiter):
-        M, D, K = system.matrices(max(lam.imag, 0.0))
-        if not (sp.issparse(M) and sp.issparse(D) and sp.issparse(K)):
-            M, D, K = _dense(M), _dense(D), _dense(K)
-        y = _solve_near_singular((lam * lam) * M + lam * D + K, (2.0 * lam) * (M @ x) + D @ x)
+        T, Tp = _pencil(system, lam, max(lam.imag, 0.0))
+        y = _solve_near_singular(T, Tp(x))
         cy = np.nan if y is None else c @ y
         if not (np.isfinite(cy) and cy != 0):
             return lam, x, False
