@@ -24,6 +24,7 @@ method giving model size and the operating curve; see ``docs/workflow.md``).
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
 import datetime as _dt
 import importlib
@@ -31,6 +32,8 @@ import inspect
 import math
 import platform
 import shutil
+import signal
+import threading
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -388,6 +391,28 @@ def assemble_dataset(points: dict[int, xr.Dataset], config: AnalysisConfig, info
 # --------------------------------------------------------------------------------------------
 # the run
 # --------------------------------------------------------------------------------------------
+@contextlib.contextmanager
+def _sigint_deferred():
+    """Hold a Ctrl-C (SIGINT) until the block has finished, then raise it.
+
+    Storing a point writes NetCDF files under library locks (xarray's / HDF5's): a
+    ``KeyboardInterrupt`` raised inside that region left a lock held, and the interrupt
+    handler's own final write then waited on it forever (seen as a rare hang of
+    ``tests/workflow/test_kill_resume.py``).  Main thread only; elsewhere a no-op.
+    """
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    caught = []
+    old = signal.signal(signal.SIGINT, lambda signum, frame: caught.append(signum))
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGINT, old)
+    if caught:
+        raise KeyboardInterrupt
+
+
 class RunInterrupted(KeyboardInterrupt):
     """Ctrl-C during a run; finished points are stored.  ``done`` / ``total`` / ``outdir``."""
 
@@ -562,8 +587,6 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
 def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progress: bool,
          analyser: Any, stream, workers: int | None, client: Any) -> xr.Dataset:
     """The body of :func:`run` (``client``: a connected Dask client or ``None``)."""
-    import contextlib  # noqa: PLC0415
-
     from windflutter import parallel  # noqa: PLC0415
 
     outdir.mkdir(parents=True, exist_ok=True)
@@ -615,10 +638,11 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
                     if not job.animate:
                         _write_animation(analyser, p, res, config, outdir)
                     ds = store.point_dataset(p, res, point_attrs)
-                    store.write_point(outdir, ds)
-                    done[p.index] = ds
-                    store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
-                                              outdir / store.RESULTS_FILE)
+                    with _sigint_deferred():  # the files are written whole, never interrupted
+                        store.write_point(outdir, ds)
+                        done[p.index] = ds
+                        store.atomic_write_netcdf(assemble_dataset(done, config, info, len(points)),
+                                                  outdir / store.RESULTS_FILE)
                     msg = None
                     if res.status != "ok":
                         msg = f"[yellow]point {p.label} failed: {res.reason}[/yellow]"

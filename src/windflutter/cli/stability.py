@@ -6,14 +6,16 @@ import argparse
 import json
 import math
 
+from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, REDUCTIONS, SEARCH_METHODS
+
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("stability", help="flutter/divergence onset (RPM) of a turbine per wind speed")
     p.add_argument("turbine", help="windIO turbine file or bundled name (e.g. nrel5mw)")
     p.add_argument("--wind-speeds", type=float, nargs="+", default=[10.0], metavar="V",
                    help="wind speeds (m/s), default 10")
-    p.add_argument("--aero", choices=("potential", "viscous"), default="potential")
-    p.add_argument("--method", choices=("thesis", "pk"), default="pk")
+    p.add_argument("--aero", choices=AERO_VARIANTS, default="potential")
+    p.add_argument("--method", choices=SEARCH_METHODS, default="pk")
     p.add_argument("--model", choices=("shell", "beam"), default="beam")
     p.add_argument("--physics", choices=("full", "thesis"), default="full",
                    help="full: with centrifugal prestress K_sigma; thesis: without (as the seed)")
@@ -23,14 +25,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--n-span", type=int, default=None, help="blade elements / strips along the span")
     p.add_argument("--part", choices=("turbine", "rotor"), default="turbine",
                    help="whole turbine, or the rotor alone with the hub clamped")
-    p.add_argument("--reduction", choices=("mta", "modal", "none"), default="mta",
+    p.add_argument("--reduction", choices=REDUCTIONS, default="mta",
                    help="modal basis with aero static-correction vectors (mta, default), structural "
                         "modes only (modal), or full order (none)")
     p.add_argument("--basis-modes", type=int, default=30, metavar="N",
                    help="structural modes per reference rotor speed in the basis (default 30)")
     p.add_argument("--n-tracked", type=int, default=None, metavar="N",
                    help="modes tracked by the p-k search (default: every mode up to 1.25 x first torsion)")
-    p.add_argument("--aero-distribution", choices=("spline", "skin"), default="spline",
+    p.add_argument("--aero-distribution", choices=AERO_DISTRIBUTIONS, default="spline",
                    help="shell models: rigid-section spline (default) or the seed's skin quads")
     p.add_argument("--steady-loads", action="store_true",
                    help="quasi-steady damping of the mean lift/drag/moment (edgewise aero damping; default: off, as the thesis)")

@@ -24,7 +24,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from windflutter.aero.strip import AeroOptions
-from windflutter.errors import InputError
+from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, DAMPING_MODELS, REDUCTIONS, SEARCH_METHODS
+from windflutter.errors import InputError, check_choice
 from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.stability.search import Onset, pk_search, thesis_search
@@ -106,13 +107,10 @@ class TurbineOptions:
     mesh: dict = field(default_factory=dict)
 
     def __post_init__(self):
-        for name, choices in (("model", ("beam", "shell")), ("aero", ("potential", "viscous")),
-                              ("method", ("pk", "thesis")), ("physics", ("full", "thesis")),
-                              ("damping", ("none", "stiffness", "rayleigh", "modal")),
-                              ("reduction", ("mta", "modal", "none")),
-                              ("aero_distribution", ("spline", "skin"))):
-            if getattr(self, name) not in choices:
-                raise InputError(name, getattr(self, name), f"one of {choices}")
+        for name, choices in (("model", ("beam", "shell")), ("aero", AERO_VARIANTS), ("method", SEARCH_METHODS),
+                              ("physics", ("full", "thesis")), ("damping", DAMPING_MODELS),
+                              ("reduction", REDUCTIONS), ("aero_distribution", AERO_DISTRIBUTIONS)):
+            check_choice(name, getattr(self, name), choices)
         if self.n_modes is None:  # full order
             object.__setattr__(self, "reduction", "none")
             object.__setattr__(self, "n_modes", 30)
