@@ -454,17 +454,15 @@ class StripAero:
         Ma_p, Dnc_p = nc(pt.Ma), nc(pt.Da_nc)
         A = np.einsum("ja,jam->jm", pt.row, R)
         B = np.concatenate([np.einsum("ja,jam->jm", pt.col_d, R), np.einsum("ja,jam->jm", pt.col_k, R)], axis=1)
-        qs = pt.circ * self.width
-        if np.iscomplexobj(A) or np.iscomplexobj(B):
-            def circulatory(C):
-                return (A * (C * qs)[:, None]).T @ B
-        else:
-            def circulatory(C):
-                Aq = A * (C * qs)[:, None]
-                return Aq.real.T @ B + 1j * (Aq.imag.T @ B)
-
-        return ProjectedAero(Ma=Ma_p.astype(complex), Dnc=Dnc_p, A=A, B=B, qs=qs, circulatory=circulatory,
+        return ProjectedAero(Ma=Ma_p.astype(complex), Dnc=Dnc_p, A=A, B=B, qs=pt.circ * self.width,
                              k_of=self.reduced_frequency)
+
+
+def _at_times(A: np.ndarray, G: np.ndarray) -> np.ndarray:
+    """``A^T G`` for a complex ``G``: two real products when ``A`` is real (half the work)."""
+    if np.iscomplexobj(A):
+        return A.T @ G
+    return A.T @ G.real + 1j * (A.T @ G.imag)
 
 
 @dataclass
@@ -480,12 +478,12 @@ class ProjectedAero:
     A: np.ndarray
     B: np.ndarray
     qs: np.ndarray
-    circulatory: object
     k_of: object
 
     def __call__(self, omega: float):
         m = self.Ma.shape[0]
-        DK = self.circulatory(theodorsen_c(self.k_of(omega)))
+        cq = theodorsen_c(self.k_of(omega)) * self.qs
+        DK = _at_times(self.A, cq[:, None] * self.B)
         return self.Ma, self.Dnc + DK[:, :m], DK[:, m:]
 
     def qep_parts(self, omega: float, lam: complex):
@@ -497,11 +495,7 @@ class ProjectedAero:
         m = self.Ma.shape[0]
         cq = theodorsen_c(self.k_of(omega)) * self.qs
         Bd, Bk = self.B[:, :m], self.B[:, m:]
-        G = cq[:, None] * (lam * Bd + Bk)
-        if np.iscomplexobj(self.A):
-            LK = self.A.T @ G
-        else:
-            LK = self.A.T @ G.real + 1j * (self.A.T @ G.imag)
+        LK = _at_times(self.A, cq[:, None] * (lam * Bd + Bk))
         Dnc = self.Dnc
 
         def apply_Da(x):

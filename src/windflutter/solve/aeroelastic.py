@@ -21,6 +21,7 @@ from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero
 from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import RotorTerms
+from windflutter.solve.qep import qep_pencil
 
 
 @dataclass
@@ -238,8 +239,7 @@ class OperatingSystem:
         """
         qp = getattr(self._aero, "qep_parts", None)
         if qp is None or sp.issparse(self.Ks):
-            M, D, K = self.matrices(omega)
-            return (lam * lam) * M + lam * D + K, lambda x: (2.0 * lam) * (M @ x) + D @ x
+            return qep_pencil(*self.matrices(omega), lam)
         if not hasattr(self, "_mt"):
             m = self.model
             self._mt = np.asarray(m.Mr - self._aero.Ma)

@@ -129,6 +129,16 @@ def _dense_mdk(M, D, K):
     return M, D, K
 
 
+def qep_pencil(M, D, K, lam: complex):
+    """``T(lam) = lam^2 M + lam D + K`` and ``x -> T'(lam) x = (2 lam M + D) x``.
+
+    Sparse when all three are sparse (full-order models), otherwise dense.
+    """
+    if not (sp.issparse(M) and sp.issparse(D) and sp.issparse(K)):
+        M, D, K = _dense_mdk(M, D, K)
+    return (lam * lam) * M + lam * D + K, lambda x: (2.0 * lam) * (M @ x) + D @ x
+
+
 def qep_residual(M, D, K, lam: complex, x: np.ndarray) -> float:
     """Relative residual ``|Q(lam) x| / ((|lam|^2 |M| + |lam| |D| + |K|) |x|)`` (Frobenius norms)."""
 
