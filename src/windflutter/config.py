@@ -450,7 +450,7 @@ def config_from_dict(data: dict | None, source: str | None = None,
     if "correction_tol" in d:
         s["correction_tol"] = _number("solver.correction_tol", d["correction_tol"], src, positive=True, unit="-")
         if not s["correction_tol"] < 1.0:
-            raise InputError("solver.correction_tol", d["correction_tol"], "a relative cut-off in (0, 1), e.g. 1e-4", src)
+            raise InputError("solver.correction_tol", d["correction_tol"], "a relative cut-off in (0, 1), e.g. 1e-8", src)
     if "n_eig" in d:
         s["n_eig"] = _integer("solver.n_eig", d["n_eig"], src, 2)
     if "n_tracked" in d:

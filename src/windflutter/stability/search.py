@@ -27,7 +27,7 @@ from scipy.optimize import brentq
 
 from windflutter.errors import ConvergenceError, InputError, ModelError
 from windflutter.solve.linsolve import factorize
-from windflutter.solve.qep import solve_qep
+from windflutter.solve.qep import qep_pencil, solve_qep
 from windflutter.stability.tracking import mac_matrix, mac
 
 #: the seed's reduced frequencies (ch. 3.3.2, step 3)
@@ -111,10 +111,7 @@ def _pencil(system, lam, w):
     f = getattr(system, "newton_pencil", None)
     if f is not None:
         return f(lam, w)
-    M, D, K = system.matrices(w)
-    if not (sp.issparse(M) and sp.issparse(D) and sp.issparse(K)):
-        M, D, K = _dense(M), _dense(D), _dense(K)
-    return (lam * lam) * M + lam * D + K, lambda x: (2.0 * lam) * (M @ x) + D @ x
+    return qep_pencil(*system.matrices(w), lam)
 
 
 def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-8, maxiter: int = 12):
@@ -203,18 +200,20 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
         i = int(np.argmax(score))
         return vals[i], vecs[:, i]
 
+    def upper(lam):  # a root of the upper half plane (the conjugates are not modes)
+        return lam.imag >= -1e-9 * max(1.0, abs(lam))
+
     w = max(float(omega0), 0.0)
     if lam0 is not None and x0 is not None and not exclude and system.Ks.shape[0] <= NEWTON_LIMIT:
         lam, x, ok = newton_mode(system, lam0, x0)
-        if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and (
-                mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
+        if ok and upper(lam) and (mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
             return lam, x
         # the Newton root is not the tracked one: choose the root of best shape at w by one
         # frozen-frequency solve, and refine that one by Newton (it starts on an eigenpair)
         got = pick(w, x0, ())
         if got is not None:
             lam, x, ok = newton_mode(system, got[0], got[1])
-            if ok and lam.imag >= -1e-9 * max(1.0, abs(lam)) and mac(x, got[1]) >= 0.9:
+            if ok and upper(lam) and mac(x, got[1]) >= 0.9:
                 return lam, x
     lam, x = None, x0
     change = np.inf
@@ -307,15 +306,9 @@ def _track(system, seeds, n_eig):
     to its own seed is solved again with that root excluded; a mode that finds no free root is
     returned lost (NaN) for this parameter only -- its seed is kept, so it is picked up again.
     """
-    lams = np.array([l if x is not None else np.nan for l, x in seeds], complex)
-
-    def clustered(i):
-        d = np.abs(lams - lams[i])
-        d[i] = np.inf
-        return bool(np.any(d <= CLUSTER_REL * np.abs(lams[i])))
-
+    clustered = {i for g in _clusters(seeds, seeds) if len(g) > 1 for i in g}
     out = [_LOST if (x is None or not np.isfinite(lam)) else
-           pk_mode(system, max(lam.imag, 0.0), x, n_eig=n_eig, lam0=lam, near=CLUSTER_REL if clustered(i) else None)
+           pk_mode(system, max(lam.imag, 0.0), x, n_eig=n_eig, lam0=lam, near=CLUSTER_REL if i in clustered else None)
            for i, (lam, x) in enumerate(seeds)]
     n = len(out)
     for _ in range(n):
@@ -471,6 +464,12 @@ def _cluster_onset(system_at, pa, pb, ca, cb, g, n_eig, xtol):
     return q0, lam, xq, g[k]
 
 
+def structural_eig(system):
+    """Eigenpairs ``(w^2, V)`` of the structural pencil ``(Ks(Omega), M)`` of ``system``, dense."""
+    K, M = _dense(system.Ks), _dense(system.model.Mr)
+    return sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T))
+
+
 def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_eig: int = 20,
               xtol: float = 1e-3, min_frequency: float = 1e-3, divergence: bool = True,
               stop_at_onset: bool = True, max_refine: int = 3, zeta_tol: float = NEUTRAL_ZETA) -> Onset:
@@ -496,9 +495,7 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
     if params.ndim != 1 or params.size < 2 or np.any(np.diff(params) <= 0):
         raise InputError("params", params.tolist()[:5], "an increasing grid of at least 2 values")
     sys0 = system_at(params[0])
-    Ks = sys0.Ks.toarray() if hasattr(sys0.Ks, "toarray") else sys0.Ks
-    Md = sys0.model.Mr.toarray() if hasattr(sys0.model.Mr, "toarray") else sys0.model.Mr
-    w2, V = sla.eigh(0.5 * (Ks + Ks.T), 0.5 * (Md + Md.T))
+    w2, V = structural_eig(sys0)
     n_track = min(n_track, len(w2))
     modes = [(1j * float(np.sqrt(max(w2[i], 0.0))), V[:, i].astype(complex)) for i in range(n_track)]
     lams = np.zeros((params.size, n_track), complex)

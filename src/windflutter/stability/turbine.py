@@ -28,7 +28,7 @@ from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, DAMPING_MODELS
 from windflutter.errors import InputError, check_choice
 from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
-from windflutter.stability.search import Onset, pk_search, thesis_search
+from windflutter.stability.search import Onset, pk_search, structural_eig, thesis_search
 from windflutter.stability.tracking import label_mode
 
 RPM = math.pi / 30.0  # rad/s per RPM
@@ -130,7 +130,7 @@ class TurbineOptions:
                                                and self.n_tracked >= 1):
             raise InputError("n_tracked", self.n_tracked, "a positive number of modes, or None (auto)")
         if not (0.0 < self.mta_tol < 1.0):
-            raise InputError("mta_tol", self.mta_tol, "a relative cut-off in (0, 1), e.g. 1e-4")
+            raise InputError("mta_tol", self.mta_tol, "a relative cut-off in (0, 1), e.g. 1e-8")
         if not (isinstance(self.n_eig, (int, np.integer)) and self.n_eig >= 2):
             raise InputError("n_eig", self.n_eig, "at least 2 eigenvalues per solve")
         if self.damping == "modal" and self.reduction == "none":
@@ -319,11 +319,7 @@ def auto_tracked(system, sections, tower_dofs, factor: float = 1.25) -> int:
     (:func:`~windflutter.stability.tracking.label_mode`); without a torsion-dominated mode all
     modes of the basis are tracked.
     """
-    import scipy.linalg as sla
-
-    K = system.Ks.toarray() if hasattr(system.Ks, "toarray") else np.asarray(system.Ks)
-    M = system.model.Mr.toarray() if hasattr(system.model.Mr, "toarray") else np.asarray(system.model.Mr)
-    w2, V = sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T))
+    w2, V = structural_eig(system)
     f = np.sqrt(np.maximum(w2, 0.0))
     for i in range(len(f)):
         if label_mode(system.expand(V[:, i]), sections, system.strip.P, tower_dofs).startswith("torsion"):
