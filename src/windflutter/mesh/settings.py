@@ -6,7 +6,7 @@ from dataclasses import dataclass
 
 from windflutter.errors import InputError, check_choice
 
-PARTS = ("turbine", "blade", "tower", "rotor")
+PARTS = ("turbine", "blade", "tower", "rotor", "rotor_blade", "support")
 MODELS = ("shell", "beam")
 
 
