@@ -233,7 +233,7 @@ def assemble_matrices(fe: FEModel, shell_mass: str = "consistent") -> tuple[sp.c
     return build(*Mt), build(*Kt)
 
 
-def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent") -> Structural:
+def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent", allow_rigid: bool = False) -> Structural:
     """Assemble a :class:`FEModel` into a :class:`Structural`.
 
     Parameters
@@ -242,6 +242,8 @@ def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent") ->
     check : if True (default) raise :class:`ModelError` when the constrained model still has
         rigid-body motion (a mechanism or a missing support), see :func:`check_constrained`.
     shell_mass : "consistent" (default) or "lumped" shell mass matrix.
+    allow_rigid : accept a model with no free DOF left (a rigid substructure, e.g. a rigid blade
+        tied to a clamped hub); the default refuses it.
 
     Returns
     -------
@@ -261,9 +263,9 @@ def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent") ->
     st = Structural(fe=fe, M=M, K=K, T=T, free_dofs=free, auto_spc=auto)
     if not auto.size:  # reuse the reduced matrices (cached_property storage)
         st.__dict__["Kr"], st.__dict__["Mr"] = Kr, Mr
-    if st.nq == 0:
+    if st.nq == 0 and not allow_rigid:
         raise ModelError("the model has no free degrees of freedom after constraints")
-    if check:
+    if check and st.nq:
         check_constrained(st)
     return st
 

@@ -1,0 +1,103 @@
+"""Strip aerodynamics of one blade in its substructure coordinates ``y = (h, eta)``.
+
+The aerodynamic operator gives, per strip ``j`` (forces times strip width, section motion
+``q_j = (h, alpha, s)``)::
+
+    f_j = Ma_j q_j'' + Da_j v_j + Ka_j q_j + Cz_j z_j,   z_j' = Az_j z_j + Bq_j q_j + Bv_j v_j
+
+where ``v_j`` is the section velocity relative to the air's steady frame.  In the rotating frame a
+displacement ``w`` of a blade spinning at ``Omega`` about ``n`` adds the transport velocity
+``Omega n x w`` to its translations, so with ``q = R y`` and ``Rt = P S_t B``
+(:func:`windflutter.system.blade.axis_skew_translations`) ``v = R y' + Omega Rt y``.  Projected by
+virtual work (``R^T``), the blade's equations get ``-R^T Ma R`` (mass), ``-R^T Da R`` (damping),
+``-R^T (Ka R + Omega Da Rt)`` (stiffness) and the state coupling.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from windflutter.system.multiblade import BladeSystem
+
+
+@dataclass
+class StripBlocks:
+    """Per-strip aerodynamic blocks (real, SI; forces already times the strip width).
+
+    Ma, Da, Ka : (ns, 3, 3).  Cz : (ns, 3, nz); Az : (ns, nz, nz); Bq, Bv : (ns, nz, 3); ``nz = 0``
+    for operators without aerodynamic states.
+    """
+
+    Ma: np.ndarray
+    Da: np.ndarray
+    Ka: np.ndarray
+    Cz: np.ndarray | None = None
+    Az: np.ndarray | None = None
+    Bq: np.ndarray | None = None
+    Bv: np.ndarray | None = None
+
+    @property
+    def n_sections(self) -> int:
+        return int(self.Ma.shape[0])
+
+    @property
+    def n_states(self) -> int:
+        """Aerodynamic states per strip."""
+        return 0 if self.Az is None else int(self.Az.shape[1])
+
+
+def _dense(A) -> np.ndarray:
+    return A.toarray() if sp.issparse(A) else np.asarray(A)
+
+
+def project_blade_aero(blocks: StripBlocks, R, Rt, omega: float):
+    """``(Ma, Da, Ka, F, Az, Bq, Bv)`` of the strips in the coordinates ``y`` with ``q = R y``.
+
+    ``R``, ``Rt`` (3 ns, ny): section motion and transport map (see module docstring).  Returns
+    dense arrays: Ma, Da, Ka (ny, ny) to be SUBTRACTED from the structure's M, C, K; F (ny, ns nz);
+    Az (ns nz, ns nz) block diagonal; Bq, Bv (ns nz, ny).
+    """
+    ns = blocks.n_sections
+    Ry = _dense(R).reshape(ns, 3, -1)
+    Rty = _dense(Rt).reshape(ns, 3, -1)
+
+    def sym(blk, left, right):
+        return np.einsum("jai,jab,jbk->ik", left, blk, right, optimize=True)
+
+    Ma = sym(blocks.Ma, Ry, Ry)
+    Da = sym(blocks.Da, Ry, Ry)
+    Ka = sym(blocks.Ka, Ry, Ry) + omega * sym(blocks.Da, Ry, Rty)
+    nz = blocks.n_states
+    ny = Ry.shape[2]
+    if nz == 0:
+        return Ma, Da, Ka, np.zeros((ny, 0)), np.zeros((0, 0)), np.zeros((0, ny)), np.zeros((0, ny))
+    F = np.einsum("jai,jaz->ijz", Ry, blocks.Cz).reshape(ny, ns * nz)
+    Az = np.zeros((ns * nz, ns * nz))
+    for j in range(ns):  # block diagonal (ns small blocks)
+        Az[j * nz:(j + 1) * nz, j * nz:(j + 1) * nz] = blocks.Az[j]
+    Bv = np.einsum("jza,jak->jzk", blocks.Bv, Ry).reshape(ns * nz, ny)
+    Bq = (np.einsum("jza,jak->jzk", blocks.Bq, Ry) + omega * np.einsum("jza,jak->jzk", blocks.Bv, Rty)
+          ).reshape(ns * nz, ny)
+    return Ma, Da, Ka, F, Az, Bq, Bv
+
+
+def blade_system(M, C, K, aero=None) -> BladeSystem:
+    """The blade's :class:`BladeSystem` from its structural ``(M, C, K)`` and projected aero."""
+    if aero is None:
+        return BladeSystem(M=M, C=C, K=K)
+    Ma, Da, Ka, F, Az, Bq, Bv = aero
+    if F.shape[1] == 0:
+        return BladeSystem(M=M - Ma, C=C - Da, K=K - Ka)
+    return BladeSystem(M=M - Ma, C=C - Da, K=K - Ka, F=F, Az=Az, Bq=Bq, Bv=Bv)
+
+
+def quasi_steady_blocks(strip) -> StripBlocks:
+    """Provisional operator: today's Theodorsen strips (:class:`~windflutter.aero.strip.StripAero`)
+    with ``C = 1`` (quasi-steady, no states), mean-load terms as the strip was configured."""
+    pt = strip.parts()
+    Ma, Da, Ka = pt.matrices(np.ones(strip.sections.n_sections))
+    w = strip.width[:, None, None]
+    return StripBlocks(Ma=np.real(Ma) * w, Da=np.real(Da) * w, Ka=np.real(Ka) * w)
