@@ -14,7 +14,12 @@ import numpy as np
 from scipy import optimize
 
 from windflutter.aero.theodorsen import theodorsen
-from windflutter.stability.section.matrices import aero_matrices, c_scalar, structural_matrices
+from windflutter.stability.section.matrices import (
+    CirculationFunction,
+    aero_matrices,
+    c_scalar,
+    structural_matrices,
+)
 from windflutter.stability.section.model import TypicalSection
 from windflutter.stability.section.results import (
     SectionResult,
@@ -80,12 +85,8 @@ def _k_flutter(eig: Callable[..., tuple[np.ndarray, np.ndarray]], k_values: np.n
     return best
 
 
-def k_method(
-    sec: TypicalSection,
-    k_values: np.ndarray | None = None,
-    *,
-    c_func: Callable[[np.ndarray], np.ndarray] = theodorsen,
-) -> SectionResult:
+def k_method(sec: TypicalSection, k_values: np.ndarray | None = None, *,
+             c_func: CirculationFunction = theodorsen) -> SectionResult:
     """k (V-g) method on ``k_values`` (descending; default 400 from 5 to 1e-3, geometric).
 
     Flutter: a branch's ``g = Im Z / Re Z`` crosses 0 from below as k decreases (U increases);

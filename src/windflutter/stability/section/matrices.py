@@ -14,6 +14,10 @@ from scipy import linalg
 from windflutter.aero.theodorsen import theodorsen
 from windflutter.stability.section.model import TWO_PI, TypicalSection
 
+#: a circulation function: reduced frequencies (array) -> C(k) (complex array), vectorised,
+#: e.g. :func:`~windflutter.aero.theodorsen.theodorsen` or ``jones``
+CirculationFunction = Callable[[np.ndarray], np.ndarray]
+
 
 def structural_matrices(sec: TypicalSection) -> tuple[np.ndarray, np.ndarray]:
     """Structural mass (kg/m, kg m/m, kg m^2/m) and stiffness (N/m^2, N) matrices of ``q``."""
@@ -52,7 +56,7 @@ def aero_parts(sec: TypicalSection, U: float):
     return A2, A1, qc, w, r1, r0
 
 
-def c_scalar(c_func: Callable, k: float) -> complex:
+def c_scalar(c_func: CirculationFunction, k: float) -> complex:
     """The circulation function ``c_func`` (default :func:`~windflutter.aero.theodorsen.theodorsen`)
     at one reduced frequency ``k``, as a Python complex."""
     return complex(np.asarray(c_func(k)))

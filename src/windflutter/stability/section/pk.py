@@ -14,7 +14,12 @@ from scipy import optimize
 
 from windflutter.aero.theodorsen import theodorsen
 from windflutter.errors import ConvergenceError
-from windflutter.stability.section.matrices import c_scalar, companion_parts, natural_frequencies
+from windflutter.stability.section.matrices import (
+    CirculationFunction,
+    c_scalar,
+    companion_parts,
+    natural_frequencies,
+)
 from windflutter.stability.section.model import TypicalSection
 from windflutter.stability.section.results import (
     SectionResult,
@@ -34,7 +39,7 @@ def pk_eigen(
     lam_guess: complex,
     *,
     frozen_omega: float | None = None,
-    c_func: Callable[[np.ndarray], np.ndarray] = theodorsen,
+    c_func: CirculationFunction = theodorsen,
     tol: float = 1e-10,
     max_iter: int = 200,
     mode_index: int | None = None,
@@ -231,12 +236,8 @@ class _OnsetSearch:
         return None
 
 
-def pk_method(
-    sec: TypicalSection,
-    speeds: np.ndarray | None = None,
-    *,
-    c_func: Callable[[np.ndarray], np.ndarray] = theodorsen,
-) -> SectionResult:
+def pk_method(sec: TypicalSection, speeds: np.ndarray | None = None, *,
+              c_func: CirculationFunction = theodorsen) -> SectionResult:
     """p-k flutter analysis of a typical section on ``speeds`` (m/s; default
     :func:`~windflutter.stability.section.results.default_speeds`)."""
     speeds = default_speeds(sec) if speeds is None else check_speeds(speeds)

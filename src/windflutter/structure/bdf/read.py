@@ -20,16 +20,7 @@ from windflutter.errors import InputError
 from windflutter.structure.bdf.beam import CARD_RTOL, BeamCardValues, beam_values, close
 from windflutter.structure.bdf.cards import CARDS, BdfApproximationWarning
 from windflutter.structure.bdf.write import META_TAG
-from windflutter.structure.fem import (
-    BeamSection,
-    IsotropicMaterial,
-    LumpedMass,
-    OrthotropicMaterial,
-    Ply,
-    RigidLink,
-    ShellProperty,
-    Spring,
-)
+from windflutter.structure import fem
 
 NASTRAN_EXTRA_HINT = "pip install 'windflutter[nastran]'"
 SUPPORTED_ELEMENTS = ("CQUAD4", "CBEAM", "CBAR", "CELAS1", "CELAS2")
@@ -113,7 +104,7 @@ class Grids:
         return self.index[nid]
 
 
-def materials(model: Any, meta: dict) -> dict[int, IsotropicMaterial | OrthotropicMaterial]:
+def materials(model: Any, meta: dict) -> dict[int, fem.IsotropicMaterial | fem.OrthotropicMaterial]:
     """MAT1 / MAT8 by MID (names from the ``$WF`` data)."""
     names = meta.get("materials", {})
     out = {}
@@ -123,15 +114,15 @@ def materials(model: Any, meta: dict) -> dict[int, IsotropicMaterial | Orthotrop
         r = CARDS[card.type].read(card)
         name = names.get(str(r["MID"]), "")
         if card.type == "MAT1":
-            out[mid] = IsotropicMaterial(E=r["E"], nu=r["NU"], rho=r["RHO"], name=name)
+            out[mid] = fem.IsotropicMaterial(E=r["E"], nu=r["NU"], rho=r["RHO"], name=name)
         else:
-            out[mid] = OrthotropicMaterial(E1=r["E1"], E2=r["E2"], nu12=r["NU12"], G12=r["G12"],
+            out[mid] = fem.OrthotropicMaterial(E1=r["E1"], E2=r["E2"], nu12=r["NU12"], G12=r["G12"],
                                            G13=r["G1Z"] or r["G12"], G23=r["G2Z"] or r["G12"], rho=r["RHO"],
                                            name=name)
     return out
 
 
-def _laminate(p: Any, mats: dict, source: str) -> tuple[tuple[Ply, ...], float]:
+def _laminate(p: Any, mats: dict, source: str) -> tuple[tuple[fem.Ply, ...], float]:
     """Plies of a PSHELL / PCOMP and the laminate mid-plane's offset from the reference plane."""
     r = CARDS[p.type].read(p)
     pid = r["PID"]
@@ -144,13 +135,13 @@ def _laminate(p: Any, mats: dict, source: str) -> tuple[tuple[Ply, ...], float]:
         if r["MID2"] not in (None, r["MID1"]) or r["12I/T**3"] != 1.0:
             raise InputError(f"PSHELL {pid}", (r["MID1"], r["MID2"], r["12I/T**3"]),
                              "a homogeneous shell (MID2 = MID1, 12I/T^3 = 1)", source=source)
-        plies = (Ply(mats[r["MID1"]], r["T"], 0.0),)
+        plies = (fem.Ply(mats[r["MID1"]], r["T"], 0.0),)
         z0 = -0.5 * r["T"]
     else:
         mids, ts, ths = list(r["MID"]), [float(t) for t in r["T"]], [float(t) for t in r["THETA"]]
         if str(r["LAM"]).upper().startswith("SYM") and len(mids) == p.nplies:
             mids, ts, ths = mids + mids[::-1], ts + ts[::-1], ths + ths[::-1]
-        plies = tuple(Ply(mats[m], t, math.radians(th)) for m, t, th in zip(mids, ts, ths))
+        plies = tuple(fem.Ply(mats[m], t, math.radians(th)) for m, t, th in zip(mids, ts, ths))
         z0 = r["Z0"] if r["Z0"] is not None else -0.5 * sum(ts)
     return plies, z0 + 0.5 * sum(pl.thickness for pl in plies)
 
@@ -165,7 +156,7 @@ def shells(model: Any, meta: dict, grids: Grids, mats: dict):
     shell_pids = sorted(pid for pid, p in model.properties.items() if p.type in ("PSHELL", "PCOMP"))
     prop_names = meta.get("shell_properties", [])
     laminates = {pid: _laminate(model.properties[pid], mats, grids.source) for pid in shell_pids}
-    shell_properties: list[ShellProperty] = []
+    shell_properties: list[fem.ShellProperty] = []
     prop_index: dict[tuple[int, float], int] = {}
     for k, pid in enumerate(shell_pids):
         used = sorted({q["ZOFFS"] for q in quad_fields if q["PID"] == pid}) or [0.0]
@@ -174,7 +165,7 @@ def shells(model: Any, meta: dict, grids: Grids, mats: dict):
             name = (prop_names[k] if (k < len(prop_names) and len(used) == 1)
                     else f"PID{pid}" + (f"_z{zo:g}" if len(used) > 1 else ""))
             prop_index[(pid, zo)] = len(shell_properties)
-            shell_properties.append(ShellProperty(plies=plies, name=name, offset=zo + extra))
+            shell_properties.append(fem.ShellProperty(plies=plies, name=name, offset=zo + extra))
     conn = np.array([[grids(q[g], f"CQUAD4 {q['EID']}") for g in ("G1", "G2", "G3", "G4")] for q in quad_fields],
                     dtype=np.int64).reshape(-1, 4)
     prop = np.array([prop_index[(q["PID"], q["ZOFFS"])] for q in quad_fields], dtype=np.int64)
@@ -222,7 +213,7 @@ def _card_values(p: Any, mat: Any, source: str) -> BeamCardValues:
                        r["K1"], r["K2"], r["NSI(A)"], _station_a(r["M1(A)"]), _station_a(r["M2(A)"]))
 
 
-def beam_sections(model: Any, meta: dict, source: str) -> tuple[list[int], list[BeamSection]]:
+def beam_sections(model: Any, meta: dict, source: str) -> tuple[list[int], list[fem.BeamSection]]:
     """PIDs (ascending) and sections of PBEAM / PBAR; the exact ``$WF`` section where the card
     still holds the values written with it."""
     pids = sorted(pid for pid, p in model.properties.items() if p.type in ("PBEAM", "PBAR"))
@@ -233,7 +224,7 @@ def beam_sections(model: Any, meta: dict, source: str) -> tuple[list[int], list[
         cv = _card_values(p, model.materials[p.mid], source)
         ex = exact.get(pid)
         if ex is not None and close(ex["card"], cv.as_list()):
-            out.append(BeamSection(stiffness=np.array(ex["K"], float), mass=np.array(ex["M"], float),
+            out.append(fem.BeamSection(stiffness=np.array(ex["K"], float), mass=np.array(ex["M"], float),
                                    name=ex.get("name", "")))
         else:
             if ex is not None:
@@ -273,7 +264,7 @@ def beams(model: Any, grids: Grids, beam_pids: list[int]):
             np.array(orient, float).reshape(-1, 3))
 
 
-def masses(model: Any, meta: dict, grids: Grids) -> list[LumpedMass]:
+def masses(model: Any, meta: dict, grids: Grids) -> list[fem.LumpedMass]:
     """CONM2 (CID 0: offset in basic axes; CID -1: absolute CG position)."""
     names = meta.get("masses", [])
     out = []
@@ -285,18 +276,18 @@ def masses(model: Any, meta: dict, grids: Grids) -> list[LumpedMass]:
             X = X - grids.xyz[n]
         elif r["CID"] != 0:
             raise InputError(f"CONM2 {r['EID']}.CID", r["CID"], "0 or -1 (basic system)", source=grids.source)
-        out.append(LumpedMass(node=n, mass=r["M"], inertia=np.array(m.Inertia(), float), offset=X,
+        out.append(fem.LumpedMass(node=n, mass=r["M"], inertia=np.array(m.Inertia(), float), offset=X,
                               name=names[k] if k < len(names) else ""))
     return out
 
 
-def rigid_links(model: Any, meta: dict, grids: Grids) -> list[RigidLink]:
+def rigid_links(model: Any, meta: dict, grids: Grids) -> list[fem.RigidLink]:
     names = meta.get("rigid_links", [])
     out = []
     for k, e in enumerate(sorted(model.rigid_elements.values(), key=lambda r: r.eid)):
         r = CARDS["RBE2"].read(e)
         where = f"RBE2 {r['EID']}"
-        out.append(RigidLink(independent=grids(r["GN"], where),
+        out.append(fem.RigidLink(independent=grids(r["GN"], where),
                              dependent=np.array([grids(g, where) for g in r["GM"]], np.int64),
                              dofs=tuple(sorted(int(c) - 1 for c in r["CM"])),
                              name=names[k] if k < len(names) else ""))
@@ -325,7 +316,7 @@ def spcs(model: Any, grids: Grids) -> dict[int, tuple[int, ...]]:
     return {n: tuple(sorted(c)) for n, c in sorted(spc.items())}
 
 
-def springs(model: Any, meta: dict, grids: Grids) -> list[Spring]:
+def springs(model: Any, meta: dict, grids: Grids) -> list[fem.Spring]:
     """CELAS1 / CELAS2 between like components (or to ground), grouped by node pair."""
     pairs: dict[tuple[int, int | None], np.ndarray] = {}
     pair_eids: dict[tuple[int, int | None], list[int]] = {}
@@ -348,5 +339,5 @@ def springs(model: Any, meta: dict, grids: Grids) -> list[Spring]:
         name = ""
         if s_meta is not None and np.allclose(np.diag(s_meta["K"]), np.diag(Kd), rtol=CARD_RTOL, atol=0):
             Kd, name = np.array(s_meta["K"], float), s_meta.get("name", "")
-        out.append(Spring(node_a=key[0], node_b=key[1], stiffness=Kd, name=name))
+        out.append(fem.Spring(node_a=key[0], node_b=key[1], stiffness=Kd, name=name))
     return out
