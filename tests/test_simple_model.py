@@ -1,6 +1,7 @@
 """The seed's rotor simple model (thesis ch. 4.1.8)."""
 
 import math
+from importlib import resources
 
 import numpy as np
 import pytest
@@ -103,3 +104,21 @@ def test_zero_plunge_angle_limit(models):
     sec, U = section_at(rs, 10.0, 20 * RPM, with_angle=False)
     w = natural_frequencies(sec)
     assert sec.plunge_angle == 0.0 and w[0] == pytest.approx(math.sqrt(8.5e3 / 709.8))
+
+
+def test_bad_simple_model_file_is_named(tmp_path):
+    from windflutter.errors import InputError
+
+    good = (resources.files("windflutter") / "data" / "seed_simple_model" / "simple_model.yaml").read_text()
+    path = tmp_path / "m.yaml"
+    path.write_text(good.replace("    chord: 2.7 ", "    chrd: 2.7 "))
+    with pytest.raises(InputError, match=r"turbines\.nrel5mw\.chord"):
+        load_simple_models(str(path))
+    path.write_text(good.replace("mass: 138.9", "mass: heavy"))
+    with pytest.raises(InputError, match=r"turbines\.nrel5mw\.mass"):
+        load_simple_models(str(path))
+    path.write_text("turbines: [1, 2\n")
+    with pytest.raises(InputError, match="YAML"):
+        load_simple_models(str(path))
+    with pytest.raises(InputError, match="path"):
+        load_simple_models(str(tmp_path / "missing.yaml"))

@@ -21,6 +21,7 @@ from _models import consistent_section, mixed_model  # noqa: E402
 
 from windflutter.errors import InputError  # noqa: E402
 from windflutter.structure.fem import BeamSection, FEModel, LumpedMass  # noqa: E402
+from windflutter.structure.bdf.cards import CARDS  # noqa: E402
 from windflutter.structure.io_bdf import BdfApproximationWarning, _real16, read_bdf, write_bdf  # noqa: E402
 
 # CI runs the nastran-marked tests in .venv-nastran (numpy < 2) via `make test-nastran`
@@ -352,27 +353,23 @@ def _matrices_equal(fe, fe2):
         assert (np.abs(D.data).max() if D.nnz else 0.0) <= 1e-10 * scale
 
 
-@pytest.mark.nastran
-@pytest.mark.skipif(not HAVE_PYNASTRAN, reason="pyNastran not installed: run `make test-nastran`")
-def test_round_trip_same_matrices_beams_masses_links(tmp_path):
-    """Beam + CONM2 + RBE2 + spring model (no shells): same M, K and T after the round trip,
-    both through the exact $WF data and through the standard cards alone."""
+def _beams_masses_links_model():
     full = mixed_model()
     keep = np.unique(np.concatenate([full.beam_conn.ravel(), [full.rigid_links[0].independent]]))
-    fe = FEModel(nodes=full.nodes, beam_conn=full.beam_conn, beam_section=full.beam_section,
-                 beam_orient=full.beam_orient, beam_sections=[consistent_section("a"), full.beam_sections[1]],
-                 masses=full.masses[:1], rigid_links=full.rigid_links[1:], springs=[], spc={int(keep[0]): (0, 1, 2, 3, 4, 5)})
-    path = _write(fe, tmp_path / "b.bdf")
-    _matrices_equal(fe, read_bdf(path))
-    _matrices_equal(fe, read_bdf(_strip_meta(path)))
+    return FEModel(nodes=full.nodes, beam_conn=full.beam_conn, beam_section=full.beam_section,
+                   beam_orient=full.beam_orient, beam_sections=[consistent_section("a"), full.beam_sections[1]],
+                   masses=full.masses[:1], rigid_links=full.rigid_links[1:], springs=[],
+                   spc={int(keep[0]): (0, 1, 2, 3, 4, 5)})
 
 
 @pytest.mark.nastran
 @pytest.mark.skipif(not HAVE_PYNASTRAN, reason="pyNastran not installed: run `make test-nastran`")
-def test_round_trip_same_matrices_full_model(tmp_path):
-    """Shells (laminates at angles, offsets, twisted material axes), beams, masses, RBE2, SPC,
-    springs: same M, K, T after the round trip, with and without the $WF data."""
-    fe = mixed_model()
+@pytest.mark.parametrize("build", [_beams_masses_links_model, mixed_model], ids=["beams_masses_links", "full_model"])
+def test_round_trip_same_matrices(tmp_path, build):
+    """Same M, K and T after the round trip, both through the exact $WF data and through the
+    standard cards alone: a beam + CONM2 + RBE2 model (no shells), and the full model (shells:
+    laminates at angles, offsets, twisted material axes; beams, masses, RBE2, SPC, springs)."""
+    fe = build()
     path = _write(fe, tmp_path / "m.bdf")
     _matrices_equal(fe, read_bdf(path))
     _matrices_equal(fe, read_bdf(_strip_meta(path)))
@@ -399,6 +396,8 @@ def test_matrix_comparison_detects_a_one_degree_ply_error(tmp_path):
     ("CBAR    21      2       2       5       0.      0.      1.\n",
      "CBAR    21      2       2       5       0.      0.      1.\n        1\n", "PA/PB"),
     ("PSHELL  1       7       .004    7\n", "PSHELL  1       7       .004    7       0.5\n", "PSHELL 1"),
+    # 12I/T^3 = 0 (no bending stiffness) is not the homogeneous plate either (was read as 1)
+    ("PSHELL  1       7       .004    7\n", "PSHELL  1       7       .004    7       0.\n", "PSHELL 1"),
 ])
 def test_unrepresentable_foreign_cards_are_refused(tmp_path, old, new, field):
     """Non-structural shell mass, pin flags and non-homogeneous PSHELLs have no FEModel
@@ -425,3 +424,64 @@ def test_round_trip_bundled_nrel5mw_blade(tmp_path):
     fe2 = read_bdf(_write(fe, tmp_path / "blade.bdf"))
     _assert_same_model(fe, fe2)
     _matrices_equal(fe, fe2)
+
+
+# ---------------------------------------------------------------------------------------------
+# the card tables
+# ---------------------------------------------------------------------------------------------
+def _distinct_values(card):
+    """A value per field, each different, valid where pyNastran checks them (PBEAM: I1 I2 >
+    I12^2 and X/XB = 1 at end B; keywords from the QRG)."""
+    special = {"LAM": "SYM", "SOUT": "YES", "FT": "HILL", "SO": "YESA", "CM": "123", "C": "123", "OFFT": "GGG",
+               "I12": 0.5, "I12(B)": 0.5, "X/XB": 1.0}
+    vals = {f.name: special.get(f.name, 10 + i if f.kind == "I" else 3.5 if f.kind == "IR" else i + 0.25)
+            for i, f in enumerate(card.fields)}
+    rows = [tuple(special.get(f.name, 50 + i if f.kind == "I" else i + 0.75) for i, f in enumerate(card.repeat))]
+    return vals, (rows if card.repeat else [])
+
+
+@pytest.mark.nastran
+@pytest.mark.skipif(not HAVE_PYNASTRAN, reason="pyNastran not installed: run `make test-nastran`")
+@pytest.mark.parametrize("name", sorted(n for n, c in CARDS.items() if any(f.attr for f in c.fields)))
+def test_card_table_positions_match_pynastran(name):
+    """Each card of the table, written by the table with a distinct value in every field, is
+    parsed by pyNastran (an independent reading of the QRG layout): every field the reader
+    takes must come back by its name with the value put at that name's position."""
+    from pyNastran.bdf.bdf import BDF
+
+    card = CARDS[name]
+    vals, rows = _distinct_values(card)
+    model = BDF(debug=None)
+    model.log.level = "error"
+    model.add_card(card.text(rows, **vals).splitlines(), name, is_list=False)
+    parsed = [*model.elements.values(), *model.properties.values(), *model.materials.values(),
+              *model.masses.values(), *model.rigid_elements.values(), *(c for cs in model.spcs.values() for c in cs)]
+    (obj,) = parsed
+    got = card.read(obj)
+    # pyNastran (as the QRG) ignores the PBAR shear factors K1, K2 when I12 != 0
+    unchecked = {"K1", "K2"} if name == "PBAR" else set()
+    for f in card.fields:
+        if f.attr is not None and f.name not in unchecked:
+            assert np.atleast_1d(got[f.name])[0] == vals[f.name], f.name
+    for j, f in enumerate(card.repeat):
+        if f.attr is not None:
+            assert list(np.atleast_1d(got[f.name])) == [rows[0][j]], f.name
+    if name in ("CBAR", "CBEAM"):  # X1..X3 and the offsets as pyNastran's parsed vectors
+        np.testing.assert_array_equal(got["X"], [vals["X1"], vals["X2"], vals["X3"]])
+        np.testing.assert_array_equal(got["WA"], [vals["W1A"], vals["W2A"], vals["W3A"]])
+        np.testing.assert_array_equal(got["WB"], [vals["W1B"], vals["W2B"], vals["W3B"]])
+
+
+def test_card_table_fills_fields_by_name():
+    """The writer's card text: a field lands in its table position (16-character fields after the
+    8-character name, four a line); the card ends after the last field given; unknown names and
+    ill-sized repeated groups are refused."""
+    text = CARDS["CELAS2"].text(EID=7, K=2.5, G1=3, C1=4)
+    assert text == "CELAS2*" + " " + "7".rjust(16) + "2.5".rjust(16) + "3".rjust(16) + "4".rjust(16) + "\n"
+    lines = CARDS["CONM2"].text(EID=1, G=2, CID=0, M=5.0, I33=9.0).splitlines()
+    assert len(lines) == 4 and lines[3] == "*".ljust(8) + " " * 16 + "9.".rjust(16)
+    assert CARDS["SPC1"].text([(5,), (6,)], SID=1, C="123").split() == ["SPC1*", "1", "123", "5", "6"]
+    with pytest.raises(KeyError, match="XX"):
+        CARDS["GRID"].text(XX=1)
+    with pytest.raises(ValueError, match="repeated group"):
+        CARDS["PCOMP"].text([(1, 0.1)], PID=1)

@@ -55,6 +55,7 @@ import scipy.sparse as sp
 from windflutter.aero.sections import AeroSections
 from windflutter.aero.strip import StripAero, section_matrices, theodorsen_c
 from windflutter.errors import InputError
+from windflutter.linalg_tools import skew as _skew
 from windflutter.solve.aeroelastic import AeroelasticModel
 
 GAUSS_2 = 1.0 / np.sqrt(3.0)
@@ -113,15 +114,6 @@ class SkinDistribution:
 def _unit(v: np.ndarray) -> np.ndarray:
     n = np.linalg.norm(v, axis=-1, keepdims=True)
     return v / np.where(n > 0, n, 1.0)
-
-
-def _skew(d: np.ndarray) -> np.ndarray:
-    """(..., 3) -> (..., 3, 3) with ``skew(d) @ v = d x v``."""
-    S = np.zeros(d.shape[:-1] + (3, 3))
-    S[..., 0, 1], S[..., 0, 2] = -d[..., 2], d[..., 1]
-    S[..., 1, 0], S[..., 1, 2] = d[..., 2], -d[..., 0]
-    S[..., 2, 0], S[..., 2, 1] = -d[..., 1], d[..., 0]
-    return S
 
 
 def gauss_points_2x2() -> tuple[np.ndarray, np.ndarray]:

@@ -14,7 +14,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.aero.sections import Polar
-from windflutter.mesh.frames import skew
+from windflutter.linalg_tools import skew
 from windflutter.mesh.loft import stack_weights
 
 

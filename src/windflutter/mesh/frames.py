@@ -44,13 +44,3 @@ def blade_placement(
     R = blade_rotation(pitch, precone, azimuth, tilt)
     origin = np.asarray(apex, dtype=float) + R @ np.array([0.0, 0.0, hub_radius])
     return R, origin
-
-
-def skew(v: np.ndarray) -> np.ndarray:
-    """(..., 3, 3) matrices with ``skew(v) @ b = v x b``."""
-    v = np.asarray(v, dtype=float)
-    S = np.zeros(v.shape[:-1] + (3, 3))
-    S[..., 0, 1], S[..., 0, 2] = -v[..., 2], v[..., 1]
-    S[..., 1, 0], S[..., 1, 2] = v[..., 2], -v[..., 0]
-    S[..., 2, 0], S[..., 2, 1] = -v[..., 1], v[..., 0]
-    return S

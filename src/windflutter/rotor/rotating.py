@@ -26,13 +26,8 @@ import scipy.sparse as sp
 
 from windflutter.aero.sections import RotorGeometry
 from windflutter.errors import InputError, ModelError
+from windflutter.linalg_tools import skew
 from windflutter.structure.fem import FEModel
-
-
-def skew(v: np.ndarray) -> np.ndarray:
-    """``skew(v) @ x == cross(v, x)``."""
-    x, y, z = v
-    return np.array([[0.0, -z, y], [z, 0.0, -x], [-y, x, 0.0]])
 
 
 def rotating_nodes(fe: FEModel, group: str = "rotor") -> np.ndarray:

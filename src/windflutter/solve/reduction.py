@@ -40,6 +40,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from windflutter.errors import ConvergenceError, InputError
+from windflutter.linalg_tools import mac_matrix as mac  # the column-by-column MAC (solve.reduction.mac)
 from windflutter.solve.linsolve import as_operator, factorize
 
 __all__ = [
@@ -267,15 +268,6 @@ def union_basis(bases: Sequence[ModalBasis], M, *, tol: float = 1e-8) -> ModalBa
     Phi = m_orthonormalize(np.hstack([b.Phi for b in bases]), M, tol=tol)
     return ModalBasis(Phi=Phi, omega=np.full(Phi.shape[1], np.nan), rotor_speed=None,
                       meta={"union_of": [b.rotor_speed for b in bases]})
-
-
-def mac(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """Modal assurance criterion matrix ``|a_i^H b_j|^2 / (|a_i|^2 |b_j|^2)`` (columns)."""
-    A = np.asarray(A)
-    B = np.asarray(B)
-    num = np.abs(A.conj().T @ B) ** 2
-    den = np.outer(np.einsum("ij,ij->j", A.conj(), A).real, np.einsum("ij,ij->j", B.conj(), B).real)
-    return num / den
 
 
 def interpolate_basis(

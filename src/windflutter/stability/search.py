@@ -28,7 +28,7 @@ from scipy.optimize import brentq
 from windflutter.errors import ConvergenceError, InputError, ModelError
 from windflutter.solve.linsolve import factorize
 from windflutter.solve.qep import qep_pencil, solve_qep
-from windflutter.stability.tracking import mac_matrix, mac
+from windflutter.linalg_tools import mac, mac_matrix
 
 #: the seed's reduced frequencies (ch. 3.3.2, step 3)
 THESIS_K = (0.001, 0.1429, 0.2857, 0.4286, 0.5714, 0.7143, 0.8571, 1.0)

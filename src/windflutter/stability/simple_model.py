@@ -26,9 +26,9 @@ from importlib import resources
 from typing import Any
 
 import numpy as np
-import yaml
 
 from windflutter.errors import InputError
+from windflutter.model.yamlio import load_yaml_text
 from windflutter.stability.section import (
     TypicalSection,
     divergence_speed,
@@ -77,8 +77,19 @@ class RotorSection:
         return math.radians(float(np.interp(V, self.wind_speed, self.pitch_deg)))
 
 
+#: numeric fields of a turbine entry in ``simple_model.yaml`` (SI; degrees where named)
+_NUMBERS = ("chord", "mass", "inertia", "plunge_stiffness", "pitch_stiffness", "radius",
+            "frozen_frequency_hz", "elastic_axis", "structural_twist_deg")
+
+
 def load_simple_models(path: str | None = None) -> dict[str, RotorSection]:
-    """Read ``data/seed_simple_model/simple_model.yaml`` (or ``path``) into RotorSections."""
+    """Read ``data/seed_simple_model/simple_model.yaml`` (or ``path``) into RotorSections.
+
+    Raises
+    ------
+    InputError
+        For an unreadable file, invalid YAML or a missing / non-numeric entry (named).
+    """
     if path is None:
         text = (resources.files("windflutter") / "data" / "seed_simple_model" /
                 "simple_model.yaml").read_text()
@@ -90,32 +101,36 @@ def load_simple_models(path: str | None = None) -> dict[str, RotorSection]:
         except OSError as exc:
             raise InputError("path", path, f"a readable YAML file ({exc.strerror})") from None
         src = path
-    try:
-        doc = yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        raise InputError("<yaml>", src, f"valid YAML ({str(exc).splitlines()[0]})") from None
-    curves = doc["control_curves"]
+    doc = load_yaml_text(text, source=src)
+    curves = _entry(doc, "control_curves", "", src)
     out = {}
-    for name, d in doc["turbines"].items():
-        cc = curves[d["control"]]
+    for name, d in _entry(doc, "turbines", "", src).items():
+        where = f"turbines.{name}."
+        cc = _entry(curves, str(_entry(d, "control", where, src)), "control_curves.", src)
+        nums = {k: _number(_entry(d, k, where, src), where + k, src) for k in _NUMBERS}
         out[name] = RotorSection(
             name=name,
             label=d.get("label", name),
-            chord=float(d["chord"]),
-            mass=float(d["mass"]),
-            inertia=float(d["inertia"]),
-            static_moment=float(d.get("static_moment", 0.0)),
-            plunge_stiffness=float(d["plunge_stiffness"]),
-            pitch_stiffness=float(d["pitch_stiffness"]),
-            radius=float(d["radius"]),
-            frozen_frequency_hz=float(d["frozen_frequency_hz"]),
-            elastic_axis=float(d["elastic_axis"]),
-            structural_twist_deg=float(d["structural_twist_deg"]),
-            wind_speed=np.asarray(cc["wind_speed"], dtype=float),
-            pitch_deg=np.asarray(cc["pitch_deg"], dtype=float),
+            static_moment=_number(d.get("static_moment", 0.0), where + "static_moment", src),
+            wind_speed=np.asarray(_entry(cc, "wind_speed", "control_curves.", src), dtype=float),
+            pitch_deg=np.asarray(_entry(cc, "pitch_deg", "control_curves.", src), dtype=float),
             reported_rpm=tuple(d["reported_rpm"]) if "reported_rpm" in d else None,
+            **nums,
         )
     return out
+
+
+def _entry(d: Any, key: str, where: str, src: str) -> Any:
+    """``d[key]``, or :class:`InputError` naming ``where + key``."""
+    if not isinstance(d, dict) or key not in d:
+        raise InputError(where + key, None, "an entry of the simple-model file; the key is missing", src)
+    return d[key]
+
+
+def _number(v: Any, field: str, src: str) -> float:
+    if isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+        raise InputError(field, v, "a finite number", src)
+    return float(v)
 
 
 def inflow(V: float, omega_rotor: float, radius: float) -> tuple[float, float]:

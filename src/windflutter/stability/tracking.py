@@ -1,22 +1,11 @@
-"""Mode tracking (MAC) and labels."""
+"""Mode labels from the motion at the aerodynamic sections (the MAC lives in
+:mod:`windflutter.linalg_tools`; re-exported here for older imports)."""
 
 from __future__ import annotations
 
 import numpy as np
 
-
-def mac(a: np.ndarray, b: np.ndarray) -> float:
-    """Modal assurance criterion ``|a^H b|^2 / ((a^H a)(b^H b))`` (0..1)."""
-    num = abs(np.vdot(a, b)) ** 2
-    den = np.vdot(a, a).real * np.vdot(b, b).real
-    return float(num / den) if den > 0 else 0.0
-
-
-def mac_matrix(A: np.ndarray, B: np.ndarray) -> np.ndarray:
-    """MAC of every column of A against every column of B."""
-    num = np.abs(A.conj().T @ B) ** 2
-    den = np.outer(np.sum(np.abs(A) ** 2, axis=0), np.sum(np.abs(B) ** 2, axis=0))
-    return num / np.where(den > 0, den, 1.0)
+from windflutter.linalg_tools import mac, mac_matrix  # noqa: F401  (re-exported)
 
 
 def label_mode(x_dof: np.ndarray, sections, P=None, tower_dofs: np.ndarray | None = None) -> str:

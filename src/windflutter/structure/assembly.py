@@ -14,8 +14,9 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError, ModelError
+from windflutter.linalg_tools import skew as _skew
 from windflutter.structure.beam import beam_global_matrices, element_dofs
-from windflutter.structure.constraints import _skew, constraint_map
+from windflutter.structure.constraints import constraint_map
 from windflutter.structure.fem import DOF_NAMES, FEModel
 
 

@@ -17,16 +17,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError, ModelError
+from windflutter.linalg_tools import skew
 from windflutter.structure.fem import FEModel
-
-
-def _skew(v: np.ndarray) -> np.ndarray:
-    """(n, 3, 3) skew matrices with S(v) b = v x b."""
-    S = np.zeros(v.shape[:-1] + (3, 3))
-    S[..., 0, 1], S[..., 0, 2] = -v[..., 2], v[..., 1]
-    S[..., 1, 0], S[..., 1, 2] = v[..., 2], -v[..., 0]
-    S[..., 2, 0], S[..., 2, 1] = -v[..., 1], v[..., 0]
-    return S
 
 
 def spc_dofs(fe: FEModel) -> np.ndarray:
@@ -63,7 +55,7 @@ def rigid_link_rows(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
         G = np.zeros((dep.size, 6, 6))
         G[:, :3, :3] = np.eye(3)
         G[:, 3:, 3:] = np.eye(3)
-        G[:, :3, 3:] = -_skew(r)
+        G[:, :3, 3:] = -skew(r)
         for c in comps:
             g = G[:, c, :]  # (nd, 6)
             nz = np.nonzero(np.abs(g) > 0)

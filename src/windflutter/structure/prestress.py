@@ -17,8 +17,8 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError
+from windflutter.linalg_tools import skew as _skew
 from windflutter.structure.assembly import Structural
-from windflutter.structure.constraints import _skew
 from windflutter.structure.fem import FEModel
 
 
