@@ -53,7 +53,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.aero.sections import AeroSections
-from windflutter.aero.strip import StripAero, section_matrices, theodorsen_c
+from windflutter.aero.strip import StripAero, section_matrices
 from windflutter.errors import InputError
 from windflutter.solve.aeroelastic import AeroelasticModel
 
@@ -387,7 +387,7 @@ class SkinStripAero(StripAero):
         """(n_strips, 3, 3) Ma, Da, Ka per unit span of the parent strips at ``omega`` (rad/s)."""
         r = self._rep
         b, U = self.b[r], self.flow.U[r]
-        C = theodorsen_c(abs(omega) * b / U)
+        C = self.circulation(abs(omega) * b / U)
         steady = None if self.steady is None else tuple(x[r] for x in self.steady)
         return section_matrices(b, self.a[r], U, C, self.op.air_density, self.cla[r], self.cda[r], self.am[r],
                                 steady=steady)
