@@ -24,12 +24,14 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 import scipy.sparse as sp
 
 from windflutter.aero.flow import OperatingPoint, SectionFlow, section_flow, section_map  # noqa: F401 (re-export)
 from windflutter.aero.sections import AeroSections
+from windflutter.aero.statespace import block_diagonal
 from windflutter.aero.theodorsen import theodorsen
 from windflutter.errors import InputError
 
@@ -95,6 +97,31 @@ class SectionParts:
         return self.Ma.astype(complex), Da, Ka
 
 
+def apparent_mass(b, a, U, rho, scale=1.0):
+    """Theodorsen's non-circulatory (apparent-mass) terms per unit span, ``q = (h up, alpha, s)``.
+
+    ``b, a, U`` (ns,) semi-chord (m), elastic axis aft of mid-chord (semi-chords), speed (m/s);
+    ``rho`` (kg/m^3); ``scale`` scalar or (ns,) factor (1: flat plate).  Returns ``(Ma, Da)``
+    (ns, 3, 3) real with the forces ``Ma q'' + Da q'``.  With ``h_down = -h``::
+
+        L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
+        M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
+    """
+    b, a, U = (np.asarray(x, float) for x in (b, a, U))
+    ns = b.shape[0]
+    am = np.broadcast_to(np.asarray(scale, float), (ns,))
+    Ma = np.zeros((ns, 3, 3))
+    Da = np.zeros((ns, 3, 3))
+    pr = np.pi * rho
+    Ma[:, 0, 0] = -pr * b**2 * am
+    Ma[:, 0, 1] = -pr * b**3 * a * am
+    Ma[:, 1, 0] = -pr * b**3 * a * am
+    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
+    Da[:, 0, 1] = pr * b**2 * U * am
+    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
+    return Ma, Da
+
+
 def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0,
                   steady=None) -> SectionParts:
     """Frequency-independent pieces of :func:`section_matrices` (same parameters, no ``C``).
@@ -112,20 +139,8 @@ def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0
     ns = b.shape[0]
     cla = np.broadcast_to(np.asarray(cla, float), (ns,))
     cda = np.broadcast_to(np.asarray(cda, float), (ns,))
-    am = np.broadcast_to(np.asarray(am_scale, float), (ns,))
     dac = np.broadcast_to(np.asarray(ac_shift, float), (ns,))
-    Ma = np.zeros((ns, 3, 3))
-    Da = np.zeros((ns, 3, 3))
-    pr = np.pi * rho
-    # non-circulatory (apparent mass) part, h_down = -h:
-    # L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
-    # M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
-    Ma[:, 0, 0] = -pr * b**2 * am
-    Ma[:, 0, 1] = -pr * b**3 * a * am
-    Ma[:, 1, 0] = -pr * b**3 * a * am
-    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
-    Da[:, 0, 1] = pr * b**2 * U * am
-    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
+    Ma, Da = apparent_mass(b, a, U, rho, am_scale)
     # circulatory: Q = C [h_down' + U alpha + b (1/2 - a) alpha'] -> L_c = cla rho U b Q; the
     # moment about the elastic axis is b (a + 1/2) L_c with the lift at the quarter chord, the
     # drag D = (Cd_a / Cl_a) L_c
@@ -249,9 +264,16 @@ class StripAero:
         else:
             self.am = np.ones_like(self.cla)
         self.steady = mean_coefficients(self.sections, self.flow.alpha) if self.options.steady_loads else None
-        ns = self.sections.n_sections
-        self._rows = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, :, None]) * np.ones((1, 1, 3), int)
-        self._cols = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, None, :]) * np.ones((1, 3, 1), int)
+
+    #: frequency domain only (C(k) frozen at the oscillation frequency): no state-space form
+    time_domain: ClassVar[bool] = False
+    n_states: ClassVar[int] = 0
+
+    def state_space(self):
+        """Not available: Theodorsen's C(k) has no finite state-space realisation (use
+        :class:`~windflutter.aero.operators.StateSpaceAero` with a rational C)."""
+        raise InputError("aero.model", f"thesis ({self.options.model})",
+                         "a state-space operator (UnsteadyOptions) for the first-order system")
 
     def reduced_frequency(self, omega: float) -> np.ndarray:
         """``k_j = omega b_j / U_j`` (-)."""
@@ -264,9 +286,7 @@ class StripAero:
         return Ma * w, Da * w, Ka * w
 
     def _assemble(self, blocks: np.ndarray) -> sp.csr_matrix:
-        n = 3 * self.sections.n_sections
-        B = sp.csr_matrix((blocks.ravel(), (self._rows.ravel(), self._cols.ravel())), shape=(n, n))
-        return (self.PT @ B @ self.P).tocsr()
+        return (self.PT @ block_diagonal(blocks) @ self.P).tocsr()
 
     def matrices(self, omega: float):
         """Global ``(Ma, Da, Ka)``, sparse complex (n_dof, n_dof), at frequency ``omega`` (rad/s)."""
