@@ -71,7 +71,8 @@ class SectionFlow:
     alpha: np.ndarray
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
+def unit(v: np.ndarray) -> np.ndarray:
+    """Rows of ``v`` (..., 3) scaled to unit length (zero rows stay zero)."""
     n = np.linalg.norm(v, axis=-1, keepdims=True)
     return v / np.where(n > 0, n, 1.0)
 
@@ -99,7 +100,7 @@ def _inflow_axes(vrel: np.ndarray, span: np.ndarray, chord: np.ndarray, op: Oper
         j = int(np.argmin(U))
         raise InputError("operating point", (op.wind_speed, op.omega), f"a non-zero relative speed at section {j}")
     e3 = vrel / U[:, None]
-    e1 = _unit(np.cross(e3, span))
+    e1 = unit(np.cross(e3, span))
     suction = np.cross(chord, span)
     flip = np.sum(e1 * suction, axis=1) < 0
     e1[flip] *= -1.0
@@ -127,10 +128,10 @@ def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
     ns = sections.n_sections
     # no induction: a = a' = 0, which gives the thesis's V, Omega r exactly (bit for bit)
     a, ap = (np.zeros(ns), np.zeros(ns)) if op.induction is None else _induction_factors(op, ns)
-    span = _unit(np.asarray(sections.e_span, float))
-    chord = _unit(np.asarray(sections.e_chord, float))
-    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
-    axis = wind if op.rotor is None else _unit(np.asarray(op.rotor.shaft_axis, float))
+    span = unit(np.asarray(sections.e_span, float))
+    chord = unit(np.asarray(sections.e_chord, float))
+    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else unit(np.asarray(op.rotor.wind_direction, float))
+    axis = wind if op.rotor is None else unit(np.asarray(op.rotor.shaft_axis, float))
     w = op.wind_speed * wind
     vrel = w[None, :] - (a * float(w @ axis))[:, None] * axis[None, :]
     blade_vel = np.zeros((ns, 3))

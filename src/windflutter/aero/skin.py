@@ -52,6 +52,7 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.sparse as sp
 
+from windflutter.aero.flow import unit as _unit
 from windflutter.aero.sections import AeroSections
 from windflutter.aero.strip import StripAero, section_matrices
 from windflutter.errors import InputError
@@ -107,11 +108,6 @@ class SkinDistribution:
     upper: np.ndarray
     point: np.ndarray
     fraction: np.ndarray
-
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    return v / np.where(n > 0, n, 1.0)
 
 
 def _skew(d: np.ndarray) -> np.ndarray:

@@ -57,18 +57,24 @@ def _lag_terms(Az: np.ndarray, Cz: np.ndarray, Bs: tuple, s: complex):
 class StripStateSpace:
     """First-order aerodynamics of ``ns`` strips (see the module docstring), real arrays.
 
-    Ma, Da, Ka : (ns, 3, 3).  Cz : (ns, 3, nz).  Az : (ns, nz, nz).  Bq, Bv : (ns, nz, 3).
     Units: forces (N/m per unit span, or N after :meth:`scaled` by the strip widths) per m, rad
     and m of ``q`` (and per s, s^2 of its derivatives); ``Az`` in 1/s.
     """
 
     Ma: np.ndarray
+    """(ns, 3, 3) apparent mass (of q'')."""
     Da: np.ndarray
+    """(ns, 3, 3) damping (of q'): instantaneous circulatory, mean-load and apparent-mass terms."""
     Ka: np.ndarray
+    """(ns, 3, 3) stiffness (of q)."""
     Cz: np.ndarray
+    """(ns, 3, nz) forces of the aerodynamic states."""
     Az: np.ndarray
+    """(ns, nz, nz) state dynamics."""
     Bq: np.ndarray
+    """(ns, nz, 3) states driven by q."""
     Bv: np.ndarray
+    """(ns, nz, 3) states driven by q'."""
 
     @property
     def n_sections(self) -> int:
@@ -104,21 +110,25 @@ class StripStateSpace:
 
 @dataclass(frozen=True)
 class ProjectedStateSpace:
-    """Generalized aerodynamic terms on a basis of ``m`` coordinates (see the module docstring).
-
-    Ma, Da, Ka : (m, m).  Fz : (m, N).  Az : (N, N) sparse block diagonal.  Bq, Bv : (N, m),
-    ``N`` = total number of aerodynamic states.  ``blocks`` (nb, r, r): the diagonal blocks of
-    ``Az`` (used for fast harmonic evaluation).
-    """
+    """Generalized aerodynamic terms on a basis of ``m`` coordinates (see the module docstring);
+    ``N`` = total number of aerodynamic states."""
 
     Ma: np.ndarray
+    """(m, m) generalized apparent mass."""
     Da: np.ndarray
+    """(m, m) generalized damping."""
     Ka: np.ndarray
+    """(m, m) generalized stiffness."""
     Fz: np.ndarray
+    """(m, N) generalized forces of the states."""
     Az: sp.csr_matrix
+    """(N, N) sparse block-diagonal state dynamics."""
     Bq: np.ndarray
+    """(N, m) states driven by x."""
     Bv: np.ndarray
+    """(N, m) states driven by x'."""
     blocks: np.ndarray
+    """(nb, r, r) the diagonal blocks of ``Az`` (fast harmonic evaluation)."""
 
     @property
     def n_states(self) -> int:
