@@ -51,6 +51,7 @@ quasi-steady limit keeps the local slope of the polar (:mod:`windflutter.aero.li
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
@@ -119,8 +120,14 @@ def circulation(kind="jones", n_lag: int = 4) -> Circulation:
     if kind == "rfa":
         if isinstance(n_lag, bool) or not isinstance(n_lag, (int, np.integer)) or n_lag < 1:
             raise InputError("n_lag", n_lag, "an integer >= 1 (lag poles of the Roger fit)")
-        return Circulation.from_rfa(theodorsen_rfa(int(n_lag)))
+        return _roger(int(n_lag))
     raise InputError("circulation", kind, "'jones', 'rfa', 'quasi_steady' or a RogerRFA")
+
+
+@functools.lru_cache(maxsize=8)
+def _roger(n_lag: int) -> Circulation:
+    """The Roger fit of C(k) with ``n_lag`` optimised poles, fitted once per process."""
+    return Circulation.from_rfa(theodorsen_rfa(n_lag))
 
 
 @dataclass(frozen=True)
