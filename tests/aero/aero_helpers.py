@@ -23,6 +23,16 @@ def one_strip(b: float, a: float, alpha0: float = 0.0, polar: Polar | None = Non
                         twist=np.zeros(1), motion_map=sp.identity(6, format="csr"))
 
 
+def stall_polar() -> Polar:
+    """Piecewise-linear polar with nodes every 2 deg: attached slope ~6.1/rad to 10 deg, peak at
+    14 deg, falling lift (negative slope) beyond; drag rising in stall; Cm nose-down growing."""
+    a = np.arange(-10.0, 32.0, 2.0)
+    cl = np.interp(a, [-10, -2, 10, 14, 18, 24, 30], [-0.85, 0.0, 1.28, 1.42, 1.18, 1.05, 1.02])
+    cd = np.interp(a, [-10, 0, 8, 12, 16, 20, 30], [0.03, 0.008, 0.012, 0.03, 0.12, 0.25, 0.45])
+    cm = np.interp(a, [-10, 0, 10, 14, 18, 30], [0.0, -0.05, -0.07, -0.08, -0.12, -0.16])
+    return Polar(np.radians(a), cl, cd, cm, name="stall")
+
+
 #: (h_down, alpha) of the typical section -> the strip's 6 DOFs (uz = -h_down, ry = alpha)
 SECTION_BASIS = np.zeros((6, 2))
 SECTION_BASIS[2, 0] = -1.0

@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from aero_helpers import one_strip
+from aero_helpers import one_strip, stall_polar
 
 from windflutter.aero.flow import OperatingPoint
 from windflutter.aero.linearization import polar_linearization
@@ -17,16 +17,6 @@ from windflutter.aero.sections import Polar
 from windflutter.aero.unsteady import UnsteadyOptions
 
 RHO, U, B, A = 1.225, 55.0, 0.9, -0.25
-
-
-def stall_polar() -> Polar:
-    """Piecewise-linear polar with nodes every 2 deg: attached slope ~6.1/rad to 10 deg, peak at
-    14 deg, falling lift (negative slope) beyond; drag rising in stall; Cm nose-down growing."""
-    a = np.arange(-10.0, 32.0, 2.0)
-    cl = np.interp(a, [-10, -2, 10, 14, 18, 24, 30], [-0.85, 0.0, 1.28, 1.42, 1.18, 1.05, 1.02])
-    cd = np.interp(a, [-10, 0, 8, 12, 16, 20, 30], [0.03, 0.008, 0.012, 0.03, 0.12, 0.25, 0.45])
-    cm = np.interp(a, [-10, 0, 10, 14, 18, 30], [0.0, -0.05, -0.07, -0.08, -0.12, -0.16])
-    return Polar(np.radians(a), cl, cd, cm, name="stall")
 
 
 def qs_force(polar: Polar, alpha0: float, x: np.ndarray) -> np.ndarray:

@@ -8,10 +8,9 @@ from __future__ import annotations
 
 import numpy as np
 import pytest
-from aero_helpers import one_strip
+from aero_helpers import one_strip, stall_polar
 from scipy.integrate import solve_ivp
 from scipy.optimize import least_squares
-from test_quasi_steady import stall_polar
 
 from windflutter.aero.flow import OperatingPoint
 from windflutter.aero.operators import StateSpaceAero
