@@ -188,7 +188,7 @@ def wing_flutter(n_span, distribution, rigid_rings=True, n_chord=12, options=Non
     sm.D = (0.005 / (np.pi * 10.0)) * sm.K  # 0.5 % at 10 Hz: no neutrally stable (aero-free) modes
     kw = dict(structure=sm, rotor_geometry=wing_op(sec).rotor, aero=AeroOptions(), n_modes=12)
     if distribution == "skin":
-        from windflutter.aero.skin import skin_aeroelastic_model
+        from windflutter.solve.skin_model import skin_aeroelastic_model
 
         am = skin_aeroelastic_model(fe, sec, options, **kw)
     else:

@@ -6,7 +6,7 @@ induction factors ``a`` and ``a'`` of each strip so that the inflow can be
 
     ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)``,  ``phi = atan2(V (1 - a), Omega r (1 + a'))``
 
-(:func:`windflutter.aero.strip.section_flow` with ``OperatingPoint.induction``).
+(:func:`windflutter.aero.flow.section_flow` with ``OperatingPoint.induction``).
 
 Method (annular momentum balance = blade-element loads, one annulus per strip):
 
@@ -299,10 +299,10 @@ def theta_from_geometry(sections: AeroSections, rotor: RotorGeometry, pitch: flo
     """Local blade angle twist + pitch (rad) of every strip, read from its chord direction.
 
     The strip's angle of attack in a purely rotational inflow (``V = 0``) is ``-theta``, so
-    ``theta = -alpha(V=0, Omega=1)`` of :func:`windflutter.aero.strip.section_flow`; this holds the
+    ``theta = -alpha(V=0, Omega=1)`` of :func:`windflutter.aero.flow.section_flow`; this holds the
     pitch and twist the mesh already put into ``e_chord`` (plus the extra ``pitch``).
     """
-    from windflutter.aero.strip import OperatingPoint, section_flow
+    from windflutter.aero.flow import OperatingPoint, section_flow
 
     op = OperatingPoint(wind_speed=0.0, omega=1.0, rotor=rotor, pitch=pitch)
     return -section_flow(sections, op).alpha

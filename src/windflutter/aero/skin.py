@@ -52,11 +52,11 @@ from dataclasses import dataclass, replace
 import numpy as np
 import scipy.sparse as sp
 
+from windflutter.aero.flow import unit as _unit
 from windflutter.aero.sections import AeroSections
-from windflutter.aero.strip import StripAero, section_matrices, theodorsen_c
+from windflutter.aero.strip import StripAero, section_matrices
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew as _skew
-from windflutter.solve.aeroelastic import AeroelasticModel
 
 GAUSS_2 = 1.0 / np.sqrt(3.0)
 _XI = np.array([-1.0, 1.0, 1.0, -1.0])  # corner coordinates of the 4 nodes (cyclic order)
@@ -111,9 +111,6 @@ class SkinDistribution:
     fraction: np.ndarray
 
 
-def _unit(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    return v / np.where(n > 0, n, 1.0)
 
 
 def gauss_points_2x2() -> tuple[np.ndarray, np.ndarray]:
@@ -379,7 +376,7 @@ class SkinStripAero(StripAero):
         """(n_strips, 3, 3) Ma, Da, Ka per unit span of the parent strips at ``omega`` (rad/s)."""
         r = self._rep
         b, U = self.b[r], self.flow.U[r]
-        C = theodorsen_c(abs(omega) * b / U)
+        C = self.circulation(abs(omega) * b / U)
         steady = None if self.steady is None else tuple(x[r] for x in self.steady)
         return section_matrices(b, self.a[r], U, C, self.op.air_density, self.cla[r], self.cda[r], self.am[r],
                                 steady=steady)
@@ -407,33 +404,15 @@ class SkinStripAero(StripAero):
         return f
 
 
-@dataclass
-class SkinAeroelasticModel(AeroelasticModel):
-    """:class:`~windflutter.solve.aeroelastic.AeroelasticModel` whose ``sections`` are skin
-    sub-strips (:func:`skin_distribution`) with their ``parent`` strips; identical results to
-    the plain model with the same sections, faster projected aerodynamics (:class:`SkinStripAero`).
-    """
-
-    parent: np.ndarray | None = None
-
-    def strip(self, wind_speed: float, omega_rot: float) -> StripAero:
-        if self.parent is None:
-            return super().strip(wind_speed, omega_rot)
-        return SkinStripAero(self.sections, self.operating_point(wind_speed, omega_rot), self.aero, parent=self.parent)
-
-
-def skin_aeroelastic_model(fe, sections: AeroSections, skin: SkinOptions | None = None, **model_kwargs
-                           ) -> SkinAeroelasticModel:
-    """The aeroelastic model with the seed's skin-quad distribution.
-
-    ``model_kwargs`` are those of :class:`~windflutter.solve.aeroelastic.AeroelasticModel`
-    (``structure``, ``rotor``, ``rotor_geometry``, ``aero``, ``air_density``, ``n_modes``,
-    ``omega_ref``, ``pitch``); ``sections`` are the model's strips (spline map not used).
-    """
-    d = skin_distribution(fe, sections, skin)
-    return SkinAeroelasticModel(sections=d.sections, parent=d.parent, **model_kwargs)
-
-
 __all__ = ["SkinOptions", "SkinDistribution", "skin_distribution", "skin_quad_sections", "skin_elements",
-           "assign_to_strips", "shape_functions", "gauss_points_2x2", "SkinStripAero", "SkinAeroelasticModel",
-           "skin_aeroelastic_model"]
+           "assign_to_strips", "shape_functions", "gauss_points_2x2", "SkinStripAero"]
+
+
+def __getattr__(name: str):
+    """Compatibility: the solver-level model with the skin distribution lives in
+    :mod:`windflutter.solve.skin_model` (the aero layer does not import the solver)."""
+    if name in ("SkinAeroelasticModel", "skin_aeroelastic_model"):
+        from windflutter.solve import skin_model
+
+        return getattr(skin_model, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,15 +1,9 @@
-"""Strip-theory (Theodorsen) aerodynamic matrices on a finite-element model.
+"""The thesis's strip aerodynamics: Theodorsen's frequency-domain matrices (p-k).
 
-For every strip ``j`` of an :class:`~windflutter.aero.sections.AeroSections` and an
-:class:`OperatingPoint` (wind speed, rotor speed, extra pitch) we build
+For every strip of an :class:`~windflutter.aero.sections.AeroSections` at an
+:class:`~windflutter.aero.flow.OperatingPoint` (relative flow, inflow axes ``e1`` lift, ``e2``
+pitch, ``e3`` drag and the section motion ``q = (h, alpha, s)``: :mod:`windflutter.aero.flow`):
 
-* the relative flow: ``U_vec = V w - Omega x (x_j - hub)`` projected on the plane normal to the
-  span; ``U = |U_vec|`` (equals ``sqrt(V^2 + (Omega r)^2)`` for an unconed, untilted rotor;
-  induction neglected as in the seed, ch. 3.2);
-* the inflow axes: ``e3`` along ``U_vec`` (drag), ``e1`` normal to it in the section plane on the
-  suction side (lift), ``e2 = e1 x e3`` (nose-up pitch axis, +-span);
-* the section motion ``q_j = (h, alpha, s)`` with ``h = e1 . u`` (plunge along lift, i.e. up),
-  ``alpha = e2 . theta`` and ``s = e3 . u`` from the section's rows of ``motion_map``;
 * Theodorsen's forces (Bisplinghoff-Ashley-Halfman / Hodges & Pierce form with h positive
   *down*; here rewritten for h up), frozen at ``C(k_j)``, ``k_j = omega b_j / U_j``:
   ``F_j = (Ma_j s^2 + Da_j s + Ka_j) q_j`` per unit span, times the strip width;
@@ -22,68 +16,27 @@ Variants (seed ch. 3.2, eqs. 3.49-3.54): ``"potential"`` (lift slope 2 pi, no dr
 ``"viscous"`` (circulatory 2 pi replaced by the polar's fitted ``Cl_alpha``; drag
 ``D = rho U^2 b Cd_alpha alpha_unsteady`` along ``e3`` with
 ``alpha_unsteady = L_circ / (Cl_alpha rho U^2 b)``; apparent-mass terms optionally scaled by
-``Cl_alpha / 2 pi``).
+``Cl_alpha / 2 pi``).  This is the seed's model, kept number for number; the state-space and
+mean-load operators are in :mod:`windflutter.aero.unsteady` (docs/aero_operators.md).
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field
+from typing import ClassVar
 
 import numpy as np
 import scipy.sparse as sp
 
-from windflutter.aero.sections import AeroSections, RotorGeometry
+from windflutter.aero.flow import OperatingPoint, SectionFlow, section_flow, section_map  # noqa: F401 (re-export)
+from windflutter.aero.sections import AeroSections
+from windflutter.aero.statespace import block_diagonal
+from windflutter.aero.theodorsen import theodorsen
 from windflutter.errors import InputError
 
-
-def theodorsen_c(k) -> np.ndarray:
-    """Theodorsen's function ``C(k)`` for reduced frequency ``k >= 0`` (vectorized).
-
-    Uses the typical-section engineer's :func:`windflutter.aero.theodorsen.theodorsen` when
-    present, otherwise ``C = H1(2)(k) / (H1(2)(k) + i H0(2)(k))`` with ``C(0) = 1``.
-    """
-    k = np.asarray(k, dtype=float)
-    try:  # the project's own implementation, if it has landed
-        from windflutter.aero.theodorsen import theodorsen as _th
-
-        return np.asarray(_th(k), dtype=complex)
-    except ImportError:
-        pass
-    from scipy.special import hankel2
-
-    out = np.ones(k.shape, dtype=complex)
-    pos = k > 0
-    kk = k[pos]
-    h1 = hankel2(1, kk)
-    h0 = hankel2(0, kk)
-    out[pos] = h1 / (h1 + 1j * h0)
-    return out
-
-
-@dataclass(frozen=True)
-class OperatingPoint:
-    """Where the rotor runs.
-
-    Parameters
-    ----------
-    wind_speed : free wind V (m/s) along ``rotor.wind_direction``.
-    omega : rotor speed (rad/s) about ``rotor.shaft_axis`` (0 for a fixed wing).
-    air_density : rho (kg/m^3).
-    rotor : rotor geometry; for a fixed wing only ``wind_direction`` is used.
-    pitch : extra blade pitch (rad, positive nose-down to feather) on top of what the model's
-        ``e_chord`` already holds; it only changes the reported angle of attack (the linear
-        strip matrices use the inflow axes).
-    induction : optional steady induction ``(a, a')`` per strip (arrays (ns,) or scalars, -),
-        e.g. from :func:`windflutter.aero.induction.sections_induction`; None (default) keeps the
-        thesis's uninduced inflow.  Held fixed (frozen) in the linear stability problem.
-    """
-
-    wind_speed: float
-    omega: float = 0.0
-    air_density: float = 1.225
-    rotor: RotorGeometry | None = None
-    pitch: float = 0.0
-    induction: tuple | None = None
+#: Theodorsen's function (the one implementation, :func:`windflutter.aero.theodorsen.theodorsen`).
+theodorsen_c = theodorsen
 
 
 @dataclass(frozen=True)
@@ -117,97 +70,6 @@ class AeroOptions:
             raise InputError("aero.model", self.model, "'potential' or 'viscous'")
 
 
-@dataclass
-class SectionFlow:
-    """Relative flow at each strip (arrays over sections).
-
-    U (m/s), e1/e2/e3 (ns, 3) inflow axes, phi inflow angle from the rotor plane (rad),
-    alpha geometric angle of attack (rad, chord vs U, nose-up positive).
-    """
-
-    U: np.ndarray
-    e1: np.ndarray
-    e2: np.ndarray
-    e3: np.ndarray
-    phi: np.ndarray
-    alpha: np.ndarray
-
-
-def _unit(v: np.ndarray) -> np.ndarray:
-    n = np.linalg.norm(v, axis=-1, keepdims=True)
-    return v / np.where(n > 0, n, 1.0)
-
-
-def _induction_factors(op: OperatingPoint, ns: int):
-    """``(a, a')`` of ``op.induction`` as finite (ns,) arrays."""
-    try:
-        a, ap = op.induction
-        a = np.broadcast_to(np.asarray(a, float), (ns,))
-        ap = np.broadcast_to(np.asarray(ap, float), (ns,))
-    except (TypeError, ValueError):
-        raise InputError("induction", type(op.induction).__name__,
-                         f"a pair (a, a') of scalars or arrays of {ns} strips") from None
-    if not (np.all(np.isfinite(a)) and np.all(np.isfinite(ap))):
-        raise InputError("induction", "non-finite", "finite induction factors (a, a')")
-    return a, ap
-
-
-def _inflow_axes(vrel: np.ndarray, span: np.ndarray, chord: np.ndarray, op: OperatingPoint):
-    """Relative speed U (m/s), lift/span/drag axes e1, e2, e3 and angle of attack (rad) of each
-    strip from its relative wind ``vrel`` (m/s, (ns, 3)); the spanwise component is dropped."""
-    vrel = vrel - np.sum(vrel * span, axis=1, keepdims=True) * span
-    U = np.linalg.norm(vrel, axis=1)
-    if np.any(U <= 0):
-        j = int(np.argmin(U))
-        raise InputError("operating point", (op.wind_speed, op.omega), f"a non-zero relative speed at section {j}")
-    e3 = vrel / U[:, None]
-    e1 = _unit(np.cross(e3, span))
-    suction = np.cross(chord, span)
-    flip = np.sum(e1 * suction, axis=1) < 0
-    e1[flip] *= -1.0
-    e2 = np.cross(e1, e3)
-    ca = np.sum(chord * e3, axis=1)
-    sa = -np.sum(chord * e1, axis=1)
-    alpha = np.arctan2(sa, ca) - op.pitch
-    return U, e1, e2, e3, alpha
-
-
-def section_flow(sections: AeroSections, op: OperatingPoint) -> SectionFlow:
-    """Relative speed, inflow axes and angles at every strip (see module docstring).
-
-    With ``op.induction = (a, a')`` the relative flow is
-    ``U_vec = V w - a (V w . n) n - (1 + a') Omega n x (x_j - hub)`` (``n``: shaft axis; the wind
-    direction for a fixed wing), i.e. ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)`` and
-    ``phi = atan2(V (1 - a), Omega r (1 + a'))`` for an unconed, untilted rotor.
-    """
-    if not np.isfinite(op.wind_speed) or op.wind_speed < 0:
-        raise InputError("wind_speed", op.wind_speed, "a non-negative speed (m/s)")
-    if not np.isfinite(op.omega):
-        raise InputError("omega", op.omega, "a finite rotor speed (rad/s)")
-    if not (np.isfinite(op.air_density) and op.air_density > 0):
-        raise InputError("air_density", op.air_density, "a positive density (kg/m^3)")
-    ns = sections.n_sections
-    # no induction: a = a' = 0, which gives the thesis's V, Omega r exactly (bit for bit)
-    a, ap = (np.zeros(ns), np.zeros(ns)) if op.induction is None else _induction_factors(op, ns)
-    span = _unit(np.asarray(sections.e_span, float))
-    chord = _unit(np.asarray(sections.e_chord, float))
-    wind = np.array([1.0, 0.0, 0.0]) if op.rotor is None else _unit(np.asarray(op.rotor.wind_direction, float))
-    axis = wind if op.rotor is None else _unit(np.asarray(op.rotor.shaft_axis, float))
-    w = op.wind_speed * wind
-    vrel = w[None, :] - (a * float(w @ axis))[:, None] * axis[None, :]
-    blade_vel = np.zeros((ns, 3))
-    if op.omega != 0.0:
-        if op.rotor is None:
-            raise InputError("rotor", None, "a RotorGeometry when the rotor speed is not zero")
-        rvec = np.asarray(sections.origin, float) - np.asarray(op.rotor.hub_center, float)
-        blade_vel = op.omega * np.cross(axis, rvec)
-        vrel = vrel - (1.0 + ap)[:, None] * blade_vel
-    U, e1, e2, e3, alpha = _inflow_axes(vrel, span, chord, op)
-    vrot = np.linalg.norm(blade_vel, axis=1)
-    phi = np.arctan2(op.wind_speed * (1.0 - a), vrot * (1.0 + ap))
-    return SectionFlow(U=U, e1=e1, e2=e2, e3=e3, phi=phi, alpha=alpha)
-
-
 @dataclass(frozen=True)
 class SectionParts:
     """The frequency-independent pieces of the Theodorsen section matrices (per unit span).
@@ -235,6 +97,31 @@ class SectionParts:
         return self.Ma.astype(complex), Da, Ka
 
 
+def apparent_mass(b, a, U, rho, scale=1.0):
+    """Theodorsen's non-circulatory (apparent-mass) terms per unit span, ``q = (h up, alpha, s)``.
+
+    ``b, a, U`` (ns,) semi-chord (m), elastic axis aft of mid-chord (semi-chords), speed (m/s);
+    ``rho`` (kg/m^3); ``scale`` scalar or (ns,) factor (1: flat plate).  Returns ``(Ma, Da)``
+    (ns, 3, 3) real with the forces ``Ma q'' + Da q'``.  With ``h_down = -h``::
+
+        L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
+        M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
+    """
+    b, a, U = (np.asarray(x, float) for x in (b, a, U))
+    ns = b.shape[0]
+    am = np.broadcast_to(np.asarray(scale, float), (ns,))
+    Ma = np.zeros((ns, 3, 3))
+    Da = np.zeros((ns, 3, 3))
+    pr = np.pi * rho
+    Ma[:, 0, 0] = -pr * b**2 * am
+    Ma[:, 0, 1] = -pr * b**3 * a * am
+    Ma[:, 1, 0] = -pr * b**3 * a * am
+    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
+    Da[:, 0, 1] = pr * b**2 * U * am
+    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
+    return Ma, Da
+
+
 def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0.0,
                   steady=None) -> SectionParts:
     """Frequency-independent pieces of :func:`section_matrices` (same parameters, no ``C``).
@@ -252,20 +139,8 @@ def section_parts(b, a, U, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_shift=0
     ns = b.shape[0]
     cla = np.broadcast_to(np.asarray(cla, float), (ns,))
     cda = np.broadcast_to(np.asarray(cda, float), (ns,))
-    am = np.broadcast_to(np.asarray(am_scale, float), (ns,))
     dac = np.broadcast_to(np.asarray(ac_shift, float), (ns,))
-    Ma = np.zeros((ns, 3, 3))
-    Da = np.zeros((ns, 3, 3))
-    pr = np.pi * rho
-    # non-circulatory (apparent mass) part, h_down = -h:
-    # L_nc = pi rho b^2 (h_down'' + U alpha' - b a alpha'')
-    # M_nc = pi rho b^2 (b a h_down'' - U b (1/2 - a) alpha' - b^2 (1/8 + a^2) alpha'')
-    Ma[:, 0, 0] = -pr * b**2 * am
-    Ma[:, 0, 1] = -pr * b**3 * a * am
-    Ma[:, 1, 0] = -pr * b**3 * a * am
-    Ma[:, 1, 1] = -pr * b**4 * (0.125 + a**2) * am
-    Da[:, 0, 1] = pr * b**2 * U * am
-    Da[:, 1, 1] = -pr * b**3 * U * (0.5 - a) * am
+    Ma, Da = apparent_mass(b, a, U, rho, am_scale)
     # circulatory: Q = C [h_down' + U alpha + b (1/2 - a) alpha'] -> L_c = cla rho U b Q; the
     # moment about the elastic axis is b (a + 1/2) L_c with the lift at the quarter chord, the
     # drag D = (Cd_a / Cl_a) L_c
@@ -311,23 +186,6 @@ def section_matrices(b, a, U, C, rho, cla=2 * np.pi, cda=0.0, am_scale=1.0, ac_s
     not depend on ``C`` are :func:`section_parts`.
     """
     return section_parts(b, a, U, rho, cla, cda, am_scale, ac_shift, steady).matrices(C)
-
-
-def section_map(sections: AeroSections, flow: SectionFlow) -> sp.csr_matrix:
-    """Sparse (3 ns, n_dof) map from structural DOFs to ``(h, alpha, s)`` of every section."""
-    ns = sections.n_sections
-    rows = np.repeat(np.arange(3 * ns), 3)
-    cols = np.empty((ns, 3, 3), dtype=np.int64)
-    base = 6 * np.arange(ns)[:, None]
-    cols[:, 0, :] = base + np.arange(3)  # e1 . u
-    cols[:, 1, :] = base + 3 + np.arange(3)  # e2 . theta
-    cols[:, 2, :] = base + np.arange(3)  # e3 . u
-    vals = np.stack([flow.e1, flow.e2, flow.e3], axis=1)  # (ns, 3, 3)
-    E = sp.csr_matrix((vals.ravel(), (rows, cols.ravel())), shape=(3 * ns, 6 * ns))
-    mm = sp.csr_matrix(sections.motion_map)
-    if mm.shape[0] != 6 * ns:
-        raise InputError("sections.motion_map", mm.shape, f"{6 * ns} rows (6 per section)")
-    return (E @ mm).tocsr()
 
 
 def mean_coefficients(sections: AeroSections, alpha: np.ndarray):
@@ -383,11 +241,15 @@ class StripAero:
     flow : the section flow.  P : (3 ns, n_dof) section-motion map.  width : strip widths (m).
     cla, cda : slopes used (1/rad).  steady : mean ``(Cl0, Cd0, Cm0)`` at the strips' angles of
     attack with ``options.steady_loads``, else None.
+    circulation : ``k -> C(k)`` (vectorized), exact Theodorsen by default; e.g.
+        :func:`~windflutter.aero.theodorsen.jones` or a :class:`~windflutter.aero.theodorsen.RogerRFA`
+        for p-k with the rational approximation a state-space operator realises.
     """
 
     sections: AeroSections
     op: OperatingPoint
     options: AeroOptions = field(default_factory=AeroOptions)
+    circulation: Callable = theodorsen
 
     def __post_init__(self):
         self.flow = section_flow(self.sections, self.op)
@@ -402,9 +264,16 @@ class StripAero:
         else:
             self.am = np.ones_like(self.cla)
         self.steady = mean_coefficients(self.sections, self.flow.alpha) if self.options.steady_loads else None
-        ns = self.sections.n_sections
-        self._rows = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, :, None]) * np.ones((1, 1, 3), int)
-        self._cols = (3 * np.arange(ns)[:, None, None] + np.arange(3)[None, None, :]) * np.ones((1, 3, 1), int)
+
+    #: frequency domain only (C(k) frozen at the oscillation frequency): no state-space form
+    time_domain: ClassVar[bool] = False
+    n_states: ClassVar[int] = 0
+
+    def state_space(self):
+        """Not available: Theodorsen's C(k) has no finite state-space realisation (use
+        :class:`~windflutter.aero.operators.StateSpaceAero` with a rational C)."""
+        raise InputError("aero.model", f"thesis ({self.options.model})",
+                         "a state-space operator (UnsteadyOptions) for the first-order system")
 
     def reduced_frequency(self, omega: float) -> np.ndarray:
         """``k_j = omega b_j / U_j`` (-)."""
@@ -412,14 +281,12 @@ class StripAero:
 
     def section_blocks(self, omega: float):
         """(ns, 3, 3) Ma, Da, Ka blocks (times strip width) at circular frequency ``omega`` (rad/s)."""
-        Ma, Da, Ka = self.parts().matrices(theodorsen_c(self.reduced_frequency(omega)))
+        Ma, Da, Ka = self.parts().matrices(self.circulation(self.reduced_frequency(omega)))
         w = self.width[:, None, None]
         return Ma * w, Da * w, Ka * w
 
     def _assemble(self, blocks: np.ndarray) -> sp.csr_matrix:
-        n = 3 * self.sections.n_sections
-        B = sp.csr_matrix((blocks.ravel(), (self._rows.ravel(), self._cols.ravel())), shape=(n, n))
-        return (self.PT @ B @ self.P).tocsr()
+        return (self.PT @ block_diagonal(blocks) @ self.P).tocsr()
 
     def matrices(self, omega: float):
         """Global ``(Ma, Da, Ka)``, sparse complex (n_dof, n_dof), at frequency ``omega`` (rad/s)."""
@@ -455,7 +322,7 @@ class StripAero:
         A = np.einsum("ja,jam->jm", pt.row, R)
         B = np.concatenate([np.einsum("ja,jam->jm", pt.col_d, R), np.einsum("ja,jam->jm", pt.col_k, R)], axis=1)
         return ProjectedAero(Ma=Ma_p.astype(complex), Dnc=Dnc_p, A=A, B=B, qs=pt.circ * self.width,
-                             k_of=self.reduced_frequency)
+                             k_of=self.reduced_frequency, c_func=self.circulation)
 
 
 def _at_times(A: np.ndarray, G: np.ndarray) -> np.ndarray:
@@ -479,10 +346,11 @@ class ProjectedAero:
     B: np.ndarray
     qs: np.ndarray
     k_of: object
+    c_func: Callable = theodorsen
 
     def __call__(self, omega: float):
         m = self.Ma.shape[0]
-        cq = theodorsen_c(self.k_of(omega)) * self.qs
+        cq = self.c_func(self.k_of(omega)) * self.qs
         DK = _at_times(self.A, cq[:, None] * self.B)
         return self.Ma, self.Dnc + DK[:, :m], DK[:, m:]
 
@@ -493,7 +361,7 @@ class ProjectedAero:
         the two (m x ns)(ns x 2m) of :meth:`__call__` (the Newton steps of the p-k search).
         """
         m = self.Ma.shape[0]
-        cq = theodorsen_c(self.k_of(omega)) * self.qs
+        cq = self.c_func(self.k_of(omega)) * self.qs
         Bd, Bk = self.B[:, :m], self.B[:, m:]
         LK = _at_times(self.A, cq[:, None] * (lam * Bd + Bk))
         Dnc = self.Dnc

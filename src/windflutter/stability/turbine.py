@@ -236,7 +236,7 @@ class TurbineStability:
 
             am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds), mta_tol=o.mta_tol)
         elif skin is not None:
-            from windflutter.aero.skin import SkinAeroelasticModel
+            from windflutter.solve.skin_model import SkinAeroelasticModel
 
             am = SkinAeroelasticModel(**kw, parent=skin.parent)
         else:
