@@ -107,6 +107,23 @@ def test_deflection_off_is_the_seeds_linearization(iea22):
     assert abs(s1.Ksigma - Ks).max() > 1e-3 * abs(Ks).max()
 
 
+def test_three_blade_rotor_equals_one_blade(iea22):
+    # part="rotor" (3 blades on the clamped hub) in the axisymmetric inflow: every blade deflects
+    # like the single clamped blade, and the totals are the same (round-off: 1e-9)
+    out = {}
+    for part in ("blade", "rotor"):
+        fe, sec = build_model(iea22, MeshSettings(model="beam", part=part, n_span=10, pitch=math.radians(10.5)))
+        g = dataclasses.replace(rotor_geometry(iea22), wind_direction=rotor_geometry(iea22).shaft_axis)
+        out[part] = steady_state(fe, assemble(fe), sec, g, 15.0, 7.06 * RPM, n_blades=3)
+    one, three = out["blade"], out["rotor"]
+    assert three.tip_deflection.shape == (3, 3)
+    for b in range(3):
+        np.testing.assert_allclose(three.tip_deflection[b], one.tip_deflection[0], rtol=1e-9, atol=1e-9)
+        np.testing.assert_allclose(three.tip_rotation[b], one.tip_rotation[0], rtol=1e-9, atol=1e-12)
+    assert three.power == pytest.approx(one.power, rel=1e-9)
+    assert three.thrust == pytest.approx(one.thrust, rel=1e-9)
+
+
 def _table(rows, head):
     print("\n" + head)
     for r in rows:

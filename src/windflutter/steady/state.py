@@ -221,18 +221,23 @@ class _Static:
         axis = np.asarray(rotor.shaft_axis, float)
         axis = axis / np.linalg.norm(axis)
         hub = np.asarray(rotor.hub_center, float)
-        nodes = rotating_nodes(fe, group)
+        nodes = rotating_nodes(fe, group) if omega != 0 else np.zeros(0, dtype=np.int64)
         self.struct = struct
-        if seed:
+        if omega == 0:
+            self.f_cf = np.zeros(fe.n_dof)
+        elif seed:
             self.f_cf = omega**2 * centrifugal_load(struct.M, fe, nodes, axis, hub)
         else:
             self.f_cf = centrifugal_loads(fe, struct.M, nodes, omega * axis, hub)
         self.u_cf = static_solve(struct, self.f_cf)  # linear centrifugal displacement (the prestress)
         self._fac = None
         if not seed:
-            _, Kr1 = coriolis_and_softening(struct.M, translational_dofs(nodes), axis)
-            K_cf = geometric_stiffness(fe, self.u_cf)
-            K = (struct.Kr + struct.reduce(sp.csr_matrix(K_cf - omega**2 * Kr1))).tocsc()
+            K = struct.Kr
+            if omega != 0:
+                _, Kr1 = coriolis_and_softening(struct.M, translational_dofs(nodes), axis)
+                K_cf = geometric_stiffness(fe, self.u_cf)
+                K = K + struct.reduce(sp.csr_matrix(K_cf - omega**2 * Kr1))
+            K = sp.csc_matrix(K)
             from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 
             try:
