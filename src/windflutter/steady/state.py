@@ -188,20 +188,18 @@ class SteadyState:
 
 
 def _check_inputs(fe, struct, sections, rotor, wind_speed, omega, n_blades, air_density, pitch):
-    if rotor is None:
-        raise InputError("rotor_geometry", None, "a RotorGeometry (hub centre, shaft axis, wind direction)")
-    if not (np.isfinite(wind_speed) and wind_speed >= 0):
-        raise InputError("wind_speed", wind_speed, "a non-negative speed (m/s)")
-    if not np.isfinite(omega):
-        raise InputError("omega", omega, "a finite rotor speed (rad/s)")
-    if not (isinstance(n_blades, (int, np.integer)) and n_blades >= 1):
-        raise InputError("n_blades", n_blades, "a positive number of blades")
-    if not (np.isfinite(air_density) and air_density > 0):
-        raise InputError("air_density", air_density, "a positive density (kg/m^3)")
-    if not np.isfinite(pitch):
-        raise InputError("pitch", pitch, "a finite extra pitch (rad)")
-    if sections is None or sections.n_sections == 0:
-        raise InputError("sections", 0, "aerodynamic strips (a model with blades)")
+    checks = (
+        ("rotor_geometry", rotor, rotor is not None, "a RotorGeometry (hub centre, shaft axis, wind direction)"),
+        ("wind_speed", wind_speed, np.isfinite(wind_speed) and wind_speed >= 0, "a non-negative speed (m/s)"),
+        ("omega", omega, np.isfinite(omega), "a finite rotor speed (rad/s)"),
+        ("n_blades", n_blades, isinstance(n_blades, (int, np.integer)) and n_blades >= 1, "a positive number of blades"),
+        ("air_density", air_density, np.isfinite(air_density) and air_density > 0, "a positive density (kg/m^3)"),
+        ("pitch", pitch, np.isfinite(pitch), "a finite extra pitch (rad)"),
+        ("sections", 0, sections is not None and sections.n_sections > 0, "aerodynamic strips (a model with blades)"),
+    )
+    for field, value, ok, expected in checks:
+        if not ok:
+            raise InputError(field, value, expected)
     if sections.motion_map.shape != (6 * sections.n_sections, fe.n_dof) or struct.n_dof != fe.n_dof:
         raise InputError("sections.motion_map", sections.motion_map.shape,
                          f"({6 * sections.n_sections}, {fe.n_dof}): strips of this FE model")
