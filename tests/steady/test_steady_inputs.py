@@ -90,7 +90,8 @@ def test_bad_operating_point(kw, field):
 
 
 @pytest.mark.parametrize("opt, field", [({"tol": 0.0}, "steady.tol"), ({"max_iterations": 0}, "steady.max_iterations"),
-                                        ({"relaxation": 2.0}, "steady.relaxation"), ({"deflection": "yes"}, "steady.deflection"),
+                                        ({"relaxation": 2.0}, "steady.relaxation"),
+                                        ({"deflection": "yes"}, "steady.deflection"),
                                         ({"max_deflection": -1.0}, "steady.max_deflection")])
 def test_bad_options(opt, field):
     with pytest.raises(InputError) as e:

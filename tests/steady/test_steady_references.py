@@ -46,7 +46,8 @@ def _iea22_refs(source):
 
 
 def _solve(turbine, V, rpm, pitch_deg, n_span=30, **opts):
-    fe, sec = build_model(turbine, MeshSettings(model="beam", part="blade", n_span=n_span, pitch=math.radians(pitch_deg)))
+    ms = MeshSettings(model="beam", part="blade", n_span=n_span, pitch=math.radians(pitch_deg))
+    fe, sec = build_model(turbine, ms)
     g = rotor_geometry(turbine)
     g = dataclasses.replace(g, wind_direction=g.shaft_axis)  # no tilt
     return steady_state(fe, assemble(fe), sec, g, V, rpm * RPM, n_blades=turbine.n_blades,

@@ -203,7 +203,8 @@ def pitching_frames(sections: AeroSections, rotor: RotorGeometry) -> np.ndarray:
     frames = []
     for idx in blade_strips(sections):
         j = idx[0]
-        root = np.asarray(sections.origin[j], float) - 0.5 * float(sections.width[j]) * _unit(np.asarray(sections.e_span[j], float))
+        span = _unit(np.asarray(sections.e_span[j], float))
+        root = np.asarray(sections.origin[j], float) - 0.5 * float(sections.width[j]) * span
         z = _unit(root - hub)
         y_h = np.cross(z, _unit(n - (n @ z) * z))
         # the root chord is y_h turned by twist + pitch about -z: undo the structural twist

@@ -50,7 +50,8 @@ from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.aero.strip import OperatingPoint, SectionFlow
 from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import centrifugal_load, coriolis_and_softening, rotating_nodes, translational_dofs
-from windflutter.steady.geometry import Deflection, deflected_sections, deflection, pitching_frames, strip_motion, tip_motion
+from windflutter.steady.geometry import (Deflection, deflected_sections, deflection, pitching_frames, strip_motion,
+                                         tip_motion)
 from windflutter.steady.loads import (StripLoads, centrifugal_loads, nodal_loads, rotor_totals, second_order_moments,
                                       strip_loads)
 from windflutter.structure.prestress import geometric_stiffness, static_solve
@@ -192,7 +193,8 @@ def _check_inputs(fe, struct, sections, rotor, wind_speed, omega, n_blades, air_
         ("rotor_geometry", rotor, rotor is not None, "a RotorGeometry (hub centre, shaft axis, wind direction)"),
         ("wind_speed", wind_speed, np.isfinite(wind_speed) and wind_speed >= 0, "a non-negative speed (m/s)"),
         ("omega", omega, np.isfinite(omega), "a finite rotor speed (rad/s)"),
-        ("n_blades", n_blades, isinstance(n_blades, (int, np.integer)) and n_blades >= 1, "a positive number of blades"),
+        ("n_blades", n_blades, isinstance(n_blades, (int, np.integer)) and n_blades >= 1,
+         "a positive number of blades"),
         ("air_density", air_density, np.isfinite(air_density) and air_density > 0, "a positive density (kg/m^3)"),
         ("pitch", pitch, np.isfinite(pitch), "a finite extra pitch (rad)"),
         ("sections", 0, sections is not None and sections.n_sections > 0, "aerodynamic strips (a model with blades)"),
@@ -303,8 +305,8 @@ def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, o
             if den > 0:
                 w = float(np.clip(-w * float(r_prev @ dr) / den, 0.05, 1.5))
         u, r_prev = u + w * r, r
-        # the inflow angles need not be exact while the geometry still moves: bisection tolerance
-        # a thousandth of the last change (cheaper BEM), 1e-12 rad at the end
+        # the inflow angles need not be exact while the geometry still moves: BEM bisection to a
+        # thousandth of the last relative change (1e-5 .. 1e-12 rad; about 1e-9 rad at the end)
         new = _aero_at(u, sections, rotor, V, omega, n_blades, rho, pitch, options, True,
                        xtol=float(np.clip(1e-3 * res, 1e-12, 1e-5)))
         if np.abs(new.defl.shift).max() > options.max_deflection * radius:
@@ -312,7 +314,8 @@ def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, o
                              f"grows beyond {options.max_deflection:g} x the rotor radius after {it} iterations "
                              "(static aeroelastic divergence or an unstable rotating structure)")
         floor_f = 1e-9 * max(float(np.abs(aero.loads.loads).max(initial=0.0)), 1e-6)
-        res = max(_change(new.defl.motion, aero.defl.motion, floor_u), _change(new.loads.loads, aero.loads.loads, (floor_f,) * 2))
+        res = max(_change(new.defl.motion, aero.defl.motion, floor_u),
+                  _change(new.loads.loads, aero.loads.loads, (floor_f,) * 2))
         aero = new
         if res <= options.tol:
             return u, aero, it, res, True
