@@ -192,7 +192,7 @@ def _state(phi, sel, r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, t
 def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: float, omega: float,
                   n_blades: int, r_tip: float, r_hub: float = 0.0, dr=None, air_density: float = 1.225,
                   tip_loss: bool = True, hub_loss: bool = True, high_thrust: bool = True,
-                  xtol: float = 1e-12) -> BEMResult:
+                  xtol: float = 1e-12, normal_factor=None) -> BEMResult:
     """Steady BEM induction of every element (vectorized across elements).
 
     Parameters
@@ -209,6 +209,10 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
         totals (zeros).
     air_density : kg/m^3.  tip_loss, hub_loss, high_thrust : corrections on/off.
     xtol : bisection tolerance on ``phi`` (rad).
+    normal_factor : optional (n,) fraction in (0, 1] of the normal wind that each element sees in
+        its own plane, the cosine of its local cone angle (coned BEM: ``V_j = V cos gamma_j`` in
+        the velocity triangle, induction relative to ``V_j``); None: 1 (the rotor-plane BEM).
+        The totals stay normalized with ``wind_speed``.
 
     Returns
     -------
@@ -235,13 +239,19 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
         raise InputError("chord", "negative or non-finite", "chords >= 0 (m)")
     if len(polars) == 0 or idx.min() < 0 or idx.max() >= len(polars):
         raise InputError("airfoil", (int(idx.min()), int(idx.max())) if n else (), f"indices into {len(polars)} polars")
+    Vj = np.full(n, V)
+    if normal_factor is not None:
+        nf = np.broadcast_to(np.asarray(normal_factor, float), (n,))
+        if not np.all((nf > 0) & (nf <= 1 + 1e-12)):
+            raise InputError("normal_factor", "outside (0, 1]", "cosines of the local cone angles in (0, 1]")
+        Vj = V * nf
     polar = _PolarTable(polars, idx)
     a = np.zeros(n)
     ap = np.zeros(n)
-    phi = np.arctan2(np.full(n, V), Om * r)
+    phi = np.arctan2(Vj, Om * r)
     conv = np.zeros(n, bool)
     if V > 0 and Om > 0:
-        lam = Om * r / V
+        lam = Om * r / Vj
         sig = n_blades * chord / (2.0 * np.pi * r)
         args = (r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, tip_loss, hub_loss, high_thrust)
         todo = np.ones(n, bool)
@@ -275,7 +285,7 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
     alpha = phi - theta
     cl, cd = polar(alpha)
     F = prandtl_factor(r, phi, n_blades, r_tip, r_hub, tip_loss, hub_loss)
-    W = np.hypot(V * (1.0 - a), Om * r * (1.0 + ap))
+    W = np.hypot(Vj * (1.0 - a), Om * r * (1.0 + ap))
     q = 0.5 * air_density * W**2 * chord
     fn = q * (cl * np.cos(phi) + cd * np.sin(phi))
     ft = q * (cl * np.sin(phi) - cd * np.cos(phi))
@@ -326,7 +336,7 @@ def rotor_extent(sections: AeroSections, rotor: RotorGeometry) -> tuple[float, f
 
 def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed: float, omega: float,
                        n_blades: int | None = None, pitch: float = 0.0, air_density: float = 1.225,
-                       **kw) -> BEMResult:
+                       cone: bool = False, **kw) -> BEMResult:
     """:func:`bem_induction` for the strips of a built model (every strip of every blade).
 
     Parameters
@@ -335,6 +345,9 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
     n_blades : blades of the rotor (None: the blades present in ``sections``; give it for a
         one-blade model of a B-bladed rotor).  pitch : extra pitch on top of ``e_chord`` (rad).
     air_density : kg/m^3.  kw : passed to :func:`bem_induction` (corrections, tolerance).
+    cone : each strip sees the normal wind projected on its own plane, ``V cos gamma_j`` with the
+        local cone angle ``sin gamma_j = e_span . shaft`` (``normal_factor`` of
+        :func:`bem_induction`; the coned BEM of a deflected blade); False (default): ``V``.
 
     The wind component normal to the rotor plane, ``V |wind . shaft|``, drives the momentum
     balance (shaft tilt); radii, radial widths and tip/hub radius come from the strip geometry
@@ -356,5 +369,9 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
     theta = theta_from_geometry(sections, rotor, pitch)
     if not sections.polars:
         raise InputError("sections.polars", "[]", "airfoil polars for the BEM induction")
+    if cone:
+        span = np.asarray(sections.e_span, float)
+        sg = (span @ axis) / (np.linalg.norm(span, axis=1) * np.linalg.norm(axis))
+        kw["normal_factor"] = np.sqrt(np.maximum(1.0 - sg**2, 1e-12))
     return bem_induction(sections.radius, sections.chord, theta, sections.polars, sections.airfoil, vn, omega,
                          int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
