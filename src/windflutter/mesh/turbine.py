@@ -89,6 +89,8 @@ def build_model(turbine, settings: MeshSettings | None = None) -> tuple[FEModel,
     sections : :class:`AeroSections`, ``n_span`` strips per blade (empty for ``part="tower"``).
     """
     st = settings or MeshSettings()
+    if hasattr(turbine, "require"):
+        turbine.require(st.part)  # data the files lack (e.g. nacelle mass) refused by name, part by part
     b = _Builder()
     apex = turbine.rotor_apex
     shaft = turbine.nacelle.shaft_axis()

@@ -60,8 +60,7 @@ class FastFile:
         self.lines = read_text(self.path, what).splitlines()
         self._index: dict[str, int] = {}
         for i, ln in enumerate(self.lines):
-            s = ln.lstrip()
-            if not s or s[0] in "!#-=" or s.startswith("---"):
+            if _comment(ln):
                 continue
             m = _LINE.match(ln)
             if m:
@@ -186,8 +185,7 @@ class FastFile:
         k = _norm(key)
         out = []
         for i in range(start, len(self.lines)):
-            s = self.lines[i].lstrip()
-            if s and s[0] not in "!#=-":
+            if not _comment(self.lines[i]):
                 m = _LINE.match(self.lines[i])
                 if m and _norm(m.group(2)) == k:
                     out.append(i)
@@ -207,6 +205,12 @@ class FastFile:
     def value_at(self, i: int) -> str:
         """The value token of line ``i`` (unquoted)."""
         return _LINE.match(self.lines[i]).group(1).strip("\"'")
+
+
+def _comment(line: str) -> bool:
+    """Blank, ``!``/``#`` comment or ``----``/``====`` separator line."""
+    s = line.lstrip()
+    return not s or s[0] in "!#" or s.startswith("--") or s.startswith("==")
 
 
 def numbers(line: str) -> list[float] | None:

@@ -78,7 +78,7 @@ def load_openfast(path: Path, validate: bool = True) -> Turbine:
     missing += [] if aero == 2 else ["airfoil polars"]
     hub = Hub(mass=ed.hub_mass, inertia=np.diag([ed.hub_inertia, 0.0, 0.0]), diameter=2 * ed.hub_radius,
               precone=ed.precone, cg_offset=ed.hub_cm)
-    nac = Nacelle(mass=ed.nacelle_mass, inertia=np.diag([0.0, 0.0, ed.nacelle_yaw_inertia]), cg=ed.nacelle_cg,
+    nac = Nacelle(mass=ed.nacelle_mass, inertia=np.diag([0.0, 0.0, _yaw_about_cg(ed, notes)]), cg=ed.nacelle_cg,
                   overhang=ed.overhang, shaft_tilt=ed.shaft_tilt, tower_to_shaft=ed.tower_to_shaft,
                   generator_inertia=ed.generator_inertia, gear_ratio=ed.gear_ratio,
                   drivetrain_torsional_stiffness=ed.dt_stiffness, drivetrain_torsional_damping=ed.dt_damping,
@@ -97,6 +97,18 @@ def load_openfast(path: Path, validate: bool = True) -> Turbine:
     supp, supp_source = find_supplement(None, Path(fst.source))
     t = apply_supplement(t, None, supp, base_dir=Path(fst.source).parent, source=supp_source or fst.source)
     return finish_turbine(t, tuple(files) + ((supp_source,) if supp_source else ()))
+
+
+def _yaw_about_cg(ed: ElastoDynMain, notes: pl.Notes) -> float:
+    """``NacYIner`` is about the yaw (tower) axis; windflutter's nacelle inertia is about the
+    nacelle CG: subtract ``NacMass (NacCMxn^2 + NacCMyn^2)`` (parallel axes).  The NREL 5 MW gives
+    2.60789e6 - 240000 x 1.9^2 = 1.74149e6 kg m^2, the value of its HAWC2 model."""
+    arm2 = float(ed.nacelle_cg[0] ** 2 + ed.nacelle_cg[1] ** 2)
+    izz = ed.nacelle_yaw_inertia - ed.nacelle_mass * arm2
+    if izz < -1e-9 * max(ed.nacelle_yaw_inertia, 1.0):
+        raise InputError("NacYIner", ed.nacelle_yaw_inertia, f"a yaw inertia of at least NacMass (NacCMxn^2 + "
+                         f"NacCMyn^2) = {ed.nacelle_mass * arm2:.6g} kg m^2 (it is about the yaw axis)", ed.source)
+    return max(izz, 0.0)
 
 
 # ---------------------------------------------------------------------------------- aerodynamics

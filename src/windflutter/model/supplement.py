@@ -28,6 +28,7 @@ windflutter:
   precone_deg: 2.5
   rated_rotor_speed_rpm: 12.1
   rated_power_kw: 5000
+  blade_mass_factor: 1.04536      # scales the blade's 6x6 mass (whatever file gave it)
   operating_curve: {file: ../nrel5mw/NREL5MW_Oper_Onshore_Flexible_Discon.csv, format: openfast_csv}
   # or: {wind_speed: [...], rotor_speed_rpm: [...], pitch_deg: [...]}
   blade_beam: {file: ../nrel5mw/NRELOffshrBsline5MW_BeamDyn_Blade.dat, format: beamdyn,
@@ -54,7 +55,7 @@ from windflutter.model.operating import (
     read_hawc2_opt,
     read_openfast_steady_csv,
 )
-from windflutter.model.turbine import BladeDamping, Turbine, TowerDamping
+from windflutter.model.turbine import BeamProperties, BladeDamping, TowerDamping, Turbine
 from windflutter.model.units import DEG, PERCENT, RPM
 from windflutter.model.windio_common import inertia6
 from windflutter.model.yamlio import load_yaml_file
@@ -166,6 +167,13 @@ def _curves_and_tables(turbine: Turbine, supp: dict, r: Reader, fdir: Path, file
         if damping is not None:
             blade = dataclasses.replace(blade, damping=(blade.damping or BladeDamping()).merged(damping))
         turbine = dataclasses.replace(turbine, blade=blade)
+    if "blade_mass_factor" in supp:
+        f = r.number(supp, p, "blade_mass_factor", positive=True)
+        bp = turbine.blade.beam
+        if not isinstance(bp, BeamProperties):
+            raise InputError(f"{p}.blade_mass_factor", f, "a blade with 6x6 beam properties to scale", r.source)
+        bp = dataclasses.replace(bp, mass=bp.mass * f, source=f"{bp.source} x mass_factor {f}")
+        turbine = dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, beam=bp))
     return turbine
 
 
