@@ -250,10 +250,13 @@ class BladeDamping:
         if other is None:
             return self
         pick = (lambda a, b: np.where(np.isfinite(b), b, a))
+        keeps = (self.mu is not None and other.mu is None) or any(
+            np.any(np.isfinite(a) & ~np.isfinite(b)) for a, b in ((self.flap_ratio, other.flap_ratio),
+                                                                   (self.edge_ratio, other.edge_ratio)))
         return BladeDamping(mu=other.mu if other.mu is not None else self.mu,
                             flap_ratio=pick(self.flap_ratio, other.flap_ratio),
                             edge_ratio=pick(self.edge_ratio, other.edge_ratio),
-                            source="; ".join(x for x in (self.source, other.source) if x))
+                            source="; ".join(x for x in ((self.source if keeps else ""), other.source) if x))
 
 
 # ----------------------------------------------------------------------------------------- blade
