@@ -266,7 +266,9 @@ MISSING_HINTS = {
     "nacelle.mass": "a lumped nacelle mass (kg)",
     "tower": "a tower description",
     "airfoil polars": "airfoil polar tables (lift, drag and moment coefficients)",
+    "blade torsion": "a blade torsional stiffness (ElastoDyn blades have none: use BeamDyn, CompElast = 2)",
 }
+_NEEDED_FOR_AERODYNAMICS = ("airfoil polars", "blade torsion")
 _NEEDED_BY_PART = {
     "turbine": ("hub.mass", "nacelle.mass", "tower"),
     "tower": ("hub.mass", "nacelle.mass", "tower"),
@@ -356,10 +358,10 @@ class Turbine:
         """
         from windflutter.errors import InputError
 
-        need = _NEEDED_BY_PART.get(part, _NEEDED_BY_PART["turbine"]) + (("airfoil polars",) if aerodynamics else ())
+        need = _NEEDED_BY_PART.get(part, _NEEDED_BY_PART["turbine"]) + (_NEEDED_FOR_AERODYNAMICS if aerodynamics else ())
         for item in need:
             if item in self.missing:
-                what = "a stability analysis" if item == "airfoil polars" else f"the {part!r} model"
+                what = "a stability analysis" if item in _NEEDED_FOR_AERODYNAMICS else f"the {part!r} model"
                 raise InputError(item, None, f"{MISSING_HINTS.get(item, item)} for {what}: the turbine files give "
                                  "none; add it to the file or to a 'windflutter:' supplement "
                                  "(docs/turbine_input.md)", self.source)
