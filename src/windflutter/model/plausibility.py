@@ -247,9 +247,9 @@ def polar(alpha: np.ndarray, cl: np.ndarray, cd: np.ndarray, tc: float, field: s
     af = alpha_field or f"{field}.alpha"
     bounded_count(alpha.size, af, notes.source)
     raw = alpha / (np.pi / 180.0) if unit == "deg" else alpha
-    if unit == "deg" and np.max(np.abs(raw)) <= np.pi + 1e-9 and np.ptp(raw) > 1.0:
+    if unit == "deg" and np.max(np.abs(raw)) <= np.pi * (1 + 1e-5) and np.ptp(raw) > 1.0:  # 6-digit files
         notes.error(af, f"{raw.min():.4g} .. {raw.max():.4g}", "angles of attack in degrees (these look like radians)")
-    if unit == "rad" and np.max(np.abs(raw)) > 2 * np.pi + 1e-6:
+    if unit == "rad" and np.max(np.abs(raw)) > 2 * np.pi * (1 + 1e-5):
         notes.error(af, f"{raw.min():.4g} .. {raw.max():.4g}", "angles of attack in radians (these look like degrees)")
     if np.any(cd < -1e-6):
         i = int(np.argmax(cd < -1e-6))

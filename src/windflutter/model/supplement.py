@@ -228,6 +228,9 @@ def _tower_override(turbine: Turbine, tw: dict, r: Reader, q: str) -> Turbine:
     name = r.string(m, f"{q}.material", "name", default="tower_material")
     mat = IsotropicMaterial(E=E, nu=E / (2 * G) - 1.0, rho=r.number(m, f"{q}.material", "rho", positive=True),
                             name=name)
+    if np.any(2 * t[[0, -1]] >= d[[0, -1]]):
+        raise InputError(f"{q}.wall_thickness", t.tolist(), f"walls thinner than the radius ({(d / 2).tolist()} m)",
+                         r.source)
     s = np.linspace(0.0, 1.0, n)
     tower = Tower(s=s, z=z0 + h * s, outer_diameter=d[0] + (d[-1] - d[0]) * s,
                   layers=(TowerLayer(name="wall", material=name, thickness=t[0] + (t[-1] - t[0]) * s),),
