@@ -55,14 +55,19 @@ def _polar(d, name):
     return a["polars"][0]["re_sets"][0]
 
 
-def _k(d, key, f=None, i=None, v=None):
-    K = _ep(d)["stiffness_matrix"]
-    if key not in K:
-        K[key] = [0.0] * len(K["grid"])
+def _entry(block: dict, key: str, f=None, i=None, v=None):
+    """Scale column ``key`` of a windIO 6x6 block by ``f``, or set its entry ``i`` to ``v``
+    (a missing column is added as zeros)."""
+    if key not in block:
+        block[key] = [0.0] * len(block["grid"])
     if i is None:
-        K[key] = _scale(K[key], f)
+        block[key] = _scale(block[key], f)
     else:
-        K[key][i] = v
+        block[key][i] = v
+
+
+def _k(d, key, f=None, i=None, v=None):
+    _entry(_ep(d)["stiffness_matrix"], key, f, i, v)
 
 
 def _all_k(d, f):
@@ -73,13 +78,7 @@ def _all_k(d, f):
 
 
 def _inertia(d, key, f=None, i=None, v=None):
-    M = _ep(d)["inertia_matrix"]
-    if key not in M:
-        M[key] = [0.0] * len(M["grid"])
-    if i is None:
-        M[key] = _scale(M[key], f)
-    else:
-        M[key][i] = v
+    _entry(_ep(d)["inertia_matrix"], key, f, i, v)
 
 
 # -------------------------------------------------------------------- windIO v2 (NREL 5 MW file)

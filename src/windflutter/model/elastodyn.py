@@ -104,18 +104,8 @@ def read_elastodyn_blade_table(path: str | Path, apply_adjustment: bool = True,
     n = f.integer("NBlInpSt", lo=2)
     adj = {k: (f.number(k, 1.0, positive=True) if apply_adjustment else 1.0) for k in ("AdjBlMs", "AdjFlSt", "AdjEdSt")}
     cols, tab = _named_table(f, "BlFract", n, ("BlFract", "StrcTwst", "BMassDen", "FlpStff", "EdgStff"))
-    frac = tab[:, cols["BlFract"]]
-    _fractions(f, frac, "BlFract")
-    for key in ("BMassDen", "FlpStff", "EdgStff"):
-        v = tab[:, cols[key]]
-        if np.any(v <= 0):
-            i = int(np.argmax(v <= 0))
-            f.error(f"{key} at {pl.station(frac, i)}", float(v[i]), "a positive value")
-    flap = np.array([f.number(k, np.nan, nonneg=True) for k in ("BldFlDmp(1)", "BldFlDmp(2)")]) * PERCENT
-    edge = np.array([f.number("BldEdDmp(1)", np.nan, nonneg=True)]) * PERCENT
-    fin = np.isfinite(np.concatenate([flap, edge]))
-    if fin.any():
-        pl.modal_ratios(np.concatenate([flap, edge])[fin], f"{Path(f.source).name} BldFlDmp/BldEdDmp", notes)
+    frac = _positive_columns(f, tab, cols, "BlFract", ("BMassDen", "FlpStff", "EdgStff"))
+    flap, edge = _ratios(f, (("BldFlDmp(1)", "BldFlDmp(2)"), ("BldEdDmp(1)",)), "BldFlDmp/BldEdDmp", notes)
     damping = BladeDamping(flap_ratio=flap, edge_ratio=edge, source=f"ElastoDyn {Path(f.source).name} BldFlDmp/BldEdDmp")
     return ElastoDynBlade(
         frac=frac, pitch_axis=tab[:, cols["PitchAxis"]] if "PitchAxis" in cols else None,
@@ -166,18 +156,8 @@ def read_elastodyn_tower_table(path: str | Path, notes: pl.Notes | None = None) 
     n = f.integer("NTwInpSt", lo=2)
     adj = {k: f.number(k, 1.0, positive=True) for k in ("AdjTwMa", "AdjFASt", "AdjSSSt")}
     cols, tab = _named_table(f, "HtFract", n, ("HtFract", "TMassDen", "TwFAStif", "TwSSStif"))
-    frac = tab[:, cols["HtFract"]]
-    _fractions(f, frac, "HtFract")
-    for key in ("TMassDen", "TwFAStif", "TwSSStif"):
-        v = tab[:, cols[key]]
-        if np.any(v <= 0):
-            i = int(np.argmax(v <= 0))
-            f.error(f"{key} at {pl.station(frac, i)}", float(v[i]), "a positive value")
-    fa = np.array([f.number(k, np.nan, nonneg=True) for k in ("TwrFADmp(1)", "TwrFADmp(2)")]) * PERCENT
-    ss = np.array([f.number(k, np.nan, nonneg=True) for k in ("TwrSSDmp(1)", "TwrSSDmp(2)")]) * PERCENT
-    fin = np.isfinite(np.concatenate([fa, ss]))
-    if fin.any():
-        pl.modal_ratios(np.concatenate([fa, ss])[fin], f"{Path(f.source).name} TwrFADmp/TwrSSDmp", notes)
+    frac = _positive_columns(f, tab, cols, "HtFract", ("TMassDen", "TwFAStif", "TwSSStif"))
+    fa, ss = _ratios(f, (("TwrFADmp(1)", "TwrFADmp(2)"), ("TwrSSDmp(1)", "TwrSSDmp(2)")), "TwrFADmp/TwrSSDmp", notes)
     return ElastoDynTower(
         frac=frac, mass=tab[:, cols["TMassDen"]] * adj["AdjTwMa"], ei_fore_aft=tab[:, cols["TwFAStif"]] * adj["AdjFASt"],
         ei_side_side=tab[:, cols["TwSSStif"]] * adj["AdjSSSt"],
@@ -209,9 +189,27 @@ def _named_table(f: FastFile, first: str, n: int, required: tuple[str, ...]) -> 
     return cols, f.rows(i0 + 1, n, len(names), f"{first} table")
 
 
-def _fractions(f: FastFile, frac: np.ndarray, key: str) -> None:
+def _positive_columns(f: FastFile, tab: np.ndarray, cols: dict, frac_key: str, keys: tuple[str, ...]) -> np.ndarray:
+    """The fraction column (0 -> 1, non-decreasing) after checking that ``keys`` are positive at
+    every station."""
+    frac = tab[:, cols[frac_key]]
     if abs(frac[0]) > 1e-6 or abs(frac[-1] - 1.0) > 1e-6 or np.any(np.diff(frac) < 0):
-        f.error(key, frac.tolist()[:6], "fractions increasing from 0 to 1")
+        f.error(frac_key, frac.tolist()[:6], "fractions increasing from 0 to 1")
+    for key in keys:
+        v = tab[:, cols[key]]
+        if np.any(v <= 0):
+            i = int(np.argmax(v <= 0))
+            f.error(f"{key} at {pl.station(frac, i)}", float(v[i]), "a positive value")
+    return frac
+
+
+def _ratios(f: FastFile, groups, what: str, notes: pl.Notes) -> list[np.ndarray]:
+    """Modal damping ratios (fractions; NaN where absent) of each group of percent keys."""
+    out = [np.array([f.number(k, np.nan, nonneg=True) for k in g]) * PERCENT for g in groups]
+    allv = np.concatenate(out)
+    if np.isfinite(allv).any():
+        pl.modal_ratios(allv[np.isfinite(allv)], f"{Path(f.source).name} {what}", notes)
+    return out
 
 
 def diagonal_sections(diag: list) -> np.ndarray:

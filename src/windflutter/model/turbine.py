@@ -274,6 +274,8 @@ _NEEDED_BY_PART = {
     "tower": ("hub.mass", "nacelle.mass", "tower"),
     "rotor": ("hub.mass",),  # the hub node of the rotor model carries the hub mass (clamped)
     "blade": (),
+    "rotor_blade": (),  # blade 0 on a massless clamped hub
+    "support": ("nacelle.mass", "tower"),  # tower and nacelle with a massless hub node
 }
 
 

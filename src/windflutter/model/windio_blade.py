@@ -14,7 +14,7 @@ from windflutter.model import plausibility as pl
 from windflutter.model.airfoil_geom import orient_contour
 from windflutter.model.checks import Reader, join
 from windflutter.model.turbine import Airfoil, BeamProperties, Blade, BladeDamping, Polar
-from windflutter.model.windio_common import Keys, ref_axis
+from windflutter.model.windio_common import Keys, ref_axis, shape_and_axis
 
 
 # ------------------------------------------------------------------------------------- airfoils
@@ -81,12 +81,7 @@ def _angle_grid(r: Reader, d: dict, p: str, key: str) -> tuple[np.ndarray, np.nd
 def blade(b: dict, r: Reader, k: Keys, foils: dict, materials: dict, notes: pl.Notes) -> Blade:
     """``components.blade``: shape on the union of the axis, chord and twist grids, airfoil
     stack, layup (if any) and 6x6 properties (if any)."""
-    shape_p = f"components.blade.{k.blade_shape}"
-    shape = r.mapping(b, "components.blade", k.blade_shape)
-    if k.major >= 2:
-        ra_p, ra = "components.blade.reference_axis", r.mapping(b, "components.blade", "reference_axis")
-    else:
-        ra_p, ra = join(shape_p, "reference_axis"), r.mapping(shape, shape_p, "reference_axis")
+    shape_p, shape, ra_p, ra = shape_and_axis(b, r, k, "blade", k.blade_shape)
     s_ax, xyz_ax, arc_ax = ref_axis(ra, r, ra_p)
     if arc_ax[-1] <= 0:
         raise InputError(ra_p, "zero length", "a reference axis of positive length", r.source)

@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from windflutter.model.checks import Reader
+from windflutter.model.checks import Reader, join
 from windflutter.model.units import DEG, RPM
 
 
@@ -17,28 +17,13 @@ class Keys:
         self.__dict__.update(kw)
 
 
-V2 = Keys(
-    major=2,
-    blade_shape="outer_shape",
-    blade_struct="structure",
-    tower_shape="outer_shape",
-    tower_struct="structure",
-    nacelle="drivetrain",
-    angle=DEG,  # twist, cone, tilt, polar alpha, fibre orientation, control angles
-    speed=RPM,  # control rotor speeds
-    rthick_key="rthick",
-)
-V1 = Keys(
-    major=1,
-    blade_shape="outer_shape_bem",
-    blade_struct="internal_structure_2d_fem",
-    tower_shape="outer_shape_bem",
-    tower_struct="internal_structure_2d_fem",
-    nacelle="nacelle",
-    angle=1.0,
-    speed=1.0,
-    rthick_key="relative_thickness",
-)
+V2 = Keys(major=2, blade_shape="outer_shape", blade_struct="structure", tower_shape="outer_shape",
+          tower_struct="structure", nacelle="drivetrain", rthick_key="rthick",
+          angle=DEG,  # twist, cone, tilt, polar alpha, fibre orientation, control angles
+          speed=RPM)  # control rotor speeds
+V1 = Keys(**{**V2.__dict__, "major": 1, "blade_shape": "outer_shape_bem", "blade_struct": "internal_structure_2d_fem",
+             "tower_shape": "outer_shape_bem", "tower_struct": "internal_structure_2d_fem", "nacelle": "nacelle",
+             "rthick_key": "relative_thickness", "angle": 1.0, "speed": 1.0})  # radians and rad/s
 
 
 def ref_axis(d: dict, r: Reader, p: str) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -49,6 +34,17 @@ def ref_axis(d: dict, r: Reader, p: str) -> tuple[np.ndarray, np.ndarray, np.nda
     seg = np.linalg.norm(np.diff(xyz, axis=0), axis=1)
     arc = np.concatenate([[0.0], np.cumsum(seg)])
     return s, xyz, arc
+
+
+def shape_and_axis(comp: dict, r: Reader, k: Keys, name: str, shape_key: str) -> tuple[str, dict, str, dict]:
+    """A component's outer-shape block and reference axis with their paths: v2 keeps the axis
+    beside the shape (``components.NAME.reference_axis``), v1 inside it."""
+    cp = f"components.{name}"
+    shape_p = f"{cp}.{shape_key}"
+    shape = r.mapping(comp, cp, shape_key)
+    if k.major >= 2:
+        return shape_p, shape, f"{cp}.reference_axis", r.mapping(comp, cp, "reference_axis")
+    return shape_p, shape, join(shape_p, "reference_axis"), r.mapping(shape, shape_p, "reference_axis")
 
 
 def inertia6(v: np.ndarray) -> np.ndarray:

@@ -11,7 +11,7 @@ from windflutter.model import plausibility as pl
 from windflutter.model.checks import Reader, join
 from windflutter.model.turbine import ControlSettings, Hub, IsotropicMaterial, Nacelle, OrthotropicMaterial, Tower, TowerLayer
 from windflutter.model.units import DEG, RPM
-from windflutter.model.windio_common import Keys, inertia6, ref_axis
+from windflutter.model.windio_common import Keys, inertia6, ref_axis, shape_and_axis
 
 
 # ------------------------------------------------------------------------------------ materials
@@ -54,12 +54,7 @@ def _scalar_or_first(r: Reader, m: dict, p: str, key: str, positive: bool = True
 
 # ---------------------------------------------------------------------------------------- tower
 def tower(t: dict, r: Reader, k: Keys, materials: dict) -> Tower:
-    shape_p = f"components.tower.{k.tower_shape}"
-    shape = r.mapping(t, "components.tower", k.tower_shape)
-    if k.major >= 2:
-        ra_p, ra = "components.tower.reference_axis", r.mapping(t, "components.tower", "reference_axis")
-    else:
-        ra_p, ra = join(shape_p, "reference_axis"), r.mapping(shape, shape_p, "reference_axis")
+    shape_p, shape, ra_p, ra = shape_and_axis(t, r, k, "tower", k.tower_shape)
     s_ax, xyz, _ = ref_axis(ra, r, ra_p)
     dg, dv = r.grid_values(shape, shape_p, "outer_diameter", positive=True)
     st_p = f"components.tower.{k.tower_struct}"
@@ -94,21 +89,30 @@ def tower(t: dict, r: Reader, k: Keys, materials: dict) -> Tower:
 # ---------------------------------------------------------------------------------- hub/nacelle
 def hub(h: dict, r: Reader, k: Keys, data: dict) -> Hub:
     p = "components.hub"
-    mass = np.nan
-    inertia = np.full((3, 3), np.nan)
-    ep = h.get("elastic_properties") or h.get("elastic_properties_mb")
-    if isinstance(ep, dict):
-        q = join(p, "elastic_properties" if "elastic_properties" in h else "elastic_properties_mb")
-        mkey = "mass" if "mass" in ep else "system_mass"
-        if mkey in ep:
-            mass = r.number(ep, q, mkey, positive=True)
-        ikey = "inertia" if "inertia" in ep else "system_inertia"
-        if ikey in ep:
-            inertia = inertia6(r.array(ep[ikey], join(q, ikey), min_len=6)[:6])
+    key = "elastic_properties" if "elastic_properties" in h else "elastic_properties_mb"
+    mass, inertia, _ = lumped(h.get(key), r, join(p, key))
     return Hub(
         mass=float(mass), inertia=inertia, diameter=r.number(h, p, "diameter", positive=True),
         precone=r.number(h, p, "cone_angle") * k.angle, cg_offset=0.0,
     )
+
+
+def lumped(ep, r: Reader, p: str) -> tuple[float, np.ndarray, np.ndarray]:
+    """(mass, 3x3 inertia, CG) of an ``elastic_properties(_mb)`` block (windIO v2 ``mass``,
+    ``inertia``, ``location``; v1 ``system_mass``, ``system_inertia``, ``system_center_mass``);
+    NaN where absent."""
+    mass, inertia, cg = np.nan, np.full((3, 3), np.nan), np.full(3, np.nan)
+    if not isinstance(ep, dict):
+        return mass, inertia, cg
+    keys = {k: (k if k in ep else alt) for k, alt in (("mass", "system_mass"), ("inertia", "system_inertia"),
+                                                      ("location", "system_center_mass"))}
+    if keys["mass"] in ep:
+        mass = r.number(ep, p, keys["mass"], positive=True)
+    if keys["inertia"] in ep:
+        inertia = inertia6(r.array(ep[keys["inertia"]], join(p, keys["inertia"]), min_len=6)[:6])
+    if keys["location"] in ep:
+        cg = r.array(ep[keys["location"]], join(p, keys["location"]), min_len=3)[:3]
+    return mass, inertia, cg
 
 
 def nacelle(comps: dict, r: Reader, k: Keys, tower: Tower) -> Nacelle:
@@ -135,19 +139,7 @@ def nacelle(comps: dict, r: Reader, k: Keys, tower: Tower) -> Nacelle:
     # Along-shaft overhang (OpenFAST sign: negative upwind); Twr2Shft from the apex height.
     overhang = -overhang_h / np.cos(tilt)
     tower_to_shaft = dz - overhang_h * np.tan(tilt)
-    mass = np.nan
-    inertia = np.full((3, 3), np.nan)
-    cg = np.full(3, np.nan)
-    if isinstance(ep, dict):
-        mkey = "mass" if "mass" in ep else "system_mass"
-        if mkey in ep:
-            mass = r.number(ep, ep_p, mkey, positive=True)
-        ikey = "inertia" if "inertia" in ep else "system_inertia"
-        if ikey in ep:
-            inertia = inertia6(r.array(ep[ikey], join(ep_p, ikey), min_len=6)[:6])
-        ckey = "location" if "location" in ep else "system_center_mass"
-        if ckey in ep:
-            cg = r.array(ep[ckey], join(ep_p, ckey), min_len=3)[:3]
+    mass, inertia, cg = lumped(ep, r, ep_p)
     if not isinstance(gear, (int, float)):
         gear = 1.0
     return Nacelle(
