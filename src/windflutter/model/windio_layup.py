@@ -19,15 +19,22 @@ from windflutter.model.windio_common import explicit
 
 
 # ----------------------------------------------------------------------------- layup, v2 anchors
-def layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup:
+def _anchors(st: dict, r: Reader, sp: str) -> dict[str, tuple[dict, str]]:
+    """Every anchor (structure-level and per web) by name, with its path."""
     anchors: dict[str, tuple[dict, str]] = {}
     for i, a in enumerate(r.seq(st, sp, "anchors", default=[])):
         anchors[r.string(a, f"{sp}.anchors[{i}]", "name")] = (a, f"{sp}.anchors[{i}]")
-    webs_in = r.seq(st, sp, "webs", default=[])
-    for i, w in enumerate(webs_in):
+    for i, w in enumerate(r.seq(st, sp, "webs", default=[])):
         for j, a in enumerate(r.seq(w, f"{sp}.webs[{i}]", "anchors", default=[])):
             q = f"{sp}.webs[{i}].anchors[{j}]"
             anchors[r.string(a, q, "name")] = (a, q)
+    return anchors
+
+
+def layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup:
+    """windIO 2.x layup: webs and layers whose arcs are explicit or anchor references (followed
+    recursively; ``width``-defined placeholder handles recomputed from the contour)."""
+    anchors = _anchors(st, r, sp)
 
     def resolve(spec: Any, path: str, depth: int = 0) -> tuple[np.ndarray, np.ndarray]:
         if depth > 10:
@@ -68,19 +75,8 @@ def layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup:
         base = np.interp(g, go, ao)
         return g, np.clip(base + wnd if handle == "end_nd_arc" else base - wnd, 0.0, 1.0)
 
-    webs = []
-    for i, w in enumerate(webs_in):
-        q = f"{sp}.webs[{i}]"
-        name = r.string(w, q, "name")
-        g1, a1 = resolve(r.get(w, q, "start_nd_arc"), join(q, "start_nd_arc"))
-        g2, a2 = resolve(r.get(w, q, "end_nd_arc"), join(q, "end_nd_arc"))
-        s = np.unique(np.concatenate([g1, g2]))
-        s0 = r.number(w, q, "start_nd_grid", default=float(s[0]))
-        s1 = r.number(w, q, "end_nd_grid", default=float(s[-1]))
-        webs.append(Web(name=name, s=s, start_arc=np.interp(s, g1, a1), end_arc=np.interp(s, g2, a2),
-                        s_start=s0, s_end=s1))
+    webs = _webs_v2(st, r, sp, resolve)
     web_names = {w.name for w in webs}
-
     layers = []
     for i, lay in enumerate(r.seq(st, sp, "layers")):
         q = f"{sp}.layers[{i}]"
@@ -102,6 +98,19 @@ def layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup:
             s_end=r.number(lay, q, "end_nd_grid", default=float(tg[-1])),
         ))
     return Layup(webs=tuple(webs), layers=tuple(layers))
+
+
+def _webs_v2(st: dict, r: Reader, sp: str, resolve) -> list[Web]:
+    webs = []
+    for i, w in enumerate(r.seq(st, sp, "webs", default=[])):
+        q = f"{sp}.webs[{i}]"
+        g1, a1 = resolve(r.get(w, q, "start_nd_arc"), join(q, "start_nd_arc"))
+        g2, a2 = resolve(r.get(w, q, "end_nd_arc"), join(q, "end_nd_arc"))
+        s = np.unique(np.concatenate([g1, g2]))
+        webs.append(Web(name=r.string(w, q, "name"), s=s, start_arc=np.interp(s, g1, a1), end_arc=np.interp(s, g2, a2),
+                        s_start=r.number(w, q, "start_nd_grid", default=float(s[0])),
+                        s_end=r.number(w, q, "end_nd_grid", default=float(s[-1]))))
+    return webs
 
 
 # ------------------------------------------------------------------------------------- layup, v1
