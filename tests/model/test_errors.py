@@ -137,15 +137,22 @@ def test_missing_file_and_unknown_name(tmp_path):
     assert "nrel5mw" in str(exc.value)
 
 
-def test_missing_lumped_masses_are_an_error(tmp_path):
-    """A windIO file without hub/nacelle masses and no supplement must not silently give zero."""
+def test_missing_lumped_masses_are_recorded_and_refused_for_the_turbine(tmp_path):
+    """A windIO file without hub/nacelle masses and no supplement must not silently give zero:
+    it loads (a blade alone needs no masses), records what is missing, and every model that
+    needs the masses is refused naming the field."""
     d = v2()
     d.pop("windflutter")
     p = tmp_path / "no_masses.yaml"
     p.write_text(yaml.safe_dump(d))
-    with pytest.raises(InputError) as exc:
-        load_turbine(p)
-    assert exc.value.field == "components.hub.mass"
+    t = load_turbine(p)
+    assert {"hub.mass", "nacelle.mass"} <= set(t.missing)
+    assert not np.isfinite(t.hub.mass)
+    t.require("blade")
+    for part in ("turbine", "tower", "rotor"):
+        with pytest.raises(InputError) as exc:
+            t.require(part)
+        assert exc.value.field == "hub.mass" and "no_masses.yaml" in str(exc.value)
 
 
 def test_supplement_errors_name_the_block(tmp_path):
@@ -174,7 +181,7 @@ def test_indefinite_nacelle_inertia_is_rejected(turbine):
     import numpy as np
 
     from windflutter.errors import InputError
-    from windflutter.model.windio import _check_rigid_body_inertias
+    from windflutter.model.consistency import rigid_body_inertias as _check_rigid_body_inertias
 
     t = turbine("nrel5mw")
     assert np.linalg.eigvalsh(t.nacelle.inertia).min() >= 0.0  # the bundled file is repaired

@@ -62,6 +62,8 @@ def build_model(turbine, settings: MeshSettings | None = None):
     sections : :class:`AeroSections`, ``n_span`` strips per blade (empty without blades).
     """
     st = settings or MeshSettings()
+    if hasattr(turbine, "require"):  # refuse a turbine file that lacks what this part needs
+        turbine.require(st.part)
     b = ModelBuilder()
     blade_ids = _blade_ids(turbine, st.part)
     roots = add_blades(b, turbine, st, blade_ids) if len(blade_ids) else []

@@ -1,15 +1,18 @@
 """windflutter.model: turbine description (dataclasses) and readers.
 
-``load_turbine(path_or_name)`` reads windIO v1/v2 files, the seed thesis turbines and the bundled
-reference turbines; see ``docs/turbine_input.md``.
+``load_turbine(path_or_name)`` reads windIO v1/v2 files, OpenFAST decks (``.fst``), HAWC2 models
+(``.htc``), the seed thesis turbines and the bundled reference turbines, choosing the reader by
+file type (:mod:`windflutter.model.registry`); see ``docs/turbine_input.md``.
 """
 
 from windflutter.model.beamprops import blade_beam_sections, tower_beam_sections
 from windflutter.model.bundled import bundled_turbines
+from windflutter.model.registry import TurbineReader, load_turbine, readers, register_reader
 from windflutter.model.turbine import (
     Airfoil,
     BeamProperties,
     Blade,
+    BladeDamping,
     ControlSettings,
     Hub,
     Layer,
@@ -17,14 +20,14 @@ from windflutter.model.turbine import (
     Nacelle,
     OperatingCurve,
     Tower,
+    TowerDamping,
     TowerLayer,
     Turbine,
     Web,
 )
-from windflutter.model.windio import load_turbine
 
 __all__ = [
-    "Airfoil", "BeamProperties", "Blade", "ControlSettings", "Hub", "Layer", "Layup", "Nacelle",
-    "OperatingCurve", "Tower", "TowerLayer", "Turbine", "Web", "load_turbine", "bundled_turbines",
-    "blade_beam_sections", "tower_beam_sections",
+    "Airfoil", "BeamProperties", "Blade", "BladeDamping", "ControlSettings", "Hub", "Layer", "Layup", "Nacelle",
+    "OperatingCurve", "Tower", "TowerDamping", "TowerLayer", "Turbine", "TurbineReader", "Web", "load_turbine",
+    "bundled_turbines", "readers", "register_reader", "blade_beam_sections", "tower_beam_sections",
 ]

@@ -46,3 +46,29 @@ def arc_at_chord_x(x: np.ndarray, y: np.ndarray, xc: float | np.ndarray, side: s
 def perimeter(x: np.ndarray, y: np.ndarray) -> float:
     """Contour length normalised by chord (-)."""
     return float(np.sum(np.hypot(np.diff(x), np.diff(y))))
+
+
+def orient_contour(x: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Order a contour TE -> suction side (y > 0) -> LE -> pressure side -> TE.
+
+    windIO fixes nondimensional arc 0 at the trailing edge, increasing over the suction side, but
+    some files (e.g. the NREL 5 MW DU airfoils in WISDEM's examples) list the pressure side first.
+    A contour traversed TE -> upper -> LE -> lower -> TE encloses positive signed area
+    (counter-clockwise), so the arrays are reversed when the signed area is negative.
+    """
+    area = 0.5 * np.sum(x[:-1] * y[1:] - x[1:] * y[:-1])
+    if area < 0:
+        return x[::-1].copy(), y[::-1].copy()
+    return x, y
+
+
+def thickness_ratio(x: np.ndarray, y: np.ndarray) -> float:
+    """Largest thickness of a normalised contour (t/c), from its two sides sampled at equal x."""
+    i = le_index(x)
+    xs, ys = x[: i + 1][::-1], y[: i + 1][::-1]
+    xp, yp = x[i:], y[i:]
+    if xs.size < 2 or xp.size < 2:
+        return float(np.ptp(y))
+    xg = np.linspace(max(xs.min(), xp.min()), min(xs.max(), xp.max()), 201)
+    o_s, o_p = np.argsort(xs, kind="stable"), np.argsort(xp, kind="stable")
+    return float(np.max(np.interp(xg, xs[o_s], ys[o_s]) - np.interp(xg, xp[o_p], yp[o_p])))

@@ -25,14 +25,11 @@ Conventions
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import numpy as np
 
 from windflutter.errors import InputError
+from windflutter.model.blade import PERM_BEAMDYN_TO_SECTION
 from windflutter.model.turbine import BeamProperties, IsotropicMaterial, OrthotropicMaterial, Turbine
-
-PERM_BEAMDYN_TO_SECTION = np.array([2, 0, 1, 5, 3, 4])
 
 
 def beamdyn_to_section(K: np.ndarray, M: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -106,128 +103,6 @@ def repair_precomp_inertia(M: np.ndarray, field: str, source: str | None = None)
     return out
 
 
-def check_section_mass(M: np.ndarray, s: np.ndarray, field: str, source: str | None = None) -> None:
-    """Raise :class:`InputError` if any (6, 6) section mass matrix (any order) is not symmetric
-    positive semi-definite (tolerance 1e-9 of its largest entry), naming the station."""
-    for k in range(M.shape[0]):
-        A = M[k]
-        scale = max(np.abs(A).max(), 1e-300)
-        lam = np.linalg.eigvalsh(0.5 * (A + A.T)).min()
-        if np.abs(A - A.T).max() > 1e-9 * scale or lam < -1e-9 * scale:
-            raise InputError(f"{field} at span {float(s[k]):.4f}", f"smallest eigenvalue {lam:.4g}",
-                             "a positive semi-definite section mass matrix: mass > 0, i_edge, i_flap >= 0, "
-                             "i_cp^2 <= i_edge i_flap, i_plr = i_edge + i_flap (fix the file's inertia_matrix)",
-                             source)
-
-
-# ---------------------------------------------------------------------------------- file readers
-def _numbers(line: str) -> list[float] | None:
-    try:
-        return [float(t) for t in line.replace(",", " ").split()]
-    except ValueError:
-        return None
-
-
-def read_beamdyn_blade(path: str | Path, twist_deg_by_eta: tuple[np.ndarray, np.ndarray] | None = None,
-                       length: float = float("nan")) -> BeamProperties:
-    """Read a BeamDyn blade file (``station_total`` blocks of eta + 6x6 K + 6x6 M).
-
-    Parameters
-    ----------
-    path : BeamDyn blade file.
-    twist_deg_by_eta : optional (eta, twist_deg) of the BeamDyn main file key points, stored in the
-        result (converted to rad); zeros otherwise.
-    length : blade length (m) for :attr:`BeamProperties.length`.
-    """
-    p = Path(path)
-    lines = p.read_text().splitlines()
-    n_st = None
-    start = None
-    for i, ln in enumerate(lines):
-        if "station_total" in ln:
-            n_st = int(ln.split()[0])
-        if "DISTRIBUTED PROPERTIES" in ln.upper():
-            start = i + 1
-            break
-    if n_st is None or start is None:
-        raise InputError("BeamDyn blade file", str(p), "a BeamDyn blade input file (station_total, DISTRIBUTED "
-                         "PROPERTIES)")
-    rows = [r for r in (_numbers(ln) for ln in lines[start:]) if r]
-    eta, K, M = [], [], []
-    i = 0
-    while i < len(rows) and len(eta) < n_st:
-        if len(rows[i]) == 1:
-            eta.append(rows[i][0])
-            K.append(rows[i + 1:i + 7])
-            M.append(rows[i + 7:i + 13])
-            i += 13
-        else:
-            i += 1
-    if len(eta) != n_st:
-        raise InputError("BeamDyn blade file", str(p), f"{n_st} stations, found {len(eta)}")
-    eta_a = np.array(eta)
-    Ks, Ms = beamdyn_to_section(np.array(K, dtype=float), np.array(M, dtype=float))
-    tw = np.zeros_like(eta_a)
-    if twist_deg_by_eta is not None:
-        tw = np.radians(np.interp(eta_a, *twist_deg_by_eta))
-    return BeamProperties(s=eta_a, stiffness=Ks, mass=Ms, twist=tw, length=float(length),
-                          source=f"BeamDyn {p.name}")
-
-
-def read_elastodyn_blade(path: str | Path, length: float, apply_mass_adjustment: bool = True,
-                         GJ: np.ndarray | None = None, EA: np.ndarray | None = None) -> BeamProperties:
-    """ElastoDyn blade file -> uncoupled sections (EA and GJ are not in ElastoDyn: pass them or
-    they default to 1e3 x EI_max-scale placeholders flagged in ``source``).
-
-    Mass per length is multiplied by ``AdjBlMs`` and the EIs by ``AdjFlSt``/``AdjEdSt`` when
-    ``apply_mass_adjustment`` (Jonkman 2009's 17,740 kg includes AdjBlMs = 1.04536).
-    """
-    p = Path(path)
-    adj, tab = _elastodyn_table(p, ("AdjBlMs", "AdjFlSt", "AdjEdSt"), "NBlInpSt", "BlFract", 6)
-    frac, _, twist, mden, flp, edg = tab.T
-    if not apply_mass_adjustment:
-        adj = {k: 1.0 for k in adj}
-    m = mden * adj["AdjBlMs"]
-    EIflap, EIedge = flp * adj["AdjFlSt"], edg * adj["AdjEdSt"]
-    big = 1e3 * max(EIflap.max(), EIedge.max())
-    EA_ = EA if EA is not None else np.full_like(m, big)
-    GJ_ = GJ if GJ is not None else np.full_like(m, big)
-    # section y is the flapwise *direction*: bending about y is edgewise, about z flapwise
-    Ks = _diagonal_sections([EA_, big, big, GJ_, EIedge, EIflap])
-    Ms = _diagonal_sections([m, m, m, 0.0, 0.0, 0.0])
-    src = f"ElastoDyn {p.name} (AdjBlMs={adj['AdjBlMs']})" + ("" if EA is not None else "; EA/GJ rigid placeholders")
-    return BeamProperties(s=frac, stiffness=Ks, mass=Ms, twist=np.radians(twist), length=float(length), source=src)
-
-
-def _elastodyn_table(p: Path, adj_keys: tuple[str, ...], count_key: str, header: str,
-                     n_col: int) -> tuple[dict[str, float], np.ndarray]:
-    """Adjustment factors (``adj_keys``, default 1) and the distributed-property table of an
-    ElastoDyn blade/tower file: ``count_key`` rows of ``n_col`` numbers, starting two lines
-    below the column-header line containing ``header`` (names line, units line)."""
-    lines = p.read_text().splitlines()
-    adj = dict.fromkeys(adj_keys, 1.0)
-    n_st = None
-    for ln in lines:
-        tok = ln.split()
-        if len(tok) >= 2 and tok[1] in adj:
-            adj[tok[1]] = float(tok[0])
-        if len(tok) >= 2 and tok[1] == count_key:
-            n_st = int(tok[0])
-    i0 = next((i for i, ln in enumerate(lines) if header in ln), None)
-    if n_st is None or i0 is None:
-        raise InputError("ElastoDyn file", str(p), f"an ElastoDyn input file with {count_key} and a {header} table")
-    rows = [_numbers(ln) for ln in lines[i0 + 2:i0 + 2 + n_st]]
-    if len(rows) != n_st or any(r is None or len(r) < n_col for r in rows):
-        raise InputError(f"ElastoDyn file {header} table", str(p), f"{n_st} rows of {n_col} numbers")
-    return adj, np.array([r[:n_col] for r in rows])
-
-
-def _diagonal_sections(diag: list) -> np.ndarray:
-    """(n, 6, 6) diagonal matrices from six entries, each a scalar or an (n,) array."""
-    d = np.broadcast_arrays(*[np.asarray(v, dtype=float) for v in diag])
-    return np.einsum("jn,jk->njk", np.array(d), np.eye(6))
-
-
 # ------------------------------------------------------------------------------------- functions
 def blade_beam_sections(turbine: Turbine, source: str = "auto") -> BeamProperties:
     """Blade 6x6 properties about the reference axis in the BeamSection convention.
@@ -292,21 +167,3 @@ def tower_beam_sections(turbine: Turbine) -> BeamProperties:
         outside = outside + lay.thickness
     return BeamProperties(s=tw.s, stiffness=K, mass=M, twist=np.zeros(n), length=tw.height,
                           source="thin-walled tube from outer_diameter/layers")
-
-
-def read_elastodyn_tower(path: str | Path, height: float) -> BeamProperties:
-    """ElastoDyn tower file -> uncoupled sections (mass per length x AdjTwMa, fore-aft and
-    side-to-side EI x AdjFASt/AdjSSSt; EA, GJ and shear rigid placeholders).  Section frame as
-    :func:`tower_beam_sections`: y = fore-aft direction (global x), so bending about z is fore-aft.
-    """
-    p = Path(path)
-    adj, tab = _elastodyn_table(p, ("AdjTwMa", "AdjFASt", "AdjSSSt"), "NTwInpSt", "HtFract", 4)
-    frac, mden, fa, ss = tab.T
-    m = mden * adj["AdjTwMa"]
-    EIfa, EIss = fa * adj["AdjFASt"], ss * adj["AdjSSSt"]
-    big = 1e3 * EIfa.max()
-    n = m.size
-    K = _diagonal_sections([big, big, big, big, EIss, EIfa])
-    M = _diagonal_sections([m, m, m, 0.0, 0.0, 0.0])
-    return BeamProperties(s=frac, stiffness=K, mass=M, twist=np.zeros(n), length=float(height),
-                          source=f"ElastoDyn {p.name}; EA/GJ/shear rigid placeholders")

@@ -19,6 +19,9 @@ _BUNDLED = {
     "iea10mw_v1": "turbines/windIO_v1/IEA-10-198-RWT.yaml",
     "seed5mw": "seed/seed5mw.yaml",
     "seed20mw": "seed/seed20mw.yaml",
+    "nrel5mw_openfast": "nrel5mw/NREL-5MW_Onshore.fst",
+    "nrel5mw_hawc2": "nrel5mw/hawc2/htc/NREL_5MW.htc",
+    "iea15mw_openfast": "iea15mw/openfast/IEA-15-240-RWT-Monopile/IEA-15-240-RWT-Monopile.fst",
 }
 
 

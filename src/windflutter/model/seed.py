@@ -21,7 +21,7 @@ import yaml
 
 from windflutter.model.airfoil_geom import arc_at_chord_x
 from windflutter.model.bundled import DATA_DIR
-from windflutter.model.windio import _orient_contour
+from windflutter.model.airfoil_geom import orient_contour as _orient_contour
 from windflutter.model.yamlio import load_yaml_file
 
 # ============================================================================ 20 MW (thesis ch. 5)

@@ -27,9 +27,18 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.integrate import trapezoid  # numpy < 2 (pyNastran env) has no np.trapezoid
 
 from windflutter.aero.sections import Polar
+from windflutter.model.blade import (
+    Airfoil,
+    BeamProperties,
+    Blade,
+    BladeDamping,
+    Layer,
+    Layup,
+    Web,
+    interp_span,
+)
 from windflutter.structure.fem import IsotropicMaterial, Material, OrthotropicMaterial
 
 __all__ = [
@@ -39,6 +48,8 @@ __all__ = [
     "Layup",
     "BeamProperties",
     "Blade",
+    "BladeDamping",
+    "TowerDamping",
     "TowerLayer",
     "Tower",
     "Hub",
@@ -54,237 +65,6 @@ __all__ = [
 ]
 
 
-def interp_span(grid: np.ndarray, values: np.ndarray, s: np.ndarray | float) -> np.ndarray:
-    """Piecewise-linear interpolation of a spanwise field, constant extrapolation at the ends.
-
-    Parameters
-    ----------
-    grid : (n,) nondimensional span positions, increasing.
-    values : (n,) or (n, ...) field values at ``grid``.
-    s : query positions.
-    """
-    grid = np.asarray(grid, dtype=float)
-    values = np.asarray(values, dtype=float)
-    sq = np.asarray(s, dtype=float)
-    if values.ndim == 1:
-        return np.interp(sq, grid, values)
-    flat = values.reshape(values.shape[0], -1)
-    out = np.stack([np.interp(sq.ravel(), grid, flat[:, j]) for j in range(flat.shape[1])], axis=-1)
-    return out.reshape(sq.shape + values.shape[1:])
-
-
-# --------------------------------------------------------------------------------------- airfoils
-@dataclass(frozen=True)
-class Airfoil:
-    """An airfoil: normalised coordinates and static polars.
-
-    Parameters
-    ----------
-    name : airfoil name (key used by :attr:`Blade.airfoil_names`).
-    x, y : (n,) coordinates normalised by chord, x from leading edge (0) to trailing edge (1),
-        y towards the suction side; as given in the file (windIO: TE -> suction side -> LE ->
-        pressure side -> TE).  May be empty when the source gives no coordinates.
-    relative_thickness : t/c (-).
-    aerodynamic_center : chordwise position of the aerodynamic centre (fraction of chord).
-    polars : one :class:`~windflutter.aero.sections.Polar` per Reynolds number set
-        (alpha in rad, increasing).
-    reynolds : (npol,) Reynolds number of each polar (nan if unknown).
-    """
-
-    name: str
-    x: np.ndarray
-    y: np.ndarray
-    relative_thickness: float
-    aerodynamic_center: float = 0.25
-    polars: tuple[Polar, ...] = ()
-    reynolds: np.ndarray = field(default_factory=lambda: np.zeros(0))
-
-    @property
-    def polar(self) -> Polar:
-        """The default polar: the set with the highest Reynolds number (closest to operating
-        Reynolds numbers of multi-MW blades, 5e6..2e7); the only one if there is just one."""
-        if not self.polars:
-            raise ValueError(f"airfoil {self.name!r} has no polar")
-        if len(self.polars) == 1:
-            return self.polars[0]
-        re = np.nan_to_num(np.asarray(self.reynolds, dtype=float), nan=-1.0)
-        return self.polars[int(np.argmax(re))]
-
-
-# ----------------------------------------------------------------------------------------- layup
-@dataclass(frozen=True)
-class Web:
-    """A shear web, spanning ``s_start..s_end``; its two shell attachment points are given as
-    nondimensional arc positions along the airfoil contour (0 = trailing edge on the suction side,
-    increasing over the suction side to the leading edge and back along the pressure side to 1,
-    windIO convention).  ``start_arc`` is the suction-side attachment (< 0.5), ``end_arc`` the
-    pressure-side one (> 0.5), both on ``s``.
-    """
-
-    name: str
-    s: np.ndarray
-    start_arc: np.ndarray
-    end_arc: np.ndarray
-    s_start: float = 0.0
-    s_end: float = 1.0
-
-    def arcs_at(self, s: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
-        """(start_arc, end_arc) at span positions ``s`` (NaN outside ``s_start..s_end``)."""
-        sq = np.asarray(s, dtype=float)
-        inside = (sq >= self.s_start - 1e-12) & (sq <= self.s_end + 1e-12)
-        a = np.where(inside, np.interp(sq, self.s, self.start_arc), np.nan)
-        b = np.where(inside, np.interp(sq, self.s, self.end_arc), np.nan)
-        return a, b
-
-
-@dataclass(frozen=True)
-class Layer:
-    """A composite layer (a stack of plies of one material and orientation).
-
-    Parameters
-    ----------
-    name : layer name.
-    material : key into :attr:`Turbine.materials`.
-    s : (n,) span grid of the arrays below.
-    thickness : (n,) total layer thickness (m); 0 where absent.
-    orientation : (n,) fibre angle (rad) from the span direction, positive about the outward
-        normal of the surface (windIO ``fiber_orientation``).
-    start_arc, end_arc : (n,) nondimensional contour positions of the layer's extent (windIO
-        convention, see :class:`Web`).  ``end_arc < start_arc`` means the layer wraps through the
-        trailing edge (arc 1 -> 0).  For a web layer they are 0 and 1 (the whole web height).
-    web : name of the web this layer lies on, or ``None`` for the outer shell.
-    s_start, s_end : spanwise extent.
-    """
-
-    name: str
-    material: str
-    s: np.ndarray
-    thickness: np.ndarray
-    orientation: np.ndarray
-    start_arc: np.ndarray
-    end_arc: np.ndarray
-    web: str | None = None
-    s_start: float = 0.0
-    s_end: float = 1.0
-
-    def thickness_at(self, s: np.ndarray | float) -> np.ndarray:
-        """Thickness (m) at ``s``; 0 outside the spanwise extent."""
-        sq = np.asarray(s, dtype=float)
-        inside = (sq >= self.s_start - 1e-12) & (sq <= self.s_end + 1e-12)
-        return np.where(inside, np.interp(sq, self.s, self.thickness), 0.0)
-
-    def arcs_at(self, s: np.ndarray | float) -> tuple[np.ndarray, np.ndarray]:
-        """(start_arc, end_arc) at ``s``, interpolated."""
-        sq = np.asarray(s, dtype=float)
-        return np.interp(sq, self.s, self.start_arc), np.interp(sq, self.s, self.end_arc)
-
-    def orientation_at(self, s: np.ndarray | float) -> np.ndarray:
-        return np.interp(np.asarray(s, dtype=float), self.s, self.orientation)
-
-
-@dataclass(frozen=True)
-class Layup:
-    """Blade internal structure: shear webs and layers (outer shell and webs), listed from the
-    outer surface inwards as in the file."""
-
-    webs: tuple[Web, ...] = ()
-    layers: tuple[Layer, ...] = ()
-
-    def web(self, name: str) -> Web:
-        for w in self.webs:
-            if w.name == name:
-                return w
-        raise KeyError(name)
-
-    @property
-    def shell_layers(self) -> tuple[Layer, ...]:
-        return tuple(lay for lay in self.layers if lay.web is None)
-
-    def web_layers(self, name: str) -> tuple[Layer, ...]:
-        return tuple(lay for lay in self.layers if lay.web == name)
-
-
-@dataclass(frozen=True)
-class BeamProperties:
-    """Spanwise 6x6 beam section properties about the reference axis, in the ``BeamSection``
-    convention (see module docstring): section x along the span, y flapwise, z edgewise, rotated
-    with the local structural ``twist``.
-
-    Parameters
-    ----------
-    s : (n,) nondimensional span positions (blade: along the reference axis; tower: height
-        fraction).
-    stiffness : (n, 6, 6) N, N·m, N·m² (order axial, shear y, shear z, torsion, bending about y,
-        bending about z).
-    mass : (n, 6, 6) kg/m, kg, kg·m (order ux, uy, uz, rx, ry, rz).
-    twist : (n,) rotation of the section frame about the span axis (rad), positive nose-down
-        (NREL), that must be applied to go from the blade root frame to the section frame.
-    length : length of the reference axis (m), to convert ``s`` to arc length.
-    source : where the numbers come from (e.g. ``"BeamDyn NRELOffshrBsline5MW_BeamDyn_Blade.dat"``).
-    """
-
-    s: np.ndarray
-    stiffness: np.ndarray
-    mass: np.ndarray
-    twist: np.ndarray
-    length: float
-    source: str = ""
-
-    @property
-    def mass_per_length(self) -> np.ndarray:
-        return self.mass[:, 0, 0]
-
-    @property
-    def total_mass(self) -> float:
-        """Integrated mass (kg), trapezoidal rule over the arc length."""
-        return float(trapezoid(self.mass_per_length, self.s * self.length))
-
-
-# ----------------------------------------------------------------------------------------- blade
-@dataclass(frozen=True)
-class Blade:
-    """One blade (all blades identical).
-
-    Parameters
-    ----------
-    s : (n,) nondimensional coordinate along the reference axis, 0 root, 1 tip.
-    ref_axis : (n, 3) reference-axis points in the blade root frame (m); z is the span.
-    arc_length : (n,) curvilinear length along the reference axis (m).
-    chord : (n,) m.
-    twist : (n,) aerodynamic twist (rad), positive nose-down / towards feather (NREL).
-    pitch_axis : (n,) chordwise position of the reference axis, fraction of chord from the
-        leading edge (windIO ``pitch_axis``; v2 ``section_offset_y / chord``).
-    section_offset_y : (n,) the same in metres from the leading edge.
-    relative_thickness : (n,) t/c (-).
-    airfoil_positions : (na,) span positions of the airfoil stack, increasing.
-    airfoil_names : (na,) airfoil at each position (keys into :attr:`Turbine.airfoils`).
-    layup : composite layup, if given.
-    beam : beam section properties (6x6), if given by the source or computed.
-    """
-
-    s: np.ndarray
-    ref_axis: np.ndarray
-    arc_length: np.ndarray
-    chord: np.ndarray
-    twist: np.ndarray
-    pitch_axis: np.ndarray
-    section_offset_y: np.ndarray
-    relative_thickness: np.ndarray
-    airfoil_positions: np.ndarray
-    airfoil_names: tuple[str, ...]
-    layup: Layup | None = None
-    beam: BeamProperties | None = None
-
-    @property
-    def length(self) -> float:
-        """Length of the reference axis (m)."""
-        return float(self.arc_length[-1])
-
-    def at(self, name: str, s: np.ndarray | float) -> np.ndarray:
-        """Interpolate a geometric field (``"chord"``, ``"twist"``, ...) at span positions ``s``."""
-        return interp_span(self.s, getattr(self, name), s)
-
-
 # ----------------------------------------------------------------------------------------- tower
 @dataclass(frozen=True)
 class TowerLayer:
@@ -293,6 +73,16 @@ class TowerLayer:
     name: str
     material: str
     thickness: np.ndarray
+
+
+@dataclass(frozen=True)
+class TowerDamping:
+    """Tower structural damping as the files give it (modal ratios, fractions of critical; NaN
+    if not given), e.g. ElastoDyn ``TwrFADmp(1..2)`` / ``TwrSSDmp(1..2)`` (%)."""
+
+    fore_aft_ratio: np.ndarray = field(default_factory=lambda: np.full(2, np.nan))
+    side_side_ratio: np.ndarray = field(default_factory=lambda: np.full(2, np.nan))
+    source: str = ""
 
 
 @dataclass(frozen=True)
@@ -307,6 +97,7 @@ class Tower:
     outer_diameter : (n,) m.
     layers : wall layers (thickness on ``s``).
     outfitting_factor : multiplier on the wall mass for flanges, bolts, platforms (-), 1 if none.
+    damping : structural damping from the files, ``None`` if none gives any.
     """
 
     s: np.ndarray
@@ -314,6 +105,7 @@ class Tower:
     outer_diameter: np.ndarray
     layers: tuple[TowerLayer, ...]
     outfitting_factor: float = 1.0
+    damping: TowerDamping | None = None
 
     @property
     def height(self) -> float:
@@ -379,6 +171,8 @@ class Nacelle:
     gear_ratio : gearbox ratio (-), 1 for direct drive.
     drivetrain_torsional_stiffness : equivalent low-speed-shaft torsional spring (N·m/rad),
         ``inf`` for rigid.
+    drivetrain_torsional_damping : equivalent low-speed-shaft torsional damper (N·m·s/rad),
+        0 if not given (OpenFAST ``DTTorDmp``).
     yaw_bearing_mass : mass lumped at the tower top (kg).
     """
 
@@ -391,6 +185,7 @@ class Nacelle:
     generator_inertia: float = 0.0
     gear_ratio: float = 1.0
     drivetrain_torsional_stiffness: float = float("inf")
+    drivetrain_torsional_damping: float = 0.0
     yaw_bearing_mass: float = 0.0
 
     def rotor_apex(self, tower_top_z: float) -> np.ndarray:
@@ -465,6 +260,25 @@ class OperatingCurve:
 
 
 # --------------------------------------------------------------------------------------- turbine
+#: What each kind of missing data is, and which models need it.
+MISSING_HINTS = {
+    "hub.mass": "a lumped hub mass (kg)",
+    "nacelle.mass": "a lumped nacelle mass (kg)",
+    "tower": "a tower description",
+    "airfoil polars": "airfoil polar tables (lift, drag and moment coefficients)",
+    "blade torsion": "a blade torsional stiffness (ElastoDyn blades have none: use BeamDyn, CompElast = 2)",
+}
+_NEEDED_FOR_AERODYNAMICS = ("airfoil polars", "blade torsion")
+_NEEDED_BY_PART = {
+    "turbine": ("hub.mass", "nacelle.mass", "tower"),
+    "tower": ("hub.mass", "nacelle.mass", "tower"),
+    "rotor": ("hub.mass",),  # the hub node of the rotor model carries the hub mass (clamped)
+    "blade": (),
+    "rotor_blade": (),  # blade 0 on a massless clamped hub
+    "support": ("nacelle.mass", "tower"),  # tower and nacelle with a massless hub node
+}
+
+
 @dataclass(frozen=True)
 class Turbine:
     """A complete wind turbine description.
@@ -485,7 +299,15 @@ class Turbine:
     operating_curve : steady operating points, if known.
     rotor_orientation : ``"upwind"`` or ``"downwind"``.
     source : path of the file read.
-    notes : provenance notes (supplement files, assumptions).
+    notes : provenance notes (supplement files, assumptions, defaults filled in).
+    windio_version : the windIO version of a windIO file ("" for other formats).
+    source_format : reader that produced it (``"windIO 2.x"``, ``"OpenFAST"``, ``"HAWC2"`` ...).
+    input_files : every file read (turbine file, referenced files, supplement), for
+        fingerprints and provenance.
+    warnings : plausibility warnings (unusual but possible data), one line each naming the file,
+        field and station; printed as :class:`~windflutter.errors.InputWarning` when read.
+    missing : data the files do not give (keys of :data:`MISSING_HINTS`, e.g. ``"nacelle.mass"``);
+        :meth:`require` refuses an analysis that needs them.
     """
 
     name: str
@@ -507,6 +329,10 @@ class Turbine:
     source: str = ""
     notes: tuple[str, ...] = ()
     windio_version: str = ""
+    source_format: str = ""
+    input_files: tuple[str, ...] = ()
+    warnings: tuple[str, ...] = ()
+    missing: tuple[str, ...] = ()
 
     @property
     def rotor_apex(self) -> np.ndarray:
@@ -517,3 +343,40 @@ class Turbine:
     def tip_radius(self) -> float:
         """Rotor radius from hub radius + blade length, projected (m) (ignores prebend)."""
         return self.hub.radius + float(self.blade.ref_axis[-1, 2])
+
+    def require(self, part: str = "turbine", aerodynamics: bool = False) -> None:
+        """Refuse a model that needs data the files did not give.
+
+        Parameters
+        ----------
+        part : ``"turbine"``, ``"tower"``, ``"rotor"`` or ``"blade"`` (the mesh part); a blade
+            alone needs only blade data.
+        aerodynamics : also require airfoil polars (stability analyses).
+
+        Raises
+        ------
+        InputError
+            Naming the first missing item, the file and how to supply it.
+        """
+        from windflutter.errors import InputError
+
+        need = _NEEDED_BY_PART.get(part, _NEEDED_BY_PART["turbine"]) + (_NEEDED_FOR_AERODYNAMICS if aerodynamics else ())
+        for item in need:
+            if item in self.missing:
+                what = "a stability analysis" if item in _NEEDED_FOR_AERODYNAMICS else f"the {part!r} model"
+                raise InputError(item, None, f"{MISSING_HINTS.get(item, item)} for {what}: the turbine files give "
+                                 "none; add it to the file or to a 'windflutter:' supplement "
+                                 "(docs/turbine_input.md)", self.source)
+
+    def store_attributes(self) -> dict[str, str]:
+        """Provenance as flat string attributes (for a NetCDF/zarr store): format, files,
+        plausibility warnings, missing data and notes."""
+        return {
+            "turbine_source": self.source,
+            "turbine_format": self.source_format or (f"windIO {self.windio_version}" if self.windio_version else ""),
+            "turbine_input_files": "; ".join(self.input_files),
+            "turbine_warnings": "\n".join(self.warnings) or "none",
+            "turbine_missing": ", ".join(self.missing) or "none",
+            "turbine_notes": "\n".join(self.notes),
+        }
+

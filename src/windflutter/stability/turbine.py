@@ -193,6 +193,8 @@ class TurbineStability:
     def __init__(self, turbine, options: TurbineOptions | None = None):
         self.turbine = turbine
         self.options = options or TurbineOptions()
+        if hasattr(turbine, "require"):  # refuse data the files lack (airfoil polars, masses) by name
+            turbine.require(self.options.mesh.get("part", "turbine"), aerodynamics=True)
         self._models: dict[float, tuple] = {}
 
     # -- model -----------------------------------------------------------------------------

@@ -1,0 +1,94 @@
+"""Reader registry (file type -> reader), blade-only analyses of incomplete files, damping data."""
+
+from __future__ import annotations
+
+import shutil
+
+import numpy as np
+import pytest
+
+from windflutter.errors import InputError
+from windflutter.model import TurbineReader, load_turbine, readers, register_reader
+from windflutter.model.beamdyn import read_beamdyn_blade
+from windflutter.model.bundled import DATA_DIR
+from windflutter.model.registry import reader_for
+
+
+def test_reader_chosen_by_suffix_then_content(tmp_path):
+    assert reader_for(DATA_DIR / "nrel5mw" / "NREL-5MW_Onshore.fst").name == "openfast"
+    assert reader_for(DATA_DIR / "nrel5mw" / "hawc2" / "htc" / "NREL_5MW.htc").name == "hawc2"
+    assert reader_for(DATA_DIR / "turbines" / "NREL-5MW.yaml").name == "windio"
+    deck = tmp_path / "deck"
+    shutil.copytree(DATA_DIR / "iea15mw" / "openfast", deck)
+    main = deck / "IEA-15-240-RWT-Monopile" / "IEA-15-240-RWT-Monopile.fst"
+    renamed = main.with_suffix(".inp")  # unknown suffix: recognised by its CompElast/EDFile lines
+    main.rename(renamed)
+    assert reader_for(renamed).name == "openfast"
+    t = load_turbine(renamed)
+    assert t.source_format == "OpenFAST" and str(renamed) in t.input_files
+    with pytest.raises(InputError, match="format"):
+        load_turbine(renamed, fmt="nastran")
+
+
+def test_bundled_names_and_bad_paths(tmp_path):
+    assert load_turbine("IEA15MW-OpenFAST").source_format == "OpenFAST"  # case, '-' and '_' ignored
+    with pytest.raises(InputError, match="bundled name"):
+        load_turbine(tmp_path / "nothing.fst")
+    with pytest.raises(InputError):
+        load_turbine(tmp_path)  # a folder
+
+
+def test_register_a_reader(tmp_path):
+    """A registered reader is tried first for its suffix (here the OpenFAST reader under a
+    plug-in name and suffix)."""
+    deck = tmp_path / "deck"
+    shutil.copytree(DATA_DIR / "iea15mw" / "openfast", deck)
+    f = deck / "IEA-15-240-RWT-Monopile" / "x.mine"
+    shutil.copy(deck / "IEA-15-240-RWT-Monopile" / "IEA-15-240-RWT-Monopile.fst", f)
+    register_reader(TurbineReader("mine", (".mine",), "windflutter.model.openfast:load_openfast"))
+    try:
+        assert readers()[0].name == "mine" and reader_for(f).name == "mine"
+        assert load_turbine(f).name == "x"
+    finally:
+        from windflutter.model import registry
+
+        registry._READERS[:] = [r for r in registry._READERS if r.name != "mine"]
+
+
+def test_raw_wisdem_file_works_for_blade_only(tmp_path):
+    """The WISDEM windIO file alone (no windflutter supplement, no hub/nacelle masses): blade
+    modes run; whole-turbine, tower and rotor models are refused naming the missing mass."""
+    from windflutter.mesh.analysis import turbine_modes
+    from windflutter.mesh.settings import MeshSettings
+
+    f = tmp_path / "IEA-15-240-RWT.yaml"
+    shutil.copy(DATA_DIR / "turbines" / "IEA-15-240-RWT.yaml", f)
+    t = load_turbine(f, validate=False)
+    assert {"hub.mass", "nacelle.mass"} <= set(t.missing)
+    fr = turbine_modes(t, MeshSettings(model="beam", part="blade", n_span=20), n_modes=2).frequencies_hz
+    assert 0.4 < fr[0] < 0.6  # 1st flap of the IEA 15 MW blade, about 0.5 Hz
+    for part in ("turbine", "tower", "rotor"):
+        with pytest.raises(InputError, match="hub.mass"):
+            turbine_modes(t, MeshSettings(model="beam", part=part))
+
+
+def test_damping_from_files_in_beamsection_order(turbine):
+    """windIO/BeamDyn mu1..mu6 (shear flap, shear edge, axial, edgewise bending, flapwise bending,
+    torsion) are stored in the BeamSection order (axial, shear y, shear z, torsion, bending about
+    y = edgewise, about z = flapwise); the bundled IEA 15 MW supplement carries the values of the
+    IEA 15 MW BeamDyn blade file (the windIO file has zeros); ElastoDyn modal ratios in fractions."""
+    t = turbine("iea15mw")
+    _, bd = read_beamdyn_blade(DATA_DIR / "iea15mw" / "openfast" / "IEA-15-240-RWT" / "IEA-15-240-RWT_BeamDyn_blade.dat")
+    np.testing.assert_allclose(t.blade.damping.mu, bd.mu, rtol=1e-12)
+    np.testing.assert_allclose(t.blade.damping.mu_beamdyn, [0.00299005, 0.00218775, 0.00084171, 0.00218775,
+                                                            0.00299005, 0.00084171])
+    assert t.blade.damping.mu[3] == pytest.approx(0.00084171)  # torsion
+    np.testing.assert_allclose(t.blade.damping.flap_ratio, [0.0048, 0.0048])
+    np.testing.assert_allclose(t.tower.damping.side_side_ratio, [0.01, 0.01])
+    assert t.nacelle.drivetrain_torsional_damping == 49418406.0
+    assert turbine("iea22mw").blade.damping.mu_beamdyn[0] == pytest.approx(0.004048)
+    n5 = turbine("nrel5mw")  # windIO file and its BeamDyn file agree
+    np.testing.assert_allclose(n5.blade.damping.mu_beamdyn, [1e-3, 1e-3, 1e-3, 1.4e-3, 2.2e-3, 2.2e-3])
+    assert turbine("iea10mw").tower.damping is None  # no file gives any: documented default (none)
+    attrs = n5.store_attributes()
+    assert attrs["turbine_warnings"] == "none" and "NREL-5MW.windflutter.yaml" in attrs["turbine_input_files"]
