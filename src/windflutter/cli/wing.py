@@ -4,11 +4,25 @@ from __future__ import annotations
 
 import argparse
 import json
-from pathlib import Path
 
-import yaml
-
+from windflutter.config import MAX_BLADE_ELEMENTS, MAX_GRID_POINTS, MAX_MODES, field_spec
 from windflutter.errors import InputError
+from windflutter.schema import Spec
+
+
+def _positive(upper: float, unit: str) -> Spec:
+    return Spec("float", lower=0.0, lower_open=True, upper=upper, unit=unit)
+
+
+#: physical ranges and sizes of the wing file's fields (WingConfig checks kinds and consistency)
+BOUNDS = {
+    "span": _positive(1e4, "m"), "chord": _positive(1e3, "m"),
+    "bending_stiffness": _positive(1e13, "N m^2"), "torsion_stiffness": _positive(1e13, "N m^2"),
+    "mass": _positive(1e6, "kg/m"), "inertia": _positive(1e7, "kg m^2/m"),
+    "air_density": field_spec("air_density"), "lift_slope": _positive(20.0, "1/rad"),
+    "n_elements": Spec("int", lower=1, upper=MAX_BLADE_ELEMENTS), "n_modes": Spec("int", lower=2, upper=MAX_MODES),
+    "speed_min": _positive(1e4, "m/s"), "speed_max": _positive(1e4, "m/s"), "speed_step": _positive(1e4, "m/s"),
+}
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -20,17 +34,24 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def check_bounds(cfg, source: str) -> None:
+    """Every field of a :class:`~windflutter.stability.wing.WingConfig` in its physical range and
+    the speed grid at most :data:`~windflutter.config.MAX_GRID_POINTS` long, before any work."""
+    for name, spec in BOUNDS.items():
+        spec.check(getattr(cfg, name), name, source)
+    n = (cfg.speed_max - cfg.speed_min) / cfg.speed_step
+    if not n < MAX_GRID_POINTS:
+        raise InputError("speed_step", cfg.speed_step, f"a step giving at most {MAX_GRID_POINTS} speeds "
+                         f"(this one gives {n + 1:.3g})", source)
+
+
 def run(args: argparse.Namespace) -> int:
+    from windflutter.files import load_yaml
     from windflutter.stability.wing import WingConfig, analyse_wing
 
-    path = Path(args.config)
-    if not path.is_file():
-        raise InputError("config", str(path), "an existing YAML file")
-    try:
-        data = yaml.safe_load(path.read_text())
-    except yaml.YAMLError as exc:
-        raise InputError("config", str(path), f"valid YAML ({str(exc).splitlines()[0]})") from None
-    cfg = WingConfig.from_dict(data if data is not None else {}, source=str(path))
+    data = load_yaml(args.config, "config", what="wing YAML file")
+    cfg = WingConfig.from_dict(data if data is not None else {}, source=str(args.config))
+    check_bounds(cfg, str(args.config))
     res = analyse_wing(cfg, method=args.method)
     out = {k: (None if v is None else float(v)) for k, v in res.as_dict().items()}
     if args.json:
