@@ -21,6 +21,7 @@ Hz.  :class:`AnalysisConfig` keeps them as given; the workflow converts to SI.
 from __future__ import annotations
 
 import copy
+import functools
 import hashlib
 import json
 import math
@@ -427,8 +428,10 @@ def default_config_text() -> str:
     return resources.files("windflutter").joinpath("data/analysis_default.yaml").read_text(encoding="utf-8")
 
 
+@functools.lru_cache(maxsize=1)
 def default_config() -> AnalysisConfig:
-    """The default analysis, read from the bundled YAML (so file and dataclass agree)."""
+    """The default analysis, read from the bundled YAML (so file and dataclass agree; read once:
+    the config is immutable)."""
     from windflutter.files import parse_yaml  # noqa: PLC0415
 
     return config_from_dict(parse_yaml(default_config_text(), "config", "analysis_default.yaml"),

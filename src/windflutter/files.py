@@ -10,15 +10,16 @@ are not UTF-8, invalid YAML, a duplicate key, nesting deeper than :data:`MAX_YAM
 larger than the caller's bound, an output folder that is a file or cannot be written, an output
 file name with an extension the writer does not know.
 
-The YAML loader is the project's YAML-1.2-number safe loader
-(:class:`windflutter.model.yamlio.NumberSafeLoader`: ``1e-5`` is a float) with two more rules:
-a key may appear only once in a mapping (YAML says keys are unique; PyYAML keeps the last one
-silently), and nesting is bounded.
+The YAML loader (:class:`StrictLoader`) is PyYAML's safe loader (the C one where available) with
+three more rules: numbers with an exponent but no decimal point (``1e-5``, ``2E6``) are floats as
+in YAML 1.2 (YAML 1.1 reads them as strings); a key may appear only once in a mapping (YAML says
+keys are unique; PyYAML keeps the last one silently); nesting is bounded.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import tempfile
 from pathlib import Path
 from typing import Any
@@ -26,7 +27,6 @@ from typing import Any
 import yaml
 
 from windflutter.errors import InputError
-from windflutter.model.yamlio import NumberSafeLoader
 
 #: deepest nesting of YAML collections accepted (an analysis config needs 3)
 MAX_YAML_DEPTH = 64
@@ -34,8 +34,8 @@ MAX_YAML_DEPTH = 64
 MAX_CONFIG_BYTES = 10 * 1024 * 1024
 
 
-class StrictLoader(NumberSafeLoader):  # type: ignore[misc,valid-type]
-    """Safe loader with YAML-1.2 numbers that refuses duplicate keys and deep nesting.
+class StrictLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # type: ignore[misc]
+    """Safe loader: YAML-1.2 exponent floats, no duplicate keys, bounded nesting.
 
     The checks run on the composed node tree, before any Python object is constructed.
     """
@@ -46,6 +46,12 @@ class StrictLoader(NumberSafeLoader):  # type: ignore[misc,valid-type]
             return None
         _check_nodes(node)
         return self.construct_document(node)
+
+
+# added after PyYAML's own resolvers: only scalars that they leave as strings are affected
+StrictLoader.add_implicit_resolver("tag:yaml.org,2002:float",
+                                   re.compile(r"^[-+]?(?:[0-9][0-9_]*)?(?:\.[0-9_]*)?[eE][-+]?[0-9]+$"),
+                                   list("-+0123456789."))
 
 
 def _check_nodes(root: yaml.Node) -> None:

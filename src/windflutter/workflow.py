@@ -257,9 +257,10 @@ class TurbinePointAnalyser:
         s = ts.analyse_operating_point(point.wind_speed, rpm_grid=np.asarray(point.sweep_rpm, float))
         pitch = ts.pitch_at(point.wind_speed)
         fe, sections, am = ts.model(pitch)
+        size = {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
+                "n_aero_sections": int(sections.n_sections), "n_reduced_dof": int(am.size)}
         if not self._size:
-            self._size = {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
-                          "n_aero_sections": int(sections.n_sections)}
+            self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
         nan = float("nan")
         res = PointResult(
             flutter_rpm=nan if s.flutter_rpm is None else float(s.flutter_rpm),
@@ -268,8 +269,9 @@ class TurbinePointAnalyser:
             divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
             sweep_rpm=np.asarray(s.sweep_rpm, float), frequency_hz=np.asarray(s.frequency_hz, float),
             damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
-            # the reduced size depends on the point's pitch (MTA corrections): a per-point value
-            info={"pitch_deg": float(s.pitch_deg), "n_reduced_dof": int(am.size)})
+            # the model size goes with each point (the reduced size may depend on its pitch), so
+            # the run's attributes do not depend on which points this process computed
+            info={"pitch_deg": float(s.pitch_deg), **size})
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:
@@ -394,6 +396,10 @@ def _operating_vars(info: dict[str, Any]) -> dict[str, xr.DataArray]:
     return out
 
 
+#: model-size entries of a point's ``info`` that become run attributes (largest over the points)
+MODEL_SIZE_KEYS = ("n_nodes", "n_dof", "n_aero_sections", "n_reduced_dof")
+
+
 def assemble_dataset(points: dict[int, xr.Dataset], config: AnalysisConfig, info: dict[str, Any],
                      n_planned: int) -> xr.Dataset:
     """Combine stored points with the run's attributes and the operating curve."""
@@ -401,9 +407,10 @@ def assemble_dataset(points: dict[int, xr.Dataset], config: AnalysisConfig, info
     attrs["n_points_planned"] = n_planned
     attrs["n_points_done"] = len(points)
     attrs["complete"] = int(len(points) == n_planned)
-    sizes = [int(d.attrs["info_n_reduced_dof"]) for d in points.values() if "info_n_reduced_dof" in d.attrs]
-    if sizes:  # per point (it depends on the pitch); the run's: the largest, whatever order they ran in
-        attrs["n_reduced_dof"] = max(sizes)
+    for key in MODEL_SIZE_KEYS:  # from the stored points: the same whichever points ran in this process
+        sizes = [int(d.attrs[f"info_{key}"]) for d in points.values() if f"info_{key}" in d.attrs]
+        if sizes:
+            attrs[key] = max(sizes)
     ds = store.combine(points, attrs)
     for name, da in _operating_vars(info).items():
         ds[name] = da

@@ -8,6 +8,7 @@ Each sub-command lives in its own module of this package, exposing
 from __future__ import annotations
 
 import argparse
+import functools
 import importlib
 import os
 import sys
@@ -19,7 +20,9 @@ from windflutter.errors import InputError, ModelError, WindflutterError
 COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "run")
 
 
+@functools.lru_cache(maxsize=1)
 def build_parser() -> argparse.ArgumentParser:
+    """The parser of every command (built once; parsing does not change it)."""
     from windflutter.cli.options import OneLineParser  # noqa: PLC0415
 
     parser = OneLineParser(

@@ -169,7 +169,8 @@ def flag_error(exc: InputError, args: argparse.Namespace, flags: tuple[Flag, ...
     flag = names.get(root)
     if flag is None and paths and root in paths:
         flag = next((f for f in flags if f.name == paths[root]), None)
-    if flag is None or getattr(args, flag.dest, None) in (None, False):
+    given = getattr(args, flag.dest, None) if flag is not None else None
+    if given is None or given is False:  # (0 is a given value)
         return exc
     return InputError(flag.name, exc.value, f"{exc.expected} (config field {exc.field})")
 

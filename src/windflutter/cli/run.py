@@ -95,7 +95,7 @@ def load_turbine_for(arg: str, backend: str):
     return load_turbine(arg)
 
 
-def _check_outdir(outdir: Path, field: str, resume: bool) -> None:
+def _check_outdir(outdir: str | Path, field: str, resume: bool) -> None:
     """The output folder (and, with ``--resume``, its record) before anything is computed."""
     from windflutter.post import runfolder  # noqa: PLC0415
 
@@ -105,8 +105,6 @@ def _check_outdir(outdir: Path, field: str, resume: bool) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from windflutter.workflow import RunInterrupted, run as run_workflow  # noqa: PLC0415
-
     if args.print_default_config:
         from windflutter.config import default_config_text  # noqa: PLC0415
 
@@ -116,11 +114,13 @@ def run(args: argparse.Namespace) -> int:
     config = read_config(args)
     field = "-o" if args.outdir is not None else "OUTDIR (default out/<turbine name>)"
     if args.outdir is not None:  # checked before the turbine is read
-        _check_outdir(Path(args.outdir), field, args.resume)
+        _check_outdir(args.outdir, field, args.resume)
     if args.scheduler is not None:
         from windflutter.parallel import check_scheduler_address  # noqa: PLC0415
 
         check_scheduler_address(args.scheduler, "--scheduler")
+    from windflutter.workflow import RunInterrupted, run as run_workflow  # noqa: PLC0415
+
     turbine = load_turbine_for(args.turbine, config.solver.backend)
     if args.outdir is not None:
         outdir = Path(args.outdir)
