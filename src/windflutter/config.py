@@ -410,6 +410,15 @@ def config_from_dict(data: dict | None, source: str | None = None,
     return cfg
 
 
+def check_config(config: AnalysisConfig, source: str = "config") -> AnalysisConfig:
+    """``config`` validated as if it had been read from a file: for configs built in Python
+    (``AnalysisConfig(...)``, ``dataclasses.replace``), which the dataclasses do not check.
+    Returns the equal, validated config."""
+    if not isinstance(config, AnalysisConfig):
+        raise InputError("config", type(config).__name__, "an AnalysisConfig", source)
+    return config_from_dict(config.to_dict(), source)
+
+
 def n_points_for_step(min_rpm: Any, max_rpm: Any, step: Any, name: str = "rotor_speed.step") -> int:
     """Grid points of ``min_rpm .. max_rpm`` in steps of ``step`` (the last step may be shorter),
     checked against :data:`MAX_GRID_POINTS` before any grid is built (``name`` names ``step``)."""

@@ -197,3 +197,32 @@ def test_rpm_step_gives_the_grid_of_before(lo, hi, step):
                                             "tolerance_rpm": 0.01}})
     np.testing.assert_allclose(cfg.sweep_rpm(), TurbineOptions(rpm_min=lo, rpm_max=hi, rpm_step=step).grid(),
                                rtol=1e-14, atol=1e-12)
+
+
+# -- the Python API checks like the command line ---------------------------------------------------
+def test_api_configs_are_checked_before_the_run(tmp_path):
+    from windflutter.config import AnalysisConfig, RotorSpeedConfig, SolverConfig, check_config
+    from windflutter.workflow import run
+
+    assert check_config(AnalysisConfig()) == AnalysisConfig()
+    for bad, field in ((AnalysisConfig(rotor_speed=RotorSpeedConfig(n_points=10 ** 6)), "rotor_speed.n_points"),
+                       (AnalysisConfig(air_density=float("nan")), "air_density"),
+                       (AnalysisConfig(solver=SolverConfig(backend="os:system")), "solver.backend"),
+                       (AnalysisConfig(rotor_speed=RotorSpeedConfig(min_rpm=30, max_rpm=5)), "rotor_speed.max_rpm")):
+        with pytest.raises(InputError) as ei:
+            run("toy", bad, tmp_path / "out", progress=False)
+        assert ei.value.field == field
+    assert not (tmp_path / "out").exists()
+
+
+def test_overspeed_below_the_turbines_rated_speed_is_refused():
+    from types import SimpleNamespace
+
+    from windflutter.config import config_from_dict
+    from windflutter.workflow import check_operating
+
+    turbine = SimpleNamespace(rated_rotor_speed=12.1 * np.pi / 30)
+    check_operating(turbine, config_from_dict({"operating": {"overspeed_rpm": 14.5}}))
+    with pytest.raises(InputError, match="rated rotor speed 12.1 RPM"):
+        check_operating(turbine, config_from_dict({"operating": {"overspeed_rpm": 10.0}}))
+    check_operating(turbine, config_from_dict({"operating": {"overspeed_rpm": 10.0, "rated_rpm": 9.0}}))

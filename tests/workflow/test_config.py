@@ -110,3 +110,31 @@ def test_print_default_config():
                          capture_output=True, text=True, timeout=60)
     assert out.returncode == 0
     assert config_from_dict(yaml.safe_load(out.stdout)) == AnalysisConfig()
+
+
+def _dotted(d, prefix=""):
+    for k, v in d.items():
+        if isinstance(v, dict) and k != "wind_speeds":
+            yield from _dotted(v, f"{prefix}{k}.")
+        else:
+            yield f"{prefix}{k}"
+
+
+def test_every_declared_field_is_in_the_default_file_and_the_reference():
+    # one declaration per field (config.py); the commented default file and the reference table
+    # must list exactly the declared fields, so a new option cannot be half-added
+    import re
+    from pathlib import Path
+
+    from windflutter.config import declared_fields, default_config_text
+
+    declared = [name for name, _, _ in declared_fields()]
+    assert sorted(_dotted(yaml.safe_load(default_config_text()))) == sorted(declared)
+    ref = Path(__file__).resolve().parents[2] / "docs" / "config_reference.md"
+    text = ref.read_text(encoding="utf-8")
+    fields_section = text[text.index("## Fields"):text.index("### Rules between fields")]
+    table = re.findall(r"^\| `([a-z_.]+)` \| ", fields_section, flags=re.M)
+    assert table == declared
+    for name, f, spec in declared_fields():
+        assert spec.doc, name        # every field documented
+        spec.check(f.default, name)  # and its default inside its own bounds

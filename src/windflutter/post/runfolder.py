@@ -46,6 +46,11 @@ def check_run_folder(outdir: str | Path, field: str = "-o") -> Path:
             kind = "a folder" if is_dir else "a file"
             raise InputError(field, str(outdir), f"an output folder whose {name} is {kind} (it is not; "
                              "remove it or choose another folder)")
+    points = p / store.POINTS_DIR
+    for q in sorted(points.glob("p[0-9]*.nc")) if points.is_dir() else ():
+        if q.is_dir():
+            raise InputError(field, str(outdir), f"an output folder whose {store.POINTS_DIR}/{q.name} is a "
+                             "file (it is a folder; remove it)")
     return p
 
 
