@@ -31,8 +31,6 @@ from importlib import resources
 from pathlib import Path
 from typing import Any
 
-import yaml
-
 from windflutter.backends import check_backend_name
 from windflutter.errors import InputError
 from windflutter.schema import Spec, check_keys, is_number
@@ -261,7 +259,10 @@ class AnalysisConfig:
         return json.loads(json.dumps(asdict(self)))
 
     def to_yaml(self) -> str:
-        return yaml.safe_dump(self.to_dict(), sort_keys=False)
+        """YAML text that :func:`load_config` reads back equal."""
+        from windflutter.files import dump_yaml  # noqa: PLC0415
+
+        return dump_yaml(self.to_dict())
 
     def fingerprint(self, exclude_output: bool = True) -> str:
         """Hash of the settings that change results (output options excluded by default).

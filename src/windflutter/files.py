@@ -48,10 +48,20 @@ class StrictLoader(getattr(yaml, "CSafeLoader", yaml.SafeLoader)):  # type: igno
         return self.construct_document(node)
 
 
+class StrictDumper(yaml.SafeDumper):
+    """Safe dumper that quotes every string :class:`StrictLoader` would read as something else
+    (``"1e5"``, a fingerprint like ``"0123e45678901234"``), so what it writes reads back equal."""
+
+
 # added after PyYAML's own resolvers: only scalars that they leave as strings are affected
-StrictLoader.add_implicit_resolver("tag:yaml.org,2002:float",
-                                   re.compile(r"^[-+]?(?:[0-9][0-9_]*)?(?:\.[0-9_]*)?[eE][-+]?[0-9]+$"),
-                                   list("-+0123456789."))
+_EXPONENT_FLOAT = re.compile(r"^[-+]?(?:[0-9][0-9_]*)?(?:\.[0-9_]*)?[eE][-+]?[0-9]+$")
+for _cls in (StrictLoader, StrictDumper):
+    _cls.add_implicit_resolver("tag:yaml.org,2002:float", _EXPONENT_FLOAT, list("-+0123456789."))
+
+
+def dump_yaml(data: Any) -> str:
+    """YAML text of plain data (keys in their order) that :func:`parse_yaml` reads back equal."""
+    return yaml.dump(data, Dumper=StrictDumper, sort_keys=False, allow_unicode=True)
 
 
 def _check_nodes(root: yaml.Node) -> None:

@@ -103,6 +103,8 @@ SECTION = {"semi_chord": 1.0, "elastic_axis": -0.2, "mass_ratio": 20, "x_alpha":
 # (command, base file, change, field named)
 FILE_CASES = [
     ("wing", GOLAND, {"n_elements": 1000000}, "n_elements"), ("wing", GOLAND, {"n_modes": 10 ** 6}, "n_modes"),
+    ("wing", GOLAND, {"basis_modes": 10 ** 6}, "basis_modes"), ("wing", GOLAND, {"basis_modes": 1}, "basis_modes"),
+    ("wing", GOLAND, {"basis_modes": 8, "n_modes": 8}, "n_modes"),
     ("wing", GOLAND, {"speed_step": 1e-320}, "speed_step"), ("wing", GOLAND, {"speed_step": 1e-6}, "speed_step"),
     ("wing", GOLAND, {"span": 1e300}, "span"), ("wing", GOLAND, {"mass": 1e30}, "mass"),
     ("wing", GOLAND, {"air_density": 1e9}, "air_density"), ("wing", GOLAND, {"chord": "oops"}, "chord"),

@@ -226,3 +226,27 @@ def test_overspeed_below_the_turbines_rated_speed_is_refused():
     with pytest.raises(InputError, match="rated rotor speed 12.1 RPM"):
         check_operating(turbine, config_from_dict({"operating": {"overspeed_rpm": 10.0}}))
     check_operating(turbine, config_from_dict({"operating": {"overspeed_rpm": 10.0, "rated_rpm": 9.0}}))
+
+
+def test_open_results_names_the_problem(tmp_path):
+    from windflutter.post import store
+
+    (tmp_path / "garbage.nc").write_bytes(b"not netcdf")
+    (tmp_path / "run" / "results.nc").mkdir(parents=True)
+    for path, words in ((tmp_path / "none.nc", "missing"), (tmp_path / "garbage.nc", "readable"),
+                        (tmp_path / "run", "is a folder")):
+        with pytest.raises(InputError, match=words):
+            store.open_results(path)
+
+
+def test_written_yaml_reads_back_equal():
+    # a run record's fingerprint is hex: "0123e45678901234" is a float to a YAML-1.2 reader
+    # unless the writer quotes it
+    from windflutter.config import config_from_dict, load_config
+    from windflutter.files import dump_yaml, parse_yaml
+
+    data = {"fingerprint": "0123e45678901234", "title": "1e5", "x": ["2E6", 1e-8, "yes", "0x1F"]}
+    assert parse_yaml(dump_yaml(data), "f", "f") == data
+    cfg = config_from_dict({"title": "1e5"})
+    assert config_from_dict(parse_yaml(cfg.to_yaml(), "f", "f")) == cfg
+    assert load_config(None, {"title": "7e3"}).title == "7e3"

@@ -28,17 +28,30 @@ BOUNDS = {
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("wing", help="flutter/divergence of a straight cantilever wing (beam + strip theory)")
     p.add_argument("config", help="YAML file: span, chord, elastic_axis, mass_axis, bending_stiffness, "
-                                   "torsion_stiffness, mass, inertia, air_density[, lift_slope, n_elements]")
+                                   "torsion_stiffness, mass, inertia, air_density[, lift_slope, n_elements, "
+                                   "basis_modes (or n_modes)]")
     p.add_argument("--method", choices=("pk", "thesis"), default="pk", help="search method (default pk)")
     p.add_argument("--json", action="store_true", help="print a JSON object")
     p.set_defaults(func=run)
 
 
-def check_bounds(cfg, source: str) -> None:
+def _vocabulary(data, source: str):
+    """The wing file's ``basis_modes`` (the name of the analysis config, preferred) or its older
+    ``n_modes`` for :class:`~windflutter.stability.wing.WingConfig`'s ``n_modes``."""
+    if isinstance(data, dict) and "basis_modes" in data:
+        if "n_modes" in data:
+            raise InputError("n_modes", data["n_modes"], "basis_modes or n_modes (the same setting), not both",
+                             source)
+        data = {("n_modes" if k == "basis_modes" else k): v for k, v in data.items()}
+    return data
+
+
+def check_bounds(cfg, source: str, names: dict[str, str] | None = None) -> None:
     """Every field of a :class:`~windflutter.stability.wing.WingConfig` in its physical range and
-    the speed grid at most :data:`~windflutter.config.MAX_GRID_POINTS` long, before any work."""
+    the speed grid at most :data:`~windflutter.config.MAX_GRID_POINTS` long, before any work
+    (``names``: the file's name of a field where it differs)."""
     for name, spec in BOUNDS.items():
-        spec.check(getattr(cfg, name), name, source)
+        spec.check(getattr(cfg, name), (names or {}).get(name, name), source)
     n = (cfg.speed_max - cfg.speed_min) / cfg.speed_step
     if not n < MAX_GRID_POINTS:
         raise InputError("speed_step", cfg.speed_step, f"a step giving at most {MAX_GRID_POINTS} speeds "
@@ -50,8 +63,15 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.stability.wing import WingConfig, analyse_wing
 
     data = load_yaml(args.config, "config", what="wing YAML file")
-    cfg = WingConfig.from_dict(data if data is not None else {}, source=str(args.config))
-    check_bounds(cfg, str(args.config))
+    names = {"n_modes": "basis_modes"} if isinstance(data, dict) and "basis_modes" in data else {}
+    try:
+        cfg = WingConfig.from_dict(_vocabulary(data if data is not None else {}, str(args.config)),
+                                   source=str(args.config))
+    except InputError as exc:
+        if exc.field in names:
+            raise InputError(names[exc.field], exc.value, exc.expected, exc.source) from None
+        raise
+    check_bounds(cfg, str(args.config), names)
     res = analyse_wing(cfg, method=args.method)
     out = {k: (None if v is None else float(v)) for k, v in res.as_dict().items()}
     if args.json:

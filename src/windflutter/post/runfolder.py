@@ -21,11 +21,10 @@ from pathlib import Path
 from typing import Any
 
 import numpy as np
-import yaml
 
 from windflutter import __version__
 from windflutter.errors import InputError
-from windflutter.files import check_output_folder, load_yaml
+from windflutter.files import check_output_folder, dump_yaml, load_yaml
 from windflutter.post import store
 
 RUN_FILE = "analysis.yaml"
@@ -142,7 +141,7 @@ def run_record(config: Any, turbine: Any, turbine_name: str | None) -> dict[str,
 
 
 def write_run_record(outdir: Path, record: dict[str, Any]) -> Path:
-    return store.atomic_write_text(yaml.safe_dump(record, sort_keys=False), Path(outdir) / RUN_FILE)
+    return store.atomic_write_text(dump_yaml(record), Path(outdir) / RUN_FILE)
 
 
 _HINT = "; run without --resume to start afresh, or choose another -o folder"

@@ -314,12 +314,27 @@ def combine(points: dict[int, xr.Dataset] | list[xr.Dataset], attrs: dict | None
 
 
 def open_results(path: str | Path) -> xr.Dataset:
-    """Open a ``results.nc`` (or an output folder) fully into memory."""
-    path = Path(path)
+    """Open a ``results.nc`` (or an output folder) fully into memory.
+
+    Raises
+    ------
+    InputError
+        no such file, a folder where the file should be, or a file that is not readable NetCDF.
+    """
+    from windflutter.errors import InputError  # noqa: PLC0415
+
+    given, path = str(path), Path(path)
     if path.is_dir():
         path = path / RESULTS_FILE
-    with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+    if not path.is_file():
+        what = "a folder" if path.is_dir() else "missing"
+        raise InputError("results", given, f"a results.nc file or the folder of a run ({path} is {what})")
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            return ds.load()
+    except Exception as exc:  # noqa: BLE001 - netCDF4/HDF5 raise OSError, ValueError, ...
+        raise InputError("results", given, f"a readable results NetCDF file ({type(exc).__name__}: "
+                         f"{str(exc).strip()[:200]})") from None
 
 
 def flutter_shape(ds: xr.Dataset) -> xr.DataArray:
