@@ -90,14 +90,16 @@ class Flag:
                 kw["metavar"] = self.metavar
             elif spec is not None and spec.choices:
                 kw["metavar"] = "{" + ",".join(spec.choices) + "}"
-        words = self.help or (spec.doc if spec is not None else "")
+        notes = []
         if spec is not None and spec.kind in ("float", "int") and spec.range_text():
             unit = f" {spec.unit}" if spec.unit and spec.unit != "-" else ""
-            words += f" [{spec.range_text()}{unit}]"
+            notes.append(f"in {spec.range_text()}{unit}")
         if self.default is not None:
-            words += f" (default {self.default if not isinstance(self.default, list) else ' '.join(map(str, self.default))})"
-        elif self.path:
-            words += f" (config {self.path})"
+            d = self.default
+            notes.append(f"default {' '.join(map(str, d)) if isinstance(d, list) else d}")
+        if self.path:
+            notes.append(f"config {self.path}")
+        words = (self.help or (spec.doc if spec is not None else "")) + (f" ({'; '.join(notes)})" if notes else "")
         kw["help"] = words.replace("%", "%%")
         parser.add_argument(self.name, **kw)
 
