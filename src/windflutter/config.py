@@ -2,217 +2,243 @@
 
 An analysis config is a small YAML file.  Every field has a documented default (the bundled
 ``data/analysis_default.yaml`` lists them all, with comments); a user file only states what it
-changes.  Validation is strict: an unknown key, a value of the wrong kind or out of range raises
-:class:`~windflutter.errors.InputError` naming the dotted field (``rotor_speed.max_rpm``), the
-value and what was expected.  The full reference is ``docs/config_reference.md``.
+changes.  Each field is **declared once**, in the dataclasses below, with its
+:class:`~windflutter.schema.Spec` (kind, bounds, unit, choices, doc); :func:`config_from_dict`
+is driven by those declarations, and the command-line flags of every command are checked by the
+same specs (:mod:`windflutter.cli.options`).  Adding an option is one declaration (plus its line
+in the default YAML and the reference, which a test keeps in step).
+
+Validation is strict: an unknown key, a value of the wrong kind, a non-finite number or one out
+of its declared range raises :class:`~windflutter.errors.InputError` naming the dotted field
+(``rotor_speed.max_rpm``), the value and what was expected.  Every size (wind speeds, grid
+points, elements, modes, frames, dpi) is bounded here, before any work starts.  The rules that
+tie fields together are the ``_rule_*`` functions at the end.  Reference: ``docs/config_reference.md``.
 
 Units at this edge follow the engineer's habits: wind speed m/s, rotor speed RPM, frequencies
-Hz, angles degrees.  :class:`AnalysisConfig` keeps them as given; the workflow converts to SI.
+Hz.  :class:`AnalysisConfig` keeps them as given; the workflow converts to SI.
 """
 
 from __future__ import annotations
 
 import copy
+import functools
 import hashlib
 import json
 import math
-from dataclasses import asdict, dataclass, field, fields
+from collections.abc import Iterator
+from dataclasses import Field, asdict, dataclass, field, fields, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-import yaml
-
+from windflutter.backends import check_backend_name
 from windflutter.errors import InputError
+from windflutter.schema import Spec, check_keys, is_number
 
 AERO_VARIANTS = ("potential", "viscous")
 SEARCH_METHODS = ("thesis", "pk")
 MODEL_TYPES = ("shell", "beam", "section")
+MODEL_PARTS = ("turbine", "rotor")
 DAMPING_MODELS = ("none", "stiffness", "rayleigh", "modal")
 PLOT_FORMATS = ("png", "svg", "pdf")
 REDUCTIONS = ("mta", "modal", "none")
 AERO_DISTRIBUTIONS = ("spline", "skin")
+
+#: bounds of the sizes and ranges (the reasons are in docs/config_reference.md, "Bounds")
+MAX_RPM = 1000.0            # RPM; a utility-scale rotor runs at 5-20 RPM, small turbines < 500
+MAX_WIND_SPEED = 100.0      # m/s; 70 m/s is the IEC class I 50-year gust
+MAX_WIND_SPEEDS = 1000      # wind speeds of a run (each one a point per case)
+MAX_GRID_POINTS = 1000      # rotor speeds of the sweep
+MAX_BLADE_ELEMENTS = 1000   # blade elements (= strips) along the span after mesh_density
+MAX_MODES = 500             # basis_modes, n_eig, n_tracked
+MAX_AIR_DENSITY = 2.0       # kg/m^3; dry air at -50 degC and 1050 hPa is 1.64
+
 # keys of earlier versions: a clear message instead of "unknown key"
-_RENAMED_SOLVER_KEYS = {
+_RENAMED = {"solver": {
     "n_modes": "renamed: solver.n_eig (eigenvalues per eigen-solve); the projection basis is solver.basis_modes",
     "shift_hz": "removed: the p-k search shifts each eigen-solve to the tracked mode's own frequency",
-}
+}}
+
+
+def opt(default: Any, kind: str, doc: str, **spec: Any) -> Any:
+    """A config field declared with its default and :class:`~windflutter.schema.Spec`."""
+    return field(default=default, metadata={"spec": Spec(kind, doc=doc, **spec)})
+
+
+def section(cls: type) -> Any:
+    """A nested config section (a dataclass of declared fields)."""
+    return field(default_factory=cls, metadata={"section": cls})
+
+
+def _wind_speeds(v: Any, name: str, src: str | None) -> tuple[float, ...]:
+    """A list of positive, strictly increasing wind speeds, or ``{start, stop, step}``.
+
+    The number of speeds of a range is computed (and bounded) before the list is built.
+    """
+    one = Spec("float", lower=0.0, lower_open=True, upper=MAX_WIND_SPEED, unit="m/s")
+    if isinstance(v, dict):
+        check_keys(f"{name}.", v, ("start", "stop", "step"), src)
+        for k in ("start", "stop", "step"):
+            if k not in v:
+                raise InputError(f"{name}.{k}", None, "a number (m/s); start, stop and step are all required", src)
+        start, stop = (one.check(v[k], f"{name}.{k}", src) for k in ("start", "stop"))
+        step = Spec("float", lower=0.0, lower_open=True, upper=MAX_WIND_SPEED, unit="m/s").check(
+            v["step"], f"{name}.step", src)
+        if stop < start:
+            raise InputError(f"{name}.stop", stop, f"a wind speed >= start = {start:g} m/s", src)
+        n = (stop - start) / step
+        if not n < MAX_WIND_SPEEDS:
+            raise InputError(f"{name}.step", step, f"a step giving at most {MAX_WIND_SPEEDS} wind speeds "
+                             f"(this one gives {n + 1:.3g})", src)
+        count = int(math.floor(n + 1e-9)) + 1
+        return tuple(round(start + i * step, 10) for i in range(count))
+    if is_number(v):
+        v = [v]
+    if not isinstance(v, (list, tuple)) or not v or len(v) > MAX_WIND_SPEEDS:
+        raise InputError(name, v, f"a list of 1 to {MAX_WIND_SPEEDS} wind speeds (m/s) or {{start, stop, step}}", src)
+    vals = []
+    for i, x in enumerate(v):
+        if not (is_number(x) and one._in_bounds(x) and math.isfinite(x)):
+            raise InputError(f"{name}[{i}]", x, f"a positive wind speed up to {MAX_WIND_SPEED:g} m/s", src)
+        vals.append(float(x))
+        if i and vals[i] <= vals[i - 1]:
+            raise InputError(f"{name}[{i}]", vals[i], f"strictly increasing wind speeds (> {vals[i - 1]:g} m/s)", src)
+    return tuple(vals)
+
+
+def _backend(v: Any, name: str, src: str | None) -> str:
+    return check_backend_name(v, name, src)
+
+
+# --------------------------------------------------------------------------------------------
+# the declarations
+# --------------------------------------------------------------------------------------------
+_RPM = dict(unit="RPM")
 
 
 @dataclass(frozen=True)
 class RotorSpeedConfig:
-    """Rotor-speed range searched for the onset, and the Campbell sweep grid (RPM).
+    """Rotor-speed range searched for the onset, and the Campbell sweep grid (RPM)."""
 
-    Attributes
-    ----------
-    min_rpm, max_rpm : search range (RPM); the onset is looked for in ``(min_rpm, max_rpm]``.
-    n_points : number of rotor speeds of the Campbell / damping sweep (evenly spaced,
-        ``min_rpm .. max_rpm``).
-    tolerance_rpm : onset located to this rotor-speed tolerance (RPM).
-    full_sweep : sweep every rotor speed of the grid (Campbell and damping data beyond the
-        first instability); ``False`` (default) stops at the first grid speed past both the
-        flutter and the divergence onsets -- the same onsets, about half the work on the
-        NREL 5 MW, whose onsets lie at 22-24 RPM of the 2-40 RPM grid.
-    """
-
-    min_rpm: float = 2.0
-    max_rpm: float = 40.0
-    n_points: int = 20
-    tolerance_rpm: float = 0.01
-    full_sweep: bool = False
+    min_rpm: float = opt(2.0, "float", "lower end of the rotor-speed search", lower=0.0, upper=MAX_RPM,
+                         upper_open=True, **_RPM)
+    max_rpm: float = opt(40.0, "float", "upper end of the search; the onset is looked for in (min_rpm, max_rpm]",
+                         lower=0.0, lower_open=True, upper=MAX_RPM, **_RPM)
+    n_points: int = opt(20, "int", "rotor speeds of the sweep (evenly spaced, ends included): the Campbell "
+                        "diagram and the brackets of the onset search", lower=2, upper=MAX_GRID_POINTS)
+    tolerance_rpm: float = opt(0.01, "float", "onset located to this rotor-speed tolerance; at most the sweep step",
+                               lower=1e-6, upper=10.0, **_RPM)
+    full_sweep: bool = opt(False, "bool", "sweep the whole grid (Campbell and damping beyond the first "
+                           "instability); false stops at the first grid speed past both onsets (same onsets)")
 
 
 @dataclass(frozen=True)
 class ModelConfig:
-    """Which structural model to build.
+    """Which structural model to build."""
 
-    Attributes
-    ----------
-    type : ``shell`` (the thesis's composite-shell FE model), ``beam`` (Timoshenko beams with
-        6x6 sections) or ``section`` (the seed's 2-DOF typical section at 75 % span).
-    mesh_density : multiplier on the default number of elements along span and chord (-).
-    n_aero_sections : aerodynamic strips per blade.
-    """
-
-    type: str = "beam"
-    mesh_density: float = 1.0
-    n_aero_sections: int = 30
+    type: str = opt("beam", "choice", "shell (the thesis's composite shells), beam (Timoshenko beams with 6x6 "
+                    "sections, much faster) or section (the seed's 2-DOF section: windflutter simple)",
+                    choices=MODEL_TYPES)
+    part: str = opt("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub, "
+                    "hub clamped)", choices=MODEL_PARTS)
+    mesh_density: float = opt(1.0, "float", "multiplier on the element counts (blade elements along the span "
+                              "n_aero_sections x density; shells also around each section and on the tower)",
+                              lower=0.1, upper=4.0, unit="-")
+    n_aero_sections: int = opt(30, "int", "blade elements along the span, one aerodynamic strip each (at "
+                               "mesh_density 1)", lower=4, upper=MAX_BLADE_ELEMENTS)
 
 
 @dataclass(frozen=True)
 class DampingConfig:
-    """Structural damping.
+    """Structural damping."""
 
-    Attributes
-    ----------
-    model : ``none``, ``stiffness`` (D = beta K with beta = 2 zeta / omega_ref),
-        ``rayleigh`` (alpha M + beta K, zeta at ``reference_hz`` and 10x it) or ``modal``
-        (the same ratio in every structural mode).
-    ratio : damping ratio zeta (-).  The default 0 is conservative: the computed onset is
-        the onset of the undamped structure.
-    reference_hz : reference frequency of the stiffness / Rayleigh models (Hz).
-    """
-
-    model: str = "none"
-    ratio: float = 0.0
-    reference_hz: float = 1.0
+    model: str = opt("none", "choice", "none, stiffness (D = beta K), rayleigh (alpha M + beta K) or modal (the "
+                     "ratio in every structural mode of the basis; needs solver.reduction mta or modal)",
+                     choices=DAMPING_MODELS)
+    ratio: float = opt(0.0, "float", "damping ratio; 0 gives the onset of the undamped structure (conservative); "
+                       "> 0 with model none switches the model to modal", lower=0.0, upper=1.0, upper_open=True,
+                       unit="-")
+    reference_hz: float = opt(1.0, "float", "reference frequency of stiffness / Rayleigh damping (Rayleigh: and "
+                              "10 x it)", lower=1e-3, upper=1000.0, unit="Hz")
 
 
 @dataclass(frozen=True)
 class SolverConfig:
-    """Eigen-solver, model-reduction and search options.
+    """Eigen-solver, model-reduction and search options."""
 
-    Attributes
-    ----------
-    backend : ``windflutter`` (the built-in solver) or ``"package.module:factory"``, a
-        user-supplied analyser factory ``factory(turbine, config) -> analyse`` (see
-        ``docs/workflow.md``).
-    reduction : ``mta`` (structural modes plus aerodynamic static-correction vectors, the
-        default: within 0.02 % of full order on the NREL 5 MW), ``modal`` (structural modes
-        only) or ``none`` (full order, the reference; slow on shell models).
-    basis_modes : structural modes per reference rotor speed in the projection basis.
-    correction_tol : ``mta`` only: relative cut-off of the aerodynamic correction directions
-        (kept when carrying more than ``sqrt(correction_tol)`` of the largest one's amplitude;
-        1e-8, the default, is safe; 1e-4 halves the NREL 5 MW basis with the same onsets but
-        puts the seed 20 MW's 2-5 % low).
-    n_eig : eigenvalues computed per eigen-solve (near each tracked mode's frequency).
-    n_tracked : modes followed across rotor speed by the p-k search and shown in the
-        Campbell diagram; ``null`` (default) tracks every mode up to 1.25 x the first blade
-        torsion frequency (the classical flutter partner of the flap modes).
-    aero_distribution : how the strip forces reach a shell model: ``spline`` (rigid-section
-        fit of the skin nodes, the default) or ``skin`` (the seed's bilinear skin quads, 2x2
-        Gauss); beam models map directly (``spline``).
-    geometric_stiffness : include the centrifugal stress stiffness K_sigma (full physics);
-        ``false`` reproduces the thesis.
-    induction : account for axial and tangential induction (steady BEM, frozen in the
-        stability problem) in the inflow; ``false`` is the thesis's ``V, Omega r``.
-    steady_loads : add the quasi-steady damping of the mean lift, drag and moment (the airfoil
-        polars at each strip's steady angle of attack): the edgewise aerodynamic damping of the
-        blades; ``false`` is the thesis's model.
-    """
-
-    backend: str = "windflutter"
-    reduction: str = "mta"
-    basis_modes: int = 30
-    correction_tol: float = 1e-8
-    n_eig: int = 20
-    n_tracked: int | None = None
-    aero_distribution: str = "spline"
-    geometric_stiffness: bool = True
-    induction: bool = False
-    steady_loads: bool = False
+    backend: str = opt("windflutter", "custom", "windflutter (the built-in solver) or the name of a plug-in "
+                       "analyser registered in the entry-point group windflutter.backends", parse=_backend)
+    reduction: str = opt("mta", "choice", "mta (structural modes + aerodynamic static-correction vectors), modal "
+                         "(structural modes only) or none (full order, the reference)", choices=REDUCTIONS)
+    basis_modes: int = opt(30, "int", "structural modes per reference rotor speed in the projection basis",
+                           lower=1, upper=MAX_MODES)
+    correction_tol: float = opt(1e-8, "float", "mta only: relative cut-off of the aerodynamic correction "
+                                "directions (kept above sqrt(tol) of the largest)", lower=1e-16, upper=1.0,
+                                upper_open=True, unit="-")
+    n_eig: int = opt(20, "int", "eigenvalues per eigen-solve (near each tracked mode's frequency)",
+                     lower=2, upper=MAX_MODES)
+    n_tracked: int | None = opt(None, "int", "modes followed across rotor speed by the p-k search; null: every "
+                                "mode up to 1.25 x the first blade-torsion frequency; <= basis_modes when reduced",
+                                lower=1, upper=MAX_MODES, nullable=True)
+    aero_distribution: str = opt("spline", "choice", "shell models: spline (rigid-section fit of the skin nodes) "
+                                 "or skin (the seed's skin quads); beams need spline", choices=AERO_DISTRIBUTIONS)
+    geometric_stiffness: bool = opt(True, "bool", "centrifugal stress stiffness K_sigma (full physics); false "
+                                    "reproduces the thesis")
+    induction: bool = opt(False, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
+                          "the stability problem; false is the thesis's inflow V, Omega r")
+    steady_loads: bool = opt(False, "bool", "quasi-steady damping of the mean lift, drag and moment (edgewise "
+                             "aerodynamic damping); false is the thesis's model")
 
 
 @dataclass(frozen=True)
 class OperatingConfig:
-    """Reference rotor speeds for margins.  ``null`` takes the value from the turbine.
+    """Reference rotor speeds for margins; ``null`` takes the value from the turbine."""
 
-    Attributes
-    ----------
-    rated_rpm : rated rotor speed (RPM).
-    overspeed_factor : overspeed = ``overspeed_factor * rated_rpm`` unless ``overspeed_rpm``
-        is given.  The default 1.2 is a common design overspeed, not a standard's value; set it
-        to your turbine's.
-    overspeed_rpm : explicit overspeed (RPM).
-    """
-
-    rated_rpm: float | None = None
-    overspeed_factor: float = 1.2
-    overspeed_rpm: float | None = None
+    rated_rpm: float | None = opt(None, "float", "rated rotor speed for the margins; null: the turbine's",
+                                  lower=0.0, lower_open=True, upper=MAX_RPM, nullable=True, **_RPM)
+    overspeed_factor: float = opt(1.2, "float", "overspeed = factor x rated unless overspeed_rpm is given (1.2 "
+                                  "is a common design overspeed, not a standard's value)", lower=1.0, upper=3.0,
+                                  unit="-")
+    overspeed_rpm: float | None = opt(None, "float", "explicit overspeed; at least the rated rotor speed",
+                                      lower=0.0, lower_open=True, upper=MAX_RPM, nullable=True, **_RPM)
 
 
 @dataclass(frozen=True)
 class OutputConfig:
-    """What the run writes into its output folder.
+    """What the run writes into its output folder."""
 
-    Attributes
-    ----------
-    plots : write the figures.
-    report : write ``report.html`` (figures embedded).
-    formats : figure file formats.
-    dpi : raster resolution of the figures.
-    mode_shapes : store the flutter mode shape and the aero-work diagnostic per point.
-    animations : write the flutter mode of every point with flutter as a VTK time series
-        (``OUTDIR/animations/*.pvd``, one cycle, openable in ParaView) when the analyser gives
-        the full mode and its FE model.
-    animation_frames : frames per cycle (>= 16 recommended for a smooth loop).
-    """
-
-    plots: bool = True
-    report: bool = True
-    formats: tuple[str, ...] = ("png",)
-    dpi: int = 110
-    mode_shapes: bool = True
-    animations: bool = True
-    animation_frames: int = 24
+    plots: bool = opt(True, "bool", "write OUTDIR/figures/*")
+    report: bool = opt(True, "bool", "write OUTDIR/report.html (figures embedded)")
+    formats: tuple[str, ...] = opt(("png",), "choices", "figure formats", choices=PLOT_FORMATS)
+    dpi: int = opt(110, "int", "raster resolution of the figures", lower=20, upper=1200)
+    mode_shapes: bool = opt(True, "bool", "store the flutter mode shape and the aero-work diagnostic per point")
+    animations: bool = opt(True, "bool", "write the flutter mode of every point with flutter as a VTK time "
+                           "series (OUTDIR/animations/*.pvd, ParaView)")
+    animation_frames: int = opt(24, "int", "frames per cycle of the animations (>= 16 for a smooth loop)",
+                                lower=4, upper=360)
 
 
 @dataclass(frozen=True)
 class AnalysisConfig:
-    """Everything ``windflutter run`` needs besides the turbine.
+    """Everything ``windflutter run`` needs besides the turbine."""
 
-    Attributes
-    ----------
-    wind_speeds : wind speeds (m/s), strictly increasing.
-    aero : aerodynamic variants, each of ``potential`` (2 pi, no drag) and ``viscous`` (fitted
-        polar slopes and drag).
-    method : search methods, each of ``thesis`` (the seed's 8 reduced frequencies) and ``pk``
-        (p-k with onset root-finding).
-    air_density : kg/m^3.
-    title : free text shown in the report.
-    """
-
-    wind_speeds: tuple[float, ...] = (4.0, 6.0, 8.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 22.0, 25.0)
-    aero: tuple[str, ...] = ("potential", "viscous")
-    method: tuple[str, ...] = ("pk",)
-    air_density: float = 1.225
-    title: str = ""
-    rotor_speed: RotorSpeedConfig = field(default_factory=RotorSpeedConfig)
-    model: ModelConfig = field(default_factory=ModelConfig)
-    damping: DampingConfig = field(default_factory=DampingConfig)
-    solver: SolverConfig = field(default_factory=SolverConfig)
-    operating: OperatingConfig = field(default_factory=OperatingConfig)
-    output: OutputConfig = field(default_factory=OutputConfig)
+    wind_speeds: tuple[float, ...] = opt(
+        (4.0, 6.0, 8.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 22.0, 25.0), "custom",
+        f"a list of positive, strictly increasing wind speeds up to {MAX_WIND_SPEED:g} m/s, or {{start, stop, "
+        f"step}} (inclusive); at most {MAX_WIND_SPEEDS}", parse=_wind_speeds, unit="m/s")
+    aero: tuple[str, ...] = opt(("potential", "viscous"), "choices", "aerodynamic variants: potential (2 pi, "
+                                "no drag) and/or viscous (the polars' fitted slopes and drag)", choices=AERO_VARIANTS)
+    method: tuple[str, ...] = opt(("pk",), "choices", "search methods: pk (p-k with onset root-finding) and/or "
+                                  "thesis (the seed's 8 reduced frequencies)", choices=SEARCH_METHODS)
+    air_density: float = opt(1.225, "float", "air density", lower=0.0, lower_open=True, upper=MAX_AIR_DENSITY,
+                             unit="kg/m^3")
+    title: str = opt("", "str", "free text shown in the report", max_len=500)
+    rotor_speed: RotorSpeedConfig = section(RotorSpeedConfig)
+    model: ModelConfig = section(ModelConfig)
+    damping: DampingConfig = section(DampingConfig)
+    solver: SolverConfig = section(SolverConfig)
+    operating: OperatingConfig = section(OperatingConfig)
+    output: OutputConfig = section(OutputConfig)
 
     # -- derived -----------------------------------------------------------------------------
     @property
@@ -233,12 +259,16 @@ class AnalysisConfig:
         return json.loads(json.dumps(asdict(self)))
 
     def to_yaml(self) -> str:
-        return yaml.safe_dump(self.to_dict(), sort_keys=False)
+        """YAML text that :func:`load_config` reads back equal."""
+        from windflutter.files import dump_yaml  # noqa: PLC0415
+
+        return dump_yaml(self.to_dict())
 
     def fingerprint(self, exclude_output: bool = True) -> str:
         """Hash of the settings that change results (output options excluded by default).
 
-        ``--resume`` refuses to continue a run whose fingerprint differs.
+        The run's own fingerprint (:func:`windflutter.workflow.run_fingerprint`) adds the
+        turbine's content and the package version; ``--resume`` refuses any difference.
         """
         d = self.to_dict()
         if exclude_output:
@@ -247,107 +277,122 @@ class AnalysisConfig:
         return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
 
 
+def declared_fields(cls: type = AnalysisConfig, prefix: str = "") -> Iterator[tuple[str, Field, Spec]]:
+    """``(dotted name, dataclass field, spec)`` of every declared setting, in declaration order."""
+    for f in fields(cls):
+        if "section" in f.metadata:
+            yield from declared_fields(f.metadata["section"], f"{prefix}{f.name}.")
+        else:
+            yield f"{prefix}{f.name}", f, f.metadata["spec"]
+
+
+def field_spec(dotted: str) -> Spec:
+    """The :class:`~windflutter.schema.Spec` of a dotted config field, e.g. ``solver.basis_modes``."""
+    for name, _, spec in declared_fields():
+        if name == dotted:
+            return spec
+    raise KeyError(dotted)
+
+
+def _document(cls: type) -> None:
+    """Append a NumPy ``Attributes`` section, generated from the declarations, to ``cls.__doc__``."""
+    lines = ["", "", "Attributes", "----------"]
+    for f in fields(cls):
+        if "section" in f.metadata:
+            lines.append(f"{f.name} : :class:`{f.metadata['section'].__name__}`")
+            continue
+        s: Spec = f.metadata["spec"]
+        extra = ", ".join(x for x in (s.unit if s.unit not in ("", "-") else "", s.range_text()) if x)
+        lines.append(f"{f.name} : {s.doc}" + (f" ({extra})" if extra else "") + f"; default {f.default!r}.")
+    cls.__doc__ = (cls.__doc__ or "") + "\n    ".join(lines)
+
+
+for _cls in (RotorSpeedConfig, ModelConfig, DampingConfig, SolverConfig, OperatingConfig, OutputConfig,
+             AnalysisConfig):
+    _document(_cls)
+
+
 # --------------------------------------------------------------------------------------------
-# validation
+# validation: the declarations, then the rules between fields
 # --------------------------------------------------------------------------------------------
-def _is_number(v: Any) -> bool:
-    return isinstance(v, (int, float)) and not isinstance(v, bool)
+def _merge(cls: type, data: Any, base: Any, prefix: str, src: str | None, given: set[str]) -> Any:
+    """``base`` with the declared fields of ``data`` checked and applied (recursively)."""
+    if data is None:
+        return base
+    name = prefix.rstrip(".") or "(top level)"
+    if not isinstance(data, dict):
+        what = "analysis settings" if not prefix else ", ".join(f.name for f in fields(cls))
+        raise InputError(name, data, f"a mapping of {what}", src)
+    check_keys(prefix, data, {f.name for f in fields(cls)}, src, _RENAMED.get(prefix.rstrip(".")))
+    kw = {}
+    for f in fields(cls):
+        if f.name not in data:
+            continue
+        dotted = prefix + f.name
+        if "section" in f.metadata:
+            kw[f.name] = _merge(f.metadata["section"], data[f.name], getattr(base, f.name), dotted + ".", src, given)
+        else:
+            kw[f.name] = f.metadata["spec"].check(data[f.name], dotted, src)
+            given.add(dotted)
+    return replace(base, **kw)
 
 
-def _number(name: str, v: Any, src: str | None, *, positive: bool = False,
-            nonneg: bool = False, unit: str = "") -> float:
-    u = f" ({unit})" if unit else ""
-    if not _is_number(v) or not math.isfinite(float(v)):
-        kind = "a positive" if positive else "a non-negative" if nonneg else "a finite"
-        raise InputError(name, v, f"{kind} number{u}", src)
-    v = float(v)
-    if positive and v <= 0:
-        raise InputError(name, v, f"a positive number{u}", src)
-    if nonneg and v < 0:
-        raise InputError(name, v, f"a non-negative number{u}", src)
-    return v
+def _rule_rotor_range(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
+    r = c.rotor_speed
+    if r.max_rpm <= r.min_rpm:
+        bad = "max_rpm" if "rotor_speed.max_rpm" in given or "rotor_speed.min_rpm" not in given else "min_rpm"
+        exp = (f"a rotor speed above min_rpm = {r.min_rpm:g} RPM" if bad == "max_rpm"
+               else f"a rotor speed below max_rpm = {r.max_rpm:g} RPM")
+        raise InputError(f"rotor_speed.{bad}", getattr(r, bad), exp + " (range reversed or empty)", src)
+    step = (r.max_rpm - r.min_rpm) / (r.n_points - 1)
+    if r.tolerance_rpm > step:
+        raise InputError("rotor_speed.tolerance_rpm", r.tolerance_rpm,
+                         f"a tolerance at most the sweep step {step:.4g} RPM", src)
+    return c
 
 
-def _integer(name: str, v: Any, src: str | None, minimum: int = 1) -> int:
-    if isinstance(v, bool) or not (isinstance(v, int) or (isinstance(v, float) and v.is_integer())):
-        raise InputError(name, v, f"an integer >= {minimum}", src)
-    if int(v) < minimum:
-        raise InputError(name, v, f"an integer >= {minimum}", src)
-    return int(v)
+def _rule_damping(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
+    d = c.damping
+    if d.model == "none" and d.ratio > 0:
+        if "damping.model" in given:
+            raise InputError("damping.model", "none", "stiffness, rayleigh or modal when damping.ratio > 0", src)
+        c = replace(c, damping=replace(d, model="modal"))
+    if c.damping.model == "modal" and c.damping.ratio > 0 and c.solver.reduction == "none":
+        raise InputError("damping.model", "modal", "stiffness or rayleigh with solver.reduction none "
+                         "(modal damping is applied in the modal basis)", src)
+    return c
 
 
-def _boolean(name: str, v: Any, src: str | None) -> bool:
-    if not isinstance(v, bool):
-        raise InputError(name, v, "true or false", src)
-    return v
+def _rule_solver(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
+    s = c.solver
+    if s.reduction != "none" and s.n_tracked is not None and s.n_tracked > s.basis_modes:
+        raise InputError("solver.n_tracked", s.n_tracked,
+                         f"at most solver.basis_modes = {s.basis_modes} with reduction {s.reduction}", src)
+    if s.aero_distribution == "skin" and c.model.type != "shell":
+        raise InputError("solver.aero_distribution", "skin", "spline unless model.type is shell "
+                         "(skin quads need a shell model)", src)
+    return c
 
 
-def _choice(name: str, v: Any, choices: tuple[str, ...], src: str | None) -> str:
-    if not isinstance(v, str) or v.lower() not in choices:
-        raise InputError(name, v, "one of " + ", ".join(choices), src)
-    return v.lower()
+def _rule_mesh(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
+    m = c.model
+    n_span = round(m.n_aero_sections * m.mesh_density)
+    if not 4 <= n_span <= MAX_BLADE_ELEMENTS:
+        bad = "mesh_density" if "model.mesh_density" in given else "n_aero_sections"
+        raise InputError(f"model.{bad}", getattr(m, bad), f"n_aero_sections x mesh_density in [4, "
+                         f"{MAX_BLADE_ELEMENTS}] blade elements (it gives {n_span})", src)
+    return c
 
 
-def _choices(name: str, v: Any, choices: tuple[str, ...], src: str | None) -> tuple[str, ...]:
-    items = [v] if isinstance(v, str) else v
-    if not isinstance(items, (list, tuple)) or not items:
-        raise InputError(name, v, "a non-empty list of " + ", ".join(choices), src)
-    out = tuple(_choice(f"{name}[{i}]", x, choices, src) for i, x in enumerate(items))
-    if len(set(out)) != len(out):
-        raise InputError(name, v, "a list without repeated entries", src)
-    return out
+def _rule_operating(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
+    o = c.operating
+    if o.rated_rpm is not None and o.overspeed_rpm is not None and o.overspeed_rpm < o.rated_rpm:
+        raise InputError("operating.overspeed_rpm", o.overspeed_rpm,
+                         f"an overspeed at least operating.rated_rpm = {o.rated_rpm:g} RPM", src)
+    return c
 
 
-def _optional_number(name: str, v: Any, src: str | None, unit: str) -> float | None:
-    return None if v is None else _number(name, v, src, positive=True, unit=unit)
-
-
-def _wind_speeds(v: Any, src: str | None) -> tuple[float, ...]:
-    name = "wind_speeds"
-    if isinstance(v, dict):
-        _check_keys(name, v, {"start", "stop", "step"}, src)
-        for k in ("start", "stop", "step"):
-            if k not in v:
-                raise InputError(f"{name}.{k}", None, "a number (m/s); start, stop and step are all required", src)
-        start = _number(f"{name}.start", v["start"], src, nonneg=True, unit="m/s")
-        stop = _number(f"{name}.stop", v["stop"], src, nonneg=True, unit="m/s")
-        step = _number(f"{name}.step", v["step"], src, positive=True, unit="m/s")
-        if stop < start:
-            raise InputError(f"{name}.stop", stop, f"a wind speed >= start = {start} m/s", src)
-        n = int(math.floor((stop - start) / step + 1e-9)) + 1
-        vals = [start + i * step for i in range(n)]
-        if n > 10000:
-            raise InputError(f"{name}.step", step, "a step giving at most 10000 wind speeds", src)
-        return tuple(round(x, 10) for x in vals)
-    if _is_number(v):
-        v = [v]
-    if not isinstance(v, (list, tuple)) or not v:
-        raise InputError(name, v, "a non-empty list of wind speeds (m/s) or {start, stop, step}", src)
-    vals = []
-    for i, x in enumerate(v):
-        if not _is_number(x) or not math.isfinite(float(x)) or float(x) <= 0:
-            raise InputError(f"{name}[{i}]", x, "a positive wind speed (m/s)", src)
-        vals.append(float(x))
-    for i in range(1, len(vals)):
-        if vals[i] <= vals[i - 1]:
-            raise InputError(f"{name}[{i}]", vals[i], f"strictly increasing wind speeds (> {vals[i - 1]} m/s)", src)
-    return tuple(vals)
-
-
-def _check_keys(prefix: str, d: dict, allowed: set[str], src: str | None) -> None:
-    for k in d:
-        if k not in allowed:
-            name = f"{prefix}.{k}" if prefix else str(k)
-            raise InputError(name, d[k], "a known key (unknown key; allowed: " + ", ".join(sorted(allowed)) + ")", src)
-
-
-def _section(prefix: str, d: Any, cls: type, src: str | None) -> dict:
-    if d is None:
-        return {}
-    if not isinstance(d, dict):
-        raise InputError(prefix, d, "a mapping of " + ", ".join(f.name for f in fields(cls)), src)
-    _check_keys(prefix, d, {f.name for f in fields(cls)}, src)
-    return d
+RULES = (_rule_rotor_range, _rule_damping, _rule_solver, _rule_mesh, _rule_operating)
 
 
 def config_from_dict(data: dict | None, source: str | None = None,
@@ -359,185 +404,72 @@ def config_from_dict(data: dict | None, source: str | None = None,
     InputError
         naming the first bad field.
     """
-    base = base or AnalysisConfig()
-    src = source
-    if data is None:
-        data = {}
-    if not isinstance(data, dict):
-        raise InputError("(top level)", data, "a mapping of analysis settings", src)
-    _check_keys("", data, {f.name for f in fields(AnalysisConfig)}, src)
+    given: set[str] = set()
+    cfg = _merge(AnalysisConfig, {} if data is None else data, base or AnalysisConfig(), "", source, given)
+    for rule in RULES:
+        cfg = rule(cfg, given, source)
+    return cfg
 
-    top: dict[str, Any] = {}
-    if "wind_speeds" in data:
-        top["wind_speeds"] = _wind_speeds(data["wind_speeds"], src)
-    if "aero" in data:
-        top["aero"] = _choices("aero", data["aero"], AERO_VARIANTS, src)
-    if "method" in data:
-        top["method"] = _choices("method", data["method"], SEARCH_METHODS, src)
-    if "air_density" in data:
-        top["air_density"] = _number("air_density", data["air_density"], src, positive=True, unit="kg/m^3")
-    if "title" in data:
-        if not isinstance(data["title"], str):
-            raise InputError("title", data["title"], "a string", src)
-        top["title"] = data["title"]
 
-    # rotor speed
-    d = _section("rotor_speed", data.get("rotor_speed"), RotorSpeedConfig, src)
-    r = asdict(base.rotor_speed)
-    for k in ("min_rpm", "max_rpm"):
-        if k in d:
-            r[k] = _number(f"rotor_speed.{k}", d[k], src, nonneg=True, unit="RPM")
-    if "n_points" in d:
-        r["n_points"] = _integer("rotor_speed.n_points", d["n_points"], src, 2)
-    if "tolerance_rpm" in d:
-        r["tolerance_rpm"] = _number("rotor_speed.tolerance_rpm", d["tolerance_rpm"], src, positive=True, unit="RPM")
-    if "full_sweep" in d:
-        r["full_sweep"] = _boolean("rotor_speed.full_sweep", d["full_sweep"], src)
-    if r["max_rpm"] <= r["min_rpm"]:
-        bad = "max_rpm" if "max_rpm" in d or "min_rpm" not in d else "min_rpm"
-        exp = (f"a rotor speed above min_rpm = {r['min_rpm']} RPM" if bad == "max_rpm"
-               else f"a rotor speed below max_rpm = {r['max_rpm']} RPM")
-        raise InputError(f"rotor_speed.{bad}", r[bad], exp + " (range reversed or empty)", src)
+def check_config(config: AnalysisConfig, source: str = "config") -> AnalysisConfig:
+    """``config`` validated as if it had been read from a file: for configs built in Python
+    (``AnalysisConfig(...)``, ``dataclasses.replace``), which the dataclasses do not check.
+    Returns the equal, validated config."""
+    if not isinstance(config, AnalysisConfig):
+        raise InputError("config", type(config).__name__, "an AnalysisConfig", source)
+    return config_from_dict(config.to_dict(), source)
 
-    # model
-    d = _section("model", data.get("model"), ModelConfig, src)
-    m = asdict(base.model)
-    if "type" in d:
-        m["type"] = _choice("model.type", d["type"], MODEL_TYPES, src)
-    if "mesh_density" in d:
-        m["mesh_density"] = _number("model.mesh_density", d["mesh_density"], src, positive=True)
-    if "n_aero_sections" in d:
-        m["n_aero_sections"] = _integer("model.n_aero_sections", d["n_aero_sections"], src, 2)
 
-    # damping
-    d = _section("damping", data.get("damping"), DampingConfig, src)
-    dm = asdict(base.damping)
-    if "model" in d:
-        dm["model"] = _choice("damping.model", d["model"], DAMPING_MODELS, src)
-    if "ratio" in d:
-        dm["ratio"] = _number("damping.ratio", d["ratio"], src, nonneg=True)
-        if dm["ratio"] >= 1:
-            raise InputError("damping.ratio", dm["ratio"], "a damping ratio in [0, 1)", src)
-    if "reference_hz" in d:
-        dm["reference_hz"] = _number("damping.reference_hz", d["reference_hz"], src, positive=True, unit="Hz")
-    if dm["model"] != "none" and dm["ratio"] == 0 and "ratio" in d:
-        pass  # allowed: explicit zero
-    if dm["model"] == "none" and "ratio" in d and dm["ratio"] > 0 and "model" in d:
-        raise InputError("damping.model", "none", "stiffness, rayleigh or modal when damping.ratio > 0", src)
-    if dm["model"] == "none" and dm["ratio"] > 0:
-        dm["model"] = "modal"
-
-    # solver
-    d = data.get("solver")
-    if isinstance(d, dict):
-        for k, why in _RENAMED_SOLVER_KEYS.items():
-            if k in d:
-                raise InputError(f"solver.{k}", d[k], f"a current key ({why})", src)
-    d = _section("solver", d, SolverConfig, src)
-    s = asdict(base.solver)
-    if "backend" in d:
-        b = d["backend"]
-        if not isinstance(b, str) or not (b == "windflutter" or (":" in b and all(b.split(":", 1)))):
-            raise InputError("solver.backend", b, "'windflutter' or 'package.module:factory'", src)
-        s["backend"] = b
-    if "reduction" in d:
-        s["reduction"] = _choice("solver.reduction", d["reduction"], REDUCTIONS, src)
-    if "aero_distribution" in d:
-        s["aero_distribution"] = _choice("solver.aero_distribution", d["aero_distribution"],
-                                         AERO_DISTRIBUTIONS, src)
-    if "basis_modes" in d:
-        s["basis_modes"] = _integer("solver.basis_modes", d["basis_modes"], src, 1)
-    if "correction_tol" in d:
-        s["correction_tol"] = _number("solver.correction_tol", d["correction_tol"], src, positive=True, unit="-")
-        if not s["correction_tol"] < 1.0:
-            raise InputError("solver.correction_tol", d["correction_tol"], "a relative cut-off in (0, 1), e.g. 1e-8", src)
-    if "n_eig" in d:
-        s["n_eig"] = _integer("solver.n_eig", d["n_eig"], src, 2)
-    if "n_tracked" in d:
-        s["n_tracked"] = None if d["n_tracked"] is None else _integer("solver.n_tracked", d["n_tracked"], src, 1)
-    for k in ("geometric_stiffness", "induction", "steady_loads"):
-        if k in d:
-            s[k] = _boolean(f"solver.{k}", d[k], src)
-    if s["reduction"] != "none" and s["n_tracked"] is not None and s["n_tracked"] > s["basis_modes"]:
-        raise InputError("solver.n_tracked", s["n_tracked"],
-                         f"at most solver.basis_modes = {s['basis_modes']} with reduction {s['reduction']}", src)
-    if dm["model"] == "modal" and dm["ratio"] > 0 and s["reduction"] == "none":
-        raise InputError("damping.model", "modal", "stiffness or rayleigh with solver.reduction none "
-                         "(modal damping is applied in the modal basis)", src)
-    if s["aero_distribution"] == "skin" and m["type"] != "shell":
-        raise InputError("solver.aero_distribution", "skin", "spline unless model.type is shell "
-                         "(skin quads need a shell model)", src)
-
-    # operating
-    d = _section("operating", data.get("operating"), OperatingConfig, src)
-    o = asdict(base.operating)
-    if "rated_rpm" in d:
-        o["rated_rpm"] = _optional_number("operating.rated_rpm", d["rated_rpm"], src, "RPM")
-    if "overspeed_rpm" in d:
-        o["overspeed_rpm"] = _optional_number("operating.overspeed_rpm", d["overspeed_rpm"], src, "RPM")
-    if "overspeed_factor" in d:
-        o["overspeed_factor"] = _number("operating.overspeed_factor", d["overspeed_factor"], src, positive=True)
-        if o["overspeed_factor"] < 1:
-            raise InputError("operating.overspeed_factor", o["overspeed_factor"], "a factor >= 1", src)
-
-    # output
-    d = _section("output", data.get("output"), OutputConfig, src)
-    out = asdict(base.output)
-    for k in ("plots", "report", "mode_shapes", "animations"):
-        if k in d:
-            out[k] = _boolean(f"output.{k}", d[k], src)
-    if "formats" in d:
-        out["formats"] = _choices("output.formats", d["formats"], PLOT_FORMATS, src)
-    if "dpi" in d:
-        out["dpi"] = _integer("output.dpi", d["dpi"], src, 20)
-    if "animation_frames" in d:
-        out["animation_frames"] = _integer("output.animation_frames", d["animation_frames"], src, 4)
-    out["formats"] = tuple(out["formats"])
-
-    kw = {f.name: getattr(base, f.name) for f in fields(AnalysisConfig)}
-    kw.update(top)
-    kw.update(rotor_speed=RotorSpeedConfig(**r), model=ModelConfig(**m), damping=DampingConfig(**dm),
-              solver=SolverConfig(**s), operating=OperatingConfig(**o), output=OutputConfig(**out))
-    for k in ("wind_speeds", "aero", "method"):
-        kw[k] = tuple(kw[k])
-    return AnalysisConfig(**kw)
+def n_points_for_step(min_rpm: Any, max_rpm: Any, step: Any, name: str = "rotor_speed.step") -> int:
+    """Grid points of ``min_rpm .. max_rpm`` in steps of ``step`` (the last step may be shorter),
+    checked against :data:`MAX_GRID_POINTS` before any grid is built (``name`` names ``step``)."""
+    lo = field_spec("rotor_speed.min_rpm").check(min_rpm, "rotor_speed.min_rpm")
+    hi = field_spec("rotor_speed.max_rpm").check(max_rpm, "rotor_speed.max_rpm")
+    st = Spec("float", lower=0.0, lower_open=True, upper=MAX_RPM, unit="RPM").check(step, name)
+    n = max(hi - lo, 0.0) / st
+    if not n < MAX_GRID_POINTS:
+        raise InputError(name, step, f"a step giving at most {MAX_GRID_POINTS} rotor speeds (this one "
+                         f"gives {n + 1:.3g})")
+    return max(int(math.ceil(n - 1e-9)), 1) + 1
 
 
 def default_config_text() -> str:
     """The bundled, commented default analysis (``data/analysis_default.yaml``)."""
-    return resources.files("windflutter").joinpath("data/analysis_default.yaml").read_text()
+    return resources.files("windflutter").joinpath("data/analysis_default.yaml").read_text(encoding="utf-8")
 
 
+@functools.lru_cache(maxsize=1)
 def default_config() -> AnalysisConfig:
-    """The default analysis, read from the bundled YAML (so file and dataclass agree)."""
-    return config_from_dict(yaml.safe_load(default_config_text()), "analysis_default.yaml")
+    """The default analysis, read from the bundled YAML (so file and dataclass agree; read once:
+    the config is immutable)."""
+    from windflutter.files import parse_yaml  # noqa: PLC0415
+
+    return config_from_dict(parse_yaml(default_config_text(), "config", "analysis_default.yaml"),
+                            "analysis_default.yaml")
 
 
-def load_config(path: str | Path | None = None, overrides: dict | None = None) -> AnalysisConfig:
+def load_config(path: str | Path | None = None, overrides: dict | None = None,
+                overrides_source: str = "command line") -> AnalysisConfig:
     """Read an analysis YAML over the defaults; ``None`` gives the defaults.
 
     Parameters
     ----------
     path : YAML file, or ``None``.
     overrides : nested dict applied after the file (e.g. from the command line).
+    overrides_source : how messages name where ``overrides`` came from.
 
     Raises
     ------
     InputError
-        unreadable file, bad YAML, unknown key or bad value (naming the field).
+        unreadable or non-UTF-8 file, bad YAML (duplicate key, too deep), unknown key or bad
+        value (naming the field).
     """
+    from windflutter.files import load_yaml  # noqa: PLC0415
+
     cfg = default_config()
     if path is not None:
-        p = Path(path)
-        if not p.is_file():
-            raise InputError("config", str(path), "an existing analysis YAML file")
-        try:
-            data = yaml.safe_load(p.read_text())
-        except yaml.YAMLError as exc:
-            mark = getattr(exc, "problem_mark", None)
-            where = f"line {mark.line + 1}" if mark is not None else "?"
-            raise InputError("config", str(path), f"valid YAML (parse error at {where})") from None
-        cfg = config_from_dict(data, p.name, base=cfg)
+        data = load_yaml(path, "config", what="analysis YAML file")
+        cfg = config_from_dict(data, Path(path).name, base=cfg)
     if overrides:
-        cfg = config_from_dict(copy.deepcopy(overrides), "command line", base=cfg)
+        cfg = config_from_dict(copy.deepcopy(overrides), overrides_source, base=cfg)
     return cfg

@@ -34,11 +34,21 @@ class InputError(WindflutterError, ValueError):
         self.value = value
         self.expected = expected
         self.source = source
-        shown = repr(value)
-        if len(shown) > 80:
-            shown = shown[:77] + "..."
+        shown = _shown(value)
         where = f"{source}: " if source else ""
         super().__init__(f"{where}{field} = {shown}: expected {expected}")
+
+
+def _shown(value: Any) -> str:
+    """``repr(value)`` shortened to 80 characters; never fails (a 5000-digit integer has no
+    ``repr`` in Python >= 3.11, a broken object may raise)."""
+    if isinstance(value, int) and not isinstance(value, bool) and value.bit_length() > 256:
+        return f"<an integer of about {int(value.bit_length() * 0.30103) + 1} digits>"
+    try:
+        shown = repr(value)
+    except Exception:  # noqa: BLE001 - the message must not fail
+        shown = f"<{type(value).__name__}>"
+    return shown if len(shown) <= 80 else shown[:77] + "..."
 
 
 class InputWarning(UserWarning):

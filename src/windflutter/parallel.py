@@ -44,7 +44,7 @@ except Exception:  # pragma: no cover - depends on the environment
     _cp = pickle
 
 __all__ = ["TaskResult", "run_tasks", "iter_tasks", "default_workers", "check_workers", "connect",
-           "runs_in_process"]
+           "check_scheduler_address", "runs_in_process"]
 
 ProgressCallback = Callable[[int, int, "TaskResult"], None]
 
@@ -103,6 +103,49 @@ def runs_in_process(n_tasks: int, workers: int | None = None, scheduler: Any = N
     return scheduler is None and (check_workers(workers) == 1 or n_tasks <= 1)
 
 
+_SCHEMES = ("tcp", "tls", "ws", "wss", "inproc", "ucx")
+_EXAMPLE = "the address of a running Dask scheduler, e.g. tcp://host:8786"
+
+
+def check_scheduler_address(address: Any, field_name: str = "scheduler", probe_timeout: float = 3.0) -> str:
+    """A Dask scheduler address that can be connected to, checked without making a Client.
+
+    A malformed address (``tcp://host:abc``, an unknown scheme, no host, a port outside 1-65535)
+    is refused at once; for ``tcp``/``tls``/``ws`` addresses a plain socket connection is tried
+    first (``probe_timeout`` s), so nothing is left behind -- a half-made ``distributed.Client``
+    printed a traceback from its ``__del__`` twenty seconds after the error.
+
+    Raises
+    ------
+    InputError
+        naming ``field_name``.
+    """
+    if not isinstance(address, str) or not address.strip():
+        raise InputError(field_name, address, _EXAMPLE)
+    try:
+        from distributed.comm.addressing import parse_address, parse_host_port
+    except ImportError:  # pragma: no cover - depends on the environment
+        raise InputError(field_name, address, "dask.distributed installed (pip install windflutter[dist])") from None
+    addr = address.strip()
+    try:
+        scheme, loc = parse_address(addr, strict=False)
+        host, port = parse_host_port(loc, default_port=8786) if scheme in ("tcp", "tls", "ws", "wss") else (loc, 1)
+    except (ValueError, TypeError) as exc:
+        raise InputError(field_name, address, f"{_EXAMPLE} ({exc})") from None
+    if scheme not in _SCHEMES or not host or not 0 < int(port) < 65536:
+        raise InputError(field_name, address, f"{_EXAMPLE} (scheme one of {', '.join(_SCHEMES)}, a host, "
+                         "a port in 1-65535)")
+    if scheme in ("tcp", "tls", "ws", "wss"):
+        import socket
+
+        try:
+            socket.create_connection((host, int(port)), timeout=probe_timeout).close()
+        except OSError as exc:
+            raise InputError(field_name, address, f"{_EXAMPLE} (nothing answers at {host}:{port}: "
+                             f"{exc.strerror or type(exc).__name__})") from None
+    return addr
+
+
 def connect(scheduler: Any, timeout: float = 10.0):
     """A ``distributed.Client`` for ``scheduler`` (an address, a ``LocalCluster`` or a Client).
 
@@ -121,9 +164,7 @@ def connect(scheduler: Any, timeout: float = 10.0):
         return scheduler
     if hasattr(scheduler, "scheduler_address") and not hasattr(scheduler, "submit"):
         scheduler = scheduler.scheduler_address  # a LocalCluster / SpecCluster object
-    if not isinstance(scheduler, str) or not scheduler.strip():
-        raise InputError("scheduler", scheduler, "the address of a running Dask scheduler, "
-                         "e.g. tcp://host:8786")
+    scheduler = check_scheduler_address(scheduler, "scheduler")
     try:
         return Client(scheduler, timeout=timeout, set_as_default=False)
     except Exception as exc:  # noqa: BLE001 - unreachable address, bad string

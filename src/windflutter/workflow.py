@@ -17,9 +17,12 @@ for the Campbell diagram and returns the flutter mode.  The workflow owns everyt
 * progress bars, the combined dataset with units and attributes, the plots and the HTML report.
 
 The built-in analyser comes from :func:`make_analyser` (the stability solver); a user analyser can
-be plugged in with ``solver.backend: "package.module:factory"``, where
-``factory(turbine, config)`` returns the callable (it may also have a ``describe() -> dict``
-method giving model size and the operating curve; see ``docs/workflow.md``).
+be plugged in with ``solver.backend: NAME``, a name registered with
+:func:`windflutter.backends.register_backend` or published in the entry-point group
+``windflutter.backends``, whose ``factory(turbine, config)`` returns the callable (it may also
+have a ``describe() -> dict`` method giving model size and the operating curve; see
+``docs/workflow.md``).  The output folder, its record and ``--resume`` are
+:mod:`windflutter.post.runfolder`.
 """
 
 from __future__ import annotations
@@ -27,12 +30,11 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 import datetime as _dt
-import importlib
 import inspect
 import math
-import platform
 import shutil
 import signal
+import sys
 import threading
 import time
 from collections.abc import Callable
@@ -43,13 +45,12 @@ from typing import Any, Protocol
 import numpy as np
 import xarray as xr
 
-from windflutter import __version__
 from windflutter.config import AnalysisConfig
 from windflutter.errors import InputError, ModelError
-from windflutter.post import store
+from windflutter.post import runfolder, store
 from windflutter.post.progress import RunProgress
-
-RUN_FILE = "analysis.yaml"
+from windflutter.post.rundata import MODEL_SIZE_KEYS, assemble_dataset, check_operating, describe_run  # noqa: F401
+from windflutter.post.runfolder import RUN_FILE  # noqa: F401  (re-exported: the run's record)
 
 
 # --------------------------------------------------------------------------------------------
@@ -160,21 +161,16 @@ def plan_points(config: AnalysisConfig) -> list[OperatingPoint]:
 def make_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
     """The analyser of ``config.solver.backend``.
 
-    ``windflutter`` gives the built-in stability solver (:func:`_builtin_analyser`);
-    ``"package.module:factory"`` imports ``factory`` and returns ``factory(turbine, config)``.
+    ``windflutter`` gives the built-in stability solver (:func:`_builtin_analyser`); any other
+    name is a plug-in of :mod:`windflutter.backends` (registered in this process or in the
+    entry-point group ``windflutter.backends``) and gives ``factory(turbine, config)``.
     """
+    from windflutter.backends import BUILTIN, backend_factory  # noqa: PLC0415
+
     backend = config.solver.backend
-    if backend == "windflutter":
+    if backend == BUILTIN:
         return _builtin_analyser(turbine, config)
-    mod_name, _, attr = backend.partition(":")
-    try:
-        module = importlib.import_module(mod_name)
-    except ImportError as exc:
-        raise InputError("solver.backend", backend, f"an importable module ({exc})") from None
-    factory = getattr(module, attr, None)
-    if not callable(factory):
-        raise InputError("solver.backend", backend, f"a callable '{attr}' in module {mod_name}")
-    return factory(turbine, config)
+    return backend_factory(backend)(turbine, config)
 
 
 def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
@@ -184,26 +180,38 @@ def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
         from windflutter.stability import turbine as _st  # noqa: PLC0415
     except ImportError as exc:
         raise ModelError(f"the built-in turbine stability solver is not available ({exc}); use "
-                         "solver.backend 'package.module:factory' for your own analyser") from None
+                         "a plug-in solver.backend (windflutter.backends) for your own analyser") from None
     if config.model.type not in ("beam", "shell"):
         raise InputError("model.type", config.model.type, "'beam' or 'shell' for the built-in turbine solver")
     return TurbinePointAnalyser(turbine, config, _st)
 
 
 def mesh_settings(config: AnalysisConfig) -> dict[str, Any]:
-    """Mesh-setting overrides from ``model.mesh_density`` and ``model.n_aero_sections``.
+    """Mesh-setting overrides from ``model.part``, ``model.mesh_density`` and ``model.n_aero_sections``.
 
     Element counts of :class:`windflutter.mesh.settings.MeshSettings` scaled by the density:
-    strips / elements along the blade ``n_aero_sections * density``; for shells also the
-    elements around a section (default 40, kept even) and along / around the tower.
+    strips / elements along the blade ``n_aero_sections * density`` (at least 4: the config
+    refuses fewer); for shells also the elements around a section (default 40, kept even, at
+    least 8) and around (at least 8) and along (at least 4) the tower.
     """
     d = config.model.mesh_density
-    out: dict[str, Any] = {"n_span": max(4, int(round(config.model.n_aero_sections * d)))}
+    out: dict[str, Any] = {"part": config.model.part,
+                           "n_span": max(4, int(round(config.model.n_aero_sections * d)))}
     if config.model.type == "shell" and d != 1.0:
         out["n_chord"] = max(8, 2 * int(round(20 * d)))
         out["n_tower_circ"] = max(8, int(round(20 * d)))
         out["n_tower_axial"] = max(4, int(round(22 * d)))
     return out
+
+
+def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any = None):
+    """The stability solver's options for one ``(aero, method)`` case of ``config``: the bridge
+    ``options_from_config`` plus the mesh of :func:`mesh_settings` (``windflutter run`` and
+    ``windflutter stability`` both use this)."""
+    if module is None:
+        from windflutter.stability import turbine as module  # noqa: PLC0415
+    opts = module.options_from_config(config, aero, method)
+    return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
 
 
 class TurbinePointAnalyser:
@@ -221,14 +229,13 @@ class TurbinePointAnalyser:
         self._size: dict[str, Any] = {}
         # validate the options now, so a bad combination fails before the first point
         for aero, method in config.cases:
-            module.options_from_config(config, aero, method)
+            turbine_options(config, aero, method, module)
 
     def _stability(self, aero: str, method: str):
         key = (aero, method)
         if key not in self._cases:
-            opts = self._st.options_from_config(self.config, aero, method)
-            opts = dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(self.config)})
-            self._cases[key] = self._st.TurbineStability(self.turbine, opts)
+            self._cases[key] = self._st.TurbineStability(self.turbine, turbine_options(self.config, aero, method,
+                                                                                       self._st))
         return self._cases[key]
 
     def fe_model(self, point: OperatingPoint):
@@ -249,10 +256,10 @@ class TurbinePointAnalyser:
         s = ts.analyse_operating_point(point.wind_speed, rpm_grid=np.asarray(point.sweep_rpm, float))
         pitch = ts.pitch_at(point.wind_speed)
         fe, sections, am = ts.model(pitch)
+        size = {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
+                "n_aero_sections": int(sections.n_sections), "n_reduced_dof": int(am.size)}
         if not self._size:
-            self._size = {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
-                          "n_aero_sections": int(sections.n_sections),
-                          "n_reduced_dof": int(am.size)}
+            self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
         nan = float("nan")
         res = PointResult(
             flutter_rpm=nan if s.flutter_rpm is None else float(s.flutter_rpm),
@@ -261,7 +268,9 @@ class TurbinePointAnalyser:
             divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
             sweep_rpm=np.asarray(s.sweep_rpm, float), frequency_hz=np.asarray(s.frequency_hz, float),
             damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
-            info={"pitch_deg": float(s.pitch_deg)})
+            # the model size goes with each point (the reduced size may depend on its pitch), so
+            # the run's attributes do not depend on which points this process computed
+            info={"pitch_deg": float(s.pitch_deg), **size})
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:
@@ -285,107 +294,6 @@ def _accepts_progress(fn: Callable) -> bool:
         return False
     return "progress" in sig.parameters or any(
         p.kind is inspect.Parameter.VAR_KEYWORD for p in sig.parameters.values())
-
-
-# --------------------------------------------------------------------------------------------
-# run description (attributes of the dataset)
-# --------------------------------------------------------------------------------------------
-def describe_run(turbine: Any, config: AnalysisConfig, analyser: Any) -> dict[str, Any]:
-    """Turbine, model and reference rotor speeds of a run (for attributes, plots and report).
-
-    Values from ``analyser.describe()`` (if present) win over those read from ``turbine``.
-    Returns keys ``turbine``, ``rated_rpm``, ``overspeed_rpm``, ``operating_wind_speed``,
-    ``operating_rpm``, ``operating_pitch_deg`` (arrays or None) and any model-size entries.
-    """
-    info: dict[str, Any] = {"turbine": str(getattr(turbine, "name", turbine))}
-    curve = getattr(turbine, "operating_curve", None)
-    if curve is not None:
-        info["operating_wind_speed"] = np.asarray(curve.wind_speed, float)
-        info["operating_rpm"] = np.asarray(curve.rotor_speed, float) * 30.0 / math.pi
-        info["operating_pitch_deg"] = np.degrees(np.asarray(curve.pitch, float))
-    rated = getattr(turbine, "rated_rotor_speed", None)
-    if rated is not None and np.isfinite(rated) and rated > 0:
-        info["rated_rpm"] = float(rated) * 30.0 / math.pi
-    for attr in ("rotor_diameter", "hub_height", "n_blades", "source"):
-        val = getattr(turbine, attr, None)
-        if val is not None:
-            info[attr] = val
-    describe = getattr(analyser, "describe", None)
-    if callable(describe):
-        info.update(describe() or {})
-    if config.operating.rated_rpm is not None:
-        info["rated_rpm"] = config.operating.rated_rpm
-    if "rated_rpm" not in info and info.get("operating_rpm") is not None:
-        info["rated_rpm"] = float(np.max(info["operating_rpm"]))
-    rated = info.get("rated_rpm")
-    if config.operating.overspeed_rpm is not None:
-        info["overspeed_rpm"] = config.operating.overspeed_rpm
-    elif rated is not None:
-        info["overspeed_rpm"] = config.operating.overspeed_factor * float(rated)
-    return info
-
-
-def _versions() -> dict[str, str]:
-    import scipy  # noqa: PLC0415
-
-    v = {"windflutter_version": __version__, "numpy_version": np.__version__,
-         "scipy_version": scipy.__version__, "xarray_version": xr.__version__,
-         "python_version": platform.python_version()}
-    try:
-        import pyfe3d  # noqa: PLC0415
-        v["pyfe3d_version"] = getattr(pyfe3d, "__version__", "?")
-    except ImportError:  # pragma: no cover
-        pass
-    return v
-
-
-def _run_attrs(config: AnalysisConfig, info: dict[str, Any]) -> dict[str, Any]:
-    attrs: dict[str, Any] = {
-        "title": config.title or f"windflutter stability analysis of {info.get('turbine', '?')}",
-        "Conventions": "CF-1.8 (units and long_name on every variable)",
-        "source": "windflutter run",
-        "config_fingerprint": config.fingerprint(),
-        "config_yaml": config.to_yaml(),
-    }
-    attrs.update(_versions())
-    for section in ("solver", "model", "damping"):
-        for k, v in config.to_dict()[section].items():
-            attrs[f"{section}_{k}"] = v
-    attrs["air_density"] = config.air_density
-    for k, v in info.items():
-        if isinstance(v, np.ndarray):
-            continue
-        attrs[k] = v
-    return attrs
-
-
-def _operating_vars(info: dict[str, Any]) -> dict[str, xr.DataArray]:
-    out = {}
-    v = info.get("operating_wind_speed")
-    if v is None:
-        return out
-    out["operating_rpm"] = xr.DataArray(np.asarray(info["operating_rpm"], float), dims="operating",
-                                        coords={"operating_wind_speed": ("operating", np.asarray(v, float))},
-                                        attrs={"units": "rpm", "long_name": "rotor speed of the control curve"})
-    if info.get("operating_pitch_deg") is not None:
-        out["operating_pitch"] = xr.DataArray(np.asarray(info["operating_pitch_deg"], float), dims="operating",
-                                              attrs={"units": "degree", "long_name": "blade pitch of the control curve"})
-    return out
-
-
-def assemble_dataset(points: dict[int, xr.Dataset], config: AnalysisConfig, info: dict[str, Any],
-                     n_planned: int) -> xr.Dataset:
-    """Combine stored points with the run's attributes and the operating curve."""
-    attrs = _run_attrs(config, info)
-    attrs["n_points_planned"] = n_planned
-    attrs["n_points_done"] = len(points)
-    attrs["complete"] = int(len(points) == n_planned)
-    ds = store.combine(points, attrs)
-    for name, da in _operating_vars(info).items():
-        ds[name] = da
-    if "operating_wind_speed" in ds.coords:
-        ds["operating_wind_speed"].attrs.update(units="m/s", long_name="wind speed of the control curve")
-    return ds
 
 
 # --------------------------------------------------------------------------------------------
@@ -419,23 +327,6 @@ class RunInterrupted(KeyboardInterrupt):
     def __init__(self, done: int, total: int, outdir: Path):
         super().__init__(f"{done} of {total} points stored in {outdir}")
         self.done, self.total, self.outdir = done, total, outdir
-
-
-def _check_resume(outdir: Path, config: AnalysisConfig) -> None:
-    path = outdir / RUN_FILE
-    if not path.is_file():
-        return
-    import yaml  # noqa: PLC0415
-
-    try:
-        stored = yaml.safe_load(path.read_text()) or {}
-    except yaml.YAMLError:
-        return
-    old = stored.get("fingerprint")
-    if old and old != config.fingerprint():
-        raise InputError("--resume", str(outdir), f"the analysis config of the interrupted run "
-                         f"(fingerprint {old}, now {config.fingerprint()}); use the same config or "
-                         "a new output folder")
 
 
 def _analyse_one(analyse: Analyser, point: OperatingPoint, prog: RunProgress | None,
@@ -536,11 +427,12 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
     config : the analysis.
     outdir : output folder (created).  Without ``resume``, stored points of an earlier run in it
         are discarded.
-    resume : keep the stored points of an interrupted run with the same config and compute only
-        the missing ones.
+    resume : keep the stored points of an interrupted run with the same config, turbine and
+        windflutter version (:mod:`windflutter.post.runfolder`) and compute only the missing
+        ones; a stored point file that cannot be read is computed again.
     progress : draw progress bars (``False``: quiet).
     analyser : per-point analyser; default :func:`make_analyser`.
-    stream : where progress goes (default stderr).
+    stream : where progress and warnings go (default stderr).
     workers : local worker processes for the operating points (1, the default here: serial in
         this process, with progress inside each point; ``None``:
         :func:`windflutter.parallel.default_workers`, the usable cores; ``windflutter run``
@@ -563,14 +455,22 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
     RunInterrupted
         on Ctrl-C, after storing what was finished (running workers are stopped).
     InputError
-        bad ``workers``, or no Dask scheduler at ``scheduler`` (checked before ``outdir`` is
-        touched).
+        before ``outdir`` is touched: bad ``workers``; ``outdir`` not a writable folder (field
+        ``outdir``); ``resume`` of a folder that is not an earlier run of the same config,
+        turbine and version (field ``--resume``); an unknown back-end; no Dask scheduler at
+        ``scheduler``.
     """
     from windflutter import parallel  # noqa: PLC0415
+    from windflutter.config import check_config  # noqa: PLC0415
 
+    config = check_config(config)  # a config built in Python is checked like a file
     if scheduler is None:
         workers = parallel.check_workers(workers)
-    outdir = Path(outdir)
+    outdir = runfolder.check_run_folder(outdir, "outdir")
+    record = runfolder.run_record(config, turbine, str(getattr(turbine, "name", turbine)))
+    if resume:
+        runfolder.check_resume(outdir, record)
+    check_operating(turbine, config)
     if analyser is None:
         analyser = make_analyser(turbine, config)
     client = own_client = None
@@ -578,47 +478,55 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
         client = parallel.connect(scheduler)
         own_client = client if client is not scheduler else None
     try:
-        return _run(turbine, config, outdir, resume, progress, analyser, stream, workers, client)
+        return _run(turbine, config, outdir, resume, progress, analyser, stream, workers, client, record)
     finally:
         if own_client is not None:
             own_client.close()
 
 
+def _stored_points(outdir: Path, points: list[OperatingPoint], config: AnalysisConfig,
+                   stream) -> dict[int, xr.Dataset]:
+    """The stored points of an interrupted run that belong to this plan (resume)."""
+    store.clean_temporaries(outdir)
+    problems: list[str] = []
+    stored = store.read_points(outdir, problems)
+    planned = {p.index: p for p in points}
+    done = {}
+    for i, ds in stored.items():
+        p = planned.get(i)
+        same = (p is not None and float(ds["wind_speed"].values[0]) == p.wind_speed
+                and str(ds["aero"].values[0]) == p.aero and str(ds["method"].values[0]) == p.method)
+        if same and ds.attrs.get("config_fingerprint", config.fingerprint()) != config.fingerprint():
+            problems.append(f"{store.POINTS_DIR}/{store.point_path('.', i).name}: another config's point")
+            same = False
+        if same:
+            done[i] = ds
+    for msg in problems:
+        print(f"windflutter run: {msg}; computed again", file=stream or sys.stderr)
+    return done
+
+
 def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progress: bool,
-         analyser: Any, stream, workers: int | None, client: Any) -> xr.Dataset:
+         analyser: Any, stream, workers: int | None, client: Any, record: dict[str, Any]) -> xr.Dataset:
     """The body of :func:`run` (``client``: a connected Dask client or ``None``)."""
     from windflutter import parallel  # noqa: PLC0415
 
     outdir.mkdir(parents=True, exist_ok=True)
     points = plan_points(config)
     info = describe_run(turbine, config, analyser)
-
-    import yaml  # noqa: PLC0415
-
     if resume:
-        _check_resume(outdir, config)
-        store.clean_temporaries(outdir)
-        stored = store.read_points(outdir)
-        planned = {p.index: p for p in points}
-        done = {}
-        for i, ds in stored.items():
-            p = planned.get(i)
-            if p is not None and float(ds["wind_speed"].values[0]) == p.wind_speed \
-                    and str(ds["aero"].values[0]) == p.aero and str(ds["method"].values[0]) == p.method:
-                done[i] = ds
+        done = _stored_points(outdir, points, config, stream)
     else:
         shutil.rmtree(outdir / store.POINTS_DIR, ignore_errors=True)
         (outdir / store.RESULTS_FILE).unlink(missing_ok=True)
         done = {}
-    run_doc = {"fingerprint": config.fingerprint(), "windflutter_version": __version__,
-               "turbine": info.get("turbine"), "config": config.to_dict()}
-    store.atomic_write_text(yaml.safe_dump(run_doc, sort_keys=False), outdir / RUN_FILE)
+    runfolder.write_run_record(outdir, record)
 
     todo = [p for p in points if p.index not in done]
     in_process = parallel.runs_in_process(len(todo), workers, client)
     job = _PointJob(analyser, config, outdir, _accepts_progress(analyser), animate=client is None)
     reported: dict[str, Any] = {}  # describe() entries from the workers
-    point_attrs = {"config_fingerprint": config.fingerprint()}
+    point_attrs = {"config_fingerprint": config.fingerprint(), "run_fingerprint": record["fingerprint"]}
     with RunProgress(len(points), len(done), quiet=not progress, stream=stream) as prog:
         if in_process:
             job.prog = prog

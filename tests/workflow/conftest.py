@@ -20,7 +20,7 @@ def toy_config():
     def make(**over):
         base = {"wind_speeds": [4, 10, 16, 25], "aero": ["potential", "viscous"],
                 "rotor_speed": {"min_rpm": 2, "max_rpm": 26, "n_points": 9, "tolerance_rpm": 0.01},
-                "solver": {"backend": "toy_analyser:factory", "n_tracked": 2},
+                "solver": {"backend": "toy", "n_tracked": 2},
                 "output": {"plots": False, "report": False, "animations": False}}
         for k, v in over.items():
             if isinstance(v, dict) and isinstance(base.get(k), dict):

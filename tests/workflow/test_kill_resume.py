@@ -22,7 +22,7 @@ HERE = Path(__file__).parent
 
 CFG = {"wind_speeds": [4, 8, 12, 16, 20, 25], "aero": ["potential"],
        "rotor_speed": {"min_rpm": 2, "max_rpm": 26, "n_points": 7},
-       "solver": {"backend": "toy_analyser:factory", "n_tracked": 2},
+       "solver": {"backend": "toy", "n_tracked": 2},
        "output": {"plots": False, "report": False}}
 
 

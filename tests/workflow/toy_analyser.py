@@ -2,7 +2,8 @@
 fixed radius of a toy rotor, solved by p-k.  Not a turbine model; it only has to be a correct,
 fast, deterministic stand-in for the stability solver.
 
-Plug-in use: ``solver.backend: "toy_analyser:factory"`` with this folder on ``PYTHONPATH``.
+Plug-in use: ``solver.backend: toy`` with this folder on ``PYTHONPATH`` (the entry point
+of ``windflutter_test_plugins-0.dist-info`` here publishes it in ``windflutter.backends``).
 Environment knobs (test control only): ``TOY_DELAY`` (s of sleep per point, to give a kill
 time to land), ``TOY_FAIL_WIND`` (comma-separated wind speeds whose points raise
 ConvergenceError).

@@ -8,7 +8,9 @@ Each sub-command lives in its own module of this package, exposing
 from __future__ import annotations
 
 import argparse
+import functools
 import importlib
+import os
 import sys
 
 from windflutter import __version__
@@ -18,13 +20,17 @@ from windflutter.errors import InputError, ModelError, WindflutterError
 COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "run")
 
 
+@functools.lru_cache(maxsize=1)
 def build_parser() -> argparse.ArgumentParser:
-    parser = argparse.ArgumentParser(
+    """The parser of every command (built once; parsing does not change it)."""
+    from windflutter.cli.options import OneLineParser  # noqa: PLC0415
+
+    parser = OneLineParser(
         prog="windflutter",
         description="Flutter and divergence of wind turbines from finite-element models.",
     )
     parser.add_argument("--version", action="version", version=f"windflutter {__version__}")
-    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
     sub.required = True
     for name in COMMANDS:
         module = importlib.import_module(f"windflutter.cli.{name}")
@@ -32,31 +38,53 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _one_line(text: object) -> str:
+    return " ".join(str(text).split())
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Entry point of the ``windflutter`` console script."""
+    """Entry point of the ``windflutter`` console script; returns the exit code.
+
+    Every problem is one line on stderr: bad input (exit 2, also argument errors), a file that
+    cannot be written (2), a model that cannot be analysed (3), another windflutter error (4),
+    Ctrl-C (130); an unexpected exception is one line too (exit 70), with the traceback only
+    when the environment variable ``WINDFLUTTER_TRACEBACK`` is set.
+    """
     parser = build_parser()
-    args = parser.parse_args(argv)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or a usage error already printed in one line
+        return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
+    prog = f"windflutter {args.command}"
     try:
         return int(args.func(args) or 0)
     except InputError as exc:
-        print(f"windflutter {args.command}: error: {exc}", file=sys.stderr)
+        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2
     except ModelError as exc:
-        print(f"windflutter {args.command}: model error: {exc}", file=sys.stderr)
+        print(f"{prog}: model error: {_one_line(exc)}", file=sys.stderr)
         return 3
     except WindflutterError as exc:
-        print(f"windflutter {args.command}: {type(exc).__name__}: {exc}", file=sys.stderr)
+        print(f"{prog}: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
         return 4
     except KeyboardInterrupt:
-        print(f"windflutter {args.command}: interrupted", file=sys.stderr)
+        print(f"{prog}: interrupted", file=sys.stderr)
         return 130
     except BrokenPipeError:
         # output piped into e.g. `head`, which closed early: not an error of ours
-        import os
-
         devnull = os.open(os.devnull, os.O_WRONLY)
         os.dup2(devnull, sys.stdout.fileno())
         return 0
+    except OSError as exc:  # a file that could not be written or read after the up-front checks
+        where = f": {exc.filename}" if getattr(exc, "filename", None) else ""
+        print(f"{prog}: error: file error ({exc.strerror or type(exc).__name__}){where}", file=sys.stderr)
+        return 2
+    except Exception as exc:  # noqa: BLE001 - a bug of ours: still one line, unless asked for more
+        if os.environ.get("WINDFLUTTER_TRACEBACK"):
+            raise
+        print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)[:300]} (please report it; "
+              "set WINDFLUTTER_TRACEBACK=1 for the traceback)", file=sys.stderr)
+        return 70
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -12,8 +12,18 @@ import argparse
 import sys
 from pathlib import Path
 
-from windflutter.config import AERO_VARIANTS, MODEL_TYPES, SEARCH_METHODS, load_config
+from windflutter.cli.options import SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error, rpm_flag
+from windflutter.config import load_config
 from windflutter.errors import InputError
+
+#: flags that override the config file (validated as part of the config)
+FLAGS = (
+    Flag("--wind-speeds", "wind_speeds", nargs="+", metavar="V", help="override the config's wind speeds (m/s)"),
+    Flag("--aero", "aero", nargs="+", help="override the aerodynamic variants"),
+    Flag("--method", "method", nargs="+", help="override the search methods"),
+    Flag("--model", "model.type", help="override the model type"),
+    rpm_flag(),
+) + SOLVER_FLAGS
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -21,7 +31,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
         "run",
         help="full stability analysis of a turbine: results, figures, HTML report",
         description="Flutter and divergence onset of a turbine over its wind speeds; results are "
-                    "stored one operating point at a time, so an interrupted run can be resumed.",
+                    "stored one operating point at a time, so an interrupted run can be resumed.  "
+                    "The flags below the config file override its fields (same names, same checks).",
     )
     p.add_argument("turbine", metavar="TURBINE",
                    help="turbine file (windIO YAML) or bundled name (e.g. nrel5mw, iea15mw)")
@@ -30,7 +41,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-o", "--outdir", metavar="OUTDIR", default=None,
                    help="output folder (default: out/<turbine name>)")
     p.add_argument("--resume", action="store_true",
-                   help="continue an interrupted run in OUTDIR, keeping its finished points")
+                   help="continue an interrupted run in OUTDIR, keeping its finished points (same config, "
+                        "turbine and windflutter version)")
     p.add_argument("-q", "--quiet", action="store_true", help="no progress bars")
     p.add_argument("--workers", metavar="N", default=None,
                    help="operating points in parallel on N local processes (default: the usable "
@@ -38,27 +50,20 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--scheduler", metavar="ADDRESS", default=None,
                    help="run the operating points on a Dask cluster, e.g. tcp://host:8786 "
                         "(its workers need windflutter installed; --workers is then ignored)")
-    p.add_argument("--wind-speeds", nargs="+", type=float, metavar="V",
-                   help="override the config's wind speeds (m/s)")
-    p.add_argument("--aero", nargs="+", choices=AERO_VARIANTS, help="override the aero variants")
-    p.add_argument("--method", nargs="+", choices=SEARCH_METHODS, help="override the search methods")
-    p.add_argument("--model", choices=MODEL_TYPES, help="override the model type")
+    add_flags(p, FLAGS)
     p.add_argument("--print-default-config", action="store_true",
                    help="print the default analysis YAML and exit")
     p.set_defaults(func=run)
 
 
-def _overrides(args: argparse.Namespace) -> dict:
-    o: dict = {}
-    if args.wind_speeds:
-        o["wind_speeds"] = list(args.wind_speeds)
-    if args.aero:
-        o["aero"] = list(args.aero)
-    if args.method:
-        o["method"] = list(args.method)
-    if args.model:
-        o["model"] = {"type": args.model}
-    return o
+def read_config(args: argparse.Namespace):
+    """The analysis config: defaults, then the ``-c`` file, then the flags (one validator)."""
+    try:
+        return load_config(args.config, config_overrides(args, FLAGS))
+    except InputError as exc:
+        from windflutter.cli.options import RPM_PATHS  # noqa: PLC0415
+
+        raise flag_error(exc, args, FLAGS, RPM_PATHS) from None
 
 
 def parse_workers(value: str | None) -> int | None:
@@ -78,8 +83,7 @@ def load_turbine_for(arg: str, backend: str):
     """The turbine object handed to the analyser.
 
     The built-in solver gets ``windflutter.model.load_turbine(arg)``; a plug-in analyser
-    (``solver.backend: module:factory``) gets the argument string as given and loads what it
-    needs itself.
+    (``solver.backend: NAME``) gets the argument string as given and loads what it needs itself.
     """
     if backend != "windflutter":
         return arg
@@ -91,25 +95,47 @@ def load_turbine_for(arg: str, backend: str):
     return load_turbine(arg)
 
 
-def run(args: argparse.Namespace) -> int:
-    from windflutter.workflow import RunInterrupted, run as run_workflow  # noqa: PLC0415
+def _check_outdir(outdir: str | Path, field: str, resume: bool) -> None:
+    """The output folder (and, with ``--resume``, its record) before anything is computed."""
+    from windflutter.post import runfolder  # noqa: PLC0415
 
+    runfolder.check_run_folder(outdir, field)
+    if resume:
+        runfolder.read_run_record(outdir)
+
+
+def run(args: argparse.Namespace) -> int:
     if args.print_default_config:
         from windflutter.config import default_config_text  # noqa: PLC0415
 
         sys.stdout.write(default_config_text())
         return 0
     workers = parse_workers(args.workers)  # None: the usable cores (workflow.run resolves it)
-    config = load_config(args.config, _overrides(args))
+    config = read_config(args)
+    field = "-o" if args.outdir is not None else "OUTDIR (default out/<turbine name>)"
+    if args.outdir is not None:  # checked before the turbine is read
+        _check_outdir(args.outdir, field, args.resume)
+    if args.scheduler is not None:
+        from windflutter.parallel import check_scheduler_address  # noqa: PLC0415
+
+        check_scheduler_address(args.scheduler, "--scheduler")
+    from windflutter.workflow import RunInterrupted, run as run_workflow  # noqa: PLC0415
+
     turbine = load_turbine_for(args.turbine, config.solver.backend)
-    name = Path(str(getattr(turbine, "name", args.turbine))).stem.replace(" ", "_") or "turbine"
-    outdir = Path(args.outdir) if args.outdir else Path("out") / name
+    if args.outdir is not None:
+        outdir = Path(args.outdir)
+    else:
+        name = Path(str(getattr(turbine, "name", args.turbine))).stem.replace(" ", "_") or "turbine"
+        outdir = Path("out") / name
+        _check_outdir(outdir, field, args.resume)
     try:
         ds = run_workflow(turbine, config, outdir, resume=args.resume, progress=not args.quiet,
                           workers=workers, scheduler=args.scheduler)
     except InputError as exc:
         if exc.field in ("scheduler", "workers"):  # name the flag the user typed
             raise InputError(f"--{exc.field}", exc.value, exc.expected) from None
+        if exc.field == "outdir":
+            raise InputError(field, exc.value, exc.expected) from None
         raise
     except RunInterrupted as exc:
         print(f"windflutter run: interrupted; {exc.done} of {exc.total} points stored in "

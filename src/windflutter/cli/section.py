@@ -15,9 +15,8 @@ import math
 from pathlib import Path
 from typing import Any
 
-import yaml
-
-from windflutter.errors import InputError
+from windflutter.config import field_spec
+from windflutter.schema import Spec, is_number
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -34,24 +33,33 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.set_defaults(func=run)
 
 
+def _positive(upper: float, unit: str) -> Spec:
+    return Spec("float", lower=0.0, lower_open=True, upper=upper, unit=unit)
+
+
+#: physical ranges of the section file's numbers (the section checks kinds and consistency)
+BOUNDS = {
+    "semi_chord": _positive(1e3, "m"), "elastic_axis": Spec("float", lower=-1.0, upper=1.0, unit="semi-chords"),
+    "air_density": field_spec("air_density"), "lift_slope": _positive(20.0, "1/rad"),
+    "mass": _positive(1e7, "kg/m"), "static_moment": Spec("float", lower=-1e7, upper=1e7, unit="kg m/m"),
+    "inertia": _positive(1e8, "kg m^2/m"), "plunge_stiffness": _positive(1e13, "N/m^2"),
+    "pitch_stiffness": _positive(1e13, "N"), "mass_ratio": _positive(1e6, "-"),
+    "x_alpha": Spec("float", lower=-10.0, upper=10.0, unit="semi-chords"), "r_alpha_squared": _positive(100.0, "-"),
+    "omega_h": _positive(1e4, "rad/s"), "omega_alpha": _positive(1e4, "rad/s"),
+}
+
+
 def load_yaml(path: str) -> Any:
-    """Read a YAML file; any problem becomes an :class:`InputError` naming the file."""
-    p = Path(path)
-    if not p.is_file():
-        raise InputError("CONFIG", path, "an existing YAML file")
-    try:
-        text = p.read_text(encoding="utf-8")
-    except (OSError, UnicodeDecodeError) as exc:
-        raise InputError("CONFIG", path, f"a readable UTF-8 YAML file ({exc})") from None
-    try:
-        return yaml.safe_load(text)
-    except yaml.YAMLError as exc:
-        where = ""
-        mark = getattr(exc, "problem_mark", None)
-        if mark is not None:
-            where = f" at line {mark.line + 1}, column {mark.column + 1}"
-        problem = getattr(exc, "problem", None) or type(exc).__name__
-        raise InputError("CONFIG", path, f"valid YAML ({problem}{where})") from None
+    """Read a section YAML file; any problem becomes an :class:`InputError` naming the file and
+    every number is checked in its physical range (:data:`BOUNDS`)."""
+    from windflutter.files import load_yaml as load  # noqa: PLC0415
+
+    data = load(path, "CONFIG", what="section YAML file")
+    if isinstance(data, dict):
+        for key, spec in BOUNDS.items():
+            if key in data and is_number(data[key]):
+                spec.check(data[key], key, str(path))
+    return data
 
 
 def _fmt(x: float | None, unit: str, digits: int = 6) -> str:
@@ -63,8 +71,10 @@ def run(args: argparse.Namespace) -> int:
 
     cfg = load_yaml(args.config)
     sec = section_from_config(cfg, source=args.config)
-    if args.plot and not str(args.plot).lower().endswith(".png"):
-        raise InputError("--plot", args.plot, "a file name ending in .png")
+    if args.plot is not None:
+        from windflutter.files import check_output_file  # noqa: PLC0415
+
+        check_output_file(args.plot, "--plot", (".png",))
     res = analyse(sec, args.method)
     if args.plot:
         from windflutter.post.vg_plots import plot_vg

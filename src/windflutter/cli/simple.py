@@ -12,7 +12,6 @@ import argparse
 import json
 import math
 
-from windflutter.errors import InputError
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -29,8 +28,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 def run(args: argparse.Namespace) -> int:
     from windflutter.stability.simple_model import load_simple_models, run_simple_model
 
-    if args.plot and not str(args.plot).lower().endswith(".png"):
-        raise InputError("--plot", args.plot, "a file name ending in .png")
+    if args.plot is not None:
+        from windflutter.files import check_output_file  # noqa: PLC0415
+
+        check_output_file(args.plot, "--plot", (".png",))
     models = load_simple_models()
     names = ["nrel5mw", "seed20mw"] if args.turbine == "both" else [args.turbine]
     main = [run_simple_model(models[n], frozen_k=args.frozen_k) for n in names]

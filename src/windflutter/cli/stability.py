@@ -1,75 +1,75 @@
-"""`windflutter stability TURBINE.yaml`: flutter and divergence onset rotor speed per wind speed."""
+"""`windflutter stability TURBINE`: flutter and divergence onset rotor speed per wind speed.
+
+The flags are analysis-config fields (:mod:`windflutter.cli.options`): they are applied as
+overrides to the default analysis config and validated by the same code as ``windflutter run
+-c ANALYSIS.yaml`` (``--wind-speeds 0``, ``--rpm 2 inf 2`` or ``--n-tracked`` above
+``--basis-modes`` are refused alike); the solver options then come from the config exactly as
+for a run's points (:func:`windflutter.workflow.turbine_options`).
+"""
 
 from __future__ import annotations
 
 import argparse
 import json
-import math
 
-from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, REDUCTIONS, SEARCH_METHODS
+from windflutter.cli.options import (PLOT_EXTENSIONS, RPM_PATHS, SOLVER_FLAGS, Flag, add_flags, config_overrides,
+                                     flag_error, rpm_flag)
+from windflutter.errors import InputError
+
+FLAGS = (
+    Flag("--wind-speeds", "wind_speeds", nargs="+", metavar="V", default=[10.0], help="wind speeds (m/s)"),
+    Flag("--aero", "aero", default="potential", help="aerodynamic variant"),
+    Flag("--method", "method", default="pk", help="search method"),
+    Flag("--model", "model.type", help="structural model (shell or beam)"),
+    rpm_flag(default=[2.0, 40.0, 2.0]),
+) + SOLVER_FLAGS
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("stability", help="flutter/divergence onset (RPM) of a turbine per wind speed")
+    p = sub.add_parser("stability", help="flutter/divergence onset (RPM) of a turbine per wind speed",
+                       description="Flutter and divergence onset of a turbine at each wind speed.  The "
+                                   "flags set analysis-config fields (docs/config_reference.md) and are "
+                                   "checked as a config is.")
     p.add_argument("turbine", help="windIO turbine file or bundled name (e.g. nrel5mw)")
-    p.add_argument("--wind-speeds", type=float, nargs="+", default=[10.0], metavar="V",
-                   help="wind speeds (m/s), default 10")
-    p.add_argument("--aero", choices=AERO_VARIANTS, default="potential")
-    p.add_argument("--method", choices=SEARCH_METHODS, default="pk")
-    p.add_argument("--model", choices=("shell", "beam"), default="beam")
-    p.add_argument("--physics", choices=("full", "thesis"), default="full",
-                   help="full: with centrifugal prestress K_sigma; thesis: without (as the seed)")
-    p.add_argument("--rpm", type=float, nargs=3, default=[2.0, 40.0, 2.0], metavar=("MIN", "MAX", "STEP"),
-                   help="rotor-speed grid (RPM), default 2 40 2")
-    p.add_argument("--air-density", type=float, default=1.225)
-    p.add_argument("--n-span", type=int, default=None, help="blade elements / strips along the span")
-    p.add_argument("--part", choices=("turbine", "rotor"), default="turbine",
-                   help="whole turbine, or the rotor alone with the hub clamped")
-    p.add_argument("--reduction", choices=REDUCTIONS, default="mta",
-                   help="modal basis with aero static-correction vectors (mta, default), structural "
-                        "modes only (modal), or full order (none)")
-    p.add_argument("--basis-modes", type=int, default=30, metavar="N",
-                   help="structural modes per reference rotor speed in the basis (default 30)")
-    p.add_argument("--n-tracked", type=int, default=None, metavar="N",
-                   help="modes tracked by the p-k search (default: every mode up to 1.25 x first torsion)")
-    p.add_argument("--aero-distribution", choices=AERO_DISTRIBUTIONS, default="spline",
-                   help="shell models: rigid-section spline (default) or the seed's skin quads")
-    p.add_argument("--steady-loads", action="store_true",
-                   help="quasi-steady damping of the mean lift/drag/moment (edgewise aero damping; default: off, as the thesis)")
-    p.add_argument("--induction", action="store_true",
-                   help="steady BEM axial/tangential induction in the inflow (default: none, as the thesis)")
-    p.add_argument("--plot", default=None, help="write the Campbell diagram of the first wind speed here")
+    add_flags(p, FLAGS)
+    p.add_argument("--plot", default=None, metavar="FILE",
+                   help="write the Campbell diagram of the first wind speed here (" + ", ".join(PLOT_EXTENSIONS) + ")")
     p.add_argument("--json", action="store_true", help="print a JSON object")
     p.set_defaults(func=run)
 
 
-def run(args: argparse.Namespace) -> int:
-    from windflutter.errors import InputError
-    from windflutter.model.windio import load_turbine
-    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+def options_from_args(args: argparse.Namespace):
+    """``(AnalysisConfig, TurbineOptions)`` of the command line (errors name the flag)."""
+    from windflutter.config import load_config  # noqa: PLC0415
+    from windflutter.workflow import turbine_options  # noqa: PLC0415
 
-    for v in args.wind_speeds:
-        if not (math.isfinite(v) and v >= 0):
-            raise InputError("--wind-speeds", v, "non-negative wind speeds (m/s)")
-    mesh = {"part": args.part}
-    if args.n_span is not None:
-        mesh["n_span"] = args.n_span
-    opts = TurbineOptions(model=args.model, aero=args.aero, method=args.method, physics=args.physics,
-                          air_density=args.air_density, rpm_min=args.rpm[0], rpm_max=args.rpm[1],
-                          rpm_step=args.rpm[2], reduction=args.reduction, n_modes=args.basis_modes,
-                          n_tracked=args.n_tracked, aero_distribution=args.aero_distribution,
-                          induction=args.induction, steady_loads=args.steady_loads, mesh=mesh)
+    try:
+        config = load_config(None, config_overrides(args, FLAGS))
+        return config, turbine_options(config, config.aero[0], config.method[0])
+    except InputError as exc:
+        raise flag_error(exc, args, FLAGS, RPM_PATHS) from None
+
+
+def run(args: argparse.Namespace) -> int:
+    from windflutter.files import check_output_file, prepare_output_file
+    from windflutter.model.windio import load_turbine
+    from windflutter.stability.turbine import TurbineStability
+
+    config, opts = options_from_args(args)
+    if args.plot is not None:  # before the analysis
+        check_output_file(args.plot, "--plot", PLOT_EXTENSIONS)
     turbine = load_turbine(args.turbine)
     ts = TurbineStability(turbine, opts)
-    points = [ts.analyse_operating_point(v) for v in args.wind_speeds]
+    points = [ts.analyse_operating_point(v) for v in config.wind_speeds]
     if args.plot:
         from windflutter.post.stability_plots import campbell
 
-        campbell(points[0]).savefig(args.plot, dpi=110)
+        campbell(points[0]).savefig(prepare_output_file(args.plot), dpi=config.output.dpi)
     if args.json:
         print(json.dumps({"points": [p.as_dict() for p in points]}))
         return 0
-    print(f"{turbine.name}: {args.model} model, {args.aero} aero, {args.method} search, {args.physics} physics")
+    physics = "full" if config.solver.geometric_stiffness else "thesis"
+    print(f"{turbine.name}: {opts.model} model, {opts.aero} aero, {opts.method} search, {physics} physics")
     print(f"{'V (m/s)':>8} {'pitch':>6} {'flutter RPM':>12} {'f (Hz)':>7} {'divergence RPM':>15}  mode")
     for p in points:
         fr = "-" if p.flutter_rpm is None else f"{p.flutter_rpm:.2f}"

@@ -25,7 +25,7 @@ import contextlib
 import os
 import signal
 import threading
-import tempfile
+import secrets
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -177,10 +177,23 @@ def atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
         return _atomic_write_netcdf(ds, path)
 
 
+def _temporary(path: Path, suffix: str) -> tuple[int, str]:
+    """A new, uniquely named file next to ``path`` (open descriptor, name), created with the
+    mode ``0o666`` less the umask -- what ``open()`` would give the final file --
+    where :func:`tempfile.mkstemp` gives ``0o600``."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    for _ in range(100):
+        tmp = os.path.join(path.parent, f".{path.stem}.{secrets.token_hex(6)}{suffix}")
+        try:
+            return os.open(tmp, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o666), tmp
+        except FileExistsError:
+            continue
+    raise FileExistsError(f"no free temporary name next to {path}")
+
+
 def _atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.stem}.", suffix=".nc.tmp", dir=path.parent)
+    fd, tmp = _temporary(path, ".nc.tmp")
     os.close(fd)
     try:
         _strings_fixed(ds).to_netcdf(tmp, engine="netcdf4")
@@ -197,10 +210,9 @@ def _atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
 def atomic_write_text(text: str, path: str | Path) -> Path:
     """Write text atomically."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    fd, tmp = _temporary(path, ".tmp")
     try:
-        with os.fdopen(fd, "w") as fh:
+        with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
             fh.flush()
             os.fsync(fh.fileno())
@@ -233,15 +245,52 @@ def clean_temporaries(outdir: str | Path) -> int:
     return n
 
 
-def read_points(outdir: str | Path) -> dict[int, xr.Dataset]:
-    """All stored points of an output folder, by index (loaded into memory, files closed)."""
+#: what a stored point file must hold to be used again
+_POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method")
+
+
+def read_point(path: str | Path) -> xr.Dataset:
+    """One stored point file, loaded (file closed).
+
+    Raises
+    ------
+    ValueError
+        the file cannot be read (empty, truncated, not NetCDF, unreadable) or is not a point of
+        a run (a variable missing, its index not that of its name); the message says which.
+    """
+    p = Path(path)
+    try:
+        with xr.open_dataset(p, engine="netcdf4") as ds:
+            ds = ds.load()
+    except Exception as exc:  # noqa: BLE001 - netCDF4/HDF5 raise OSError, ValueError, KeyError, ...
+        msg = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        raise ValueError(f"unreadable ({type(exc).__name__}: {msg})"[:300]) from None
+    missing = [v for v in _POINT_VARS if v not in ds.variables]
+    if missing or ds.sizes.get("point") != 1:
+        raise ValueError(f"not a stored point (missing {', '.join(missing) or 'the point dimension'})")
+    index = int(ds["point"].values[0])
+    if p.name != point_path(".", index).name:
+        raise ValueError(f"holds point {index}, not the one of its name")
+    return ds
+
+
+def read_points(outdir: str | Path, problems: list[str] | None = None) -> dict[int, xr.Dataset]:
+    """All stored points of an output folder, by index (loaded into memory, files closed).
+
+    A file that cannot be used (see :func:`read_point`) is left out, so a resumed run computes
+    that point again; ``problems`` (if given) receives one line per such file.
+    """
     out: dict[int, xr.Dataset] = {}
     folder = Path(outdir) / POINTS_DIR
     if not folder.is_dir():
         return out
     for p in sorted(folder.glob("p[0-9]*.nc")):
-        with xr.open_dataset(p, engine="netcdf4") as ds:
-            ds = ds.load()
+        try:
+            ds = read_point(p)
+        except ValueError as exc:
+            if problems is not None:
+                problems.append(f"{POINTS_DIR}/{p.name}: {exc}")
+            continue
         out[int(ds["point"].values[0])] = ds
     return out
 
@@ -265,12 +314,27 @@ def combine(points: dict[int, xr.Dataset] | list[xr.Dataset], attrs: dict | None
 
 
 def open_results(path: str | Path) -> xr.Dataset:
-    """Open a ``results.nc`` (or an output folder) fully into memory."""
-    path = Path(path)
+    """Open a ``results.nc`` (or an output folder) fully into memory.
+
+    Raises
+    ------
+    InputError
+        no such file, a folder where the file should be, or a file that is not readable NetCDF.
+    """
+    from windflutter.errors import InputError  # noqa: PLC0415
+
+    given, path = str(path), Path(path)
     if path.is_dir():
         path = path / RESULTS_FILE
-    with xr.open_dataset(path, engine="netcdf4") as ds:
-        return ds.load()
+    if not path.is_file():
+        what = "a folder" if path.is_dir() else "missing"
+        raise InputError("results", given, f"a results.nc file or the folder of a run ({path} is {what})")
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            return ds.load()
+    except Exception as exc:  # noqa: BLE001 - netCDF4/HDF5 raise OSError, ValueError, ...
+        raise InputError("results", given, f"a readable results NetCDF file ({type(exc).__name__}: "
+                         f"{str(exc).strip()[:200]})") from None
 
 
 def flutter_shape(ds: xr.Dataset) -> xr.DataArray:

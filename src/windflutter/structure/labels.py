@@ -28,11 +28,10 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-_ORD = {1: "1st", 2: "2nd", 3: "3rd"}
-
-
 def ordinal(n: int) -> str:
-    return _ORD.get(n, f"{n}th")
+    """``1st``, ``2nd``, ``3rd``, ``4th`` ... ``11th``, ``12th``, ``13th``, ``21st``, ``22nd``, ``111th``."""
+    suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
+    return f"{n}{suffix}"
 
 
 def blade_motion_components(sections, shapes: np.ndarray) -> np.ndarray:
