@@ -1,0 +1,70 @@
+"""Structural damping matrices from the turbine files' data.
+
+* Blades: the stiffness-proportional damping of BeamDyn / windIO (``mu`` per direction,
+  :class:`~windflutter.model.blade.BladeDamping`): each beam element's stiffness assembled with the
+  section matrix ``(diag(mu) S + S diag(mu)) / 2`` in place of ``S`` (symmetric; a mode of
+  frequency ``f`` dominated by one direction gets ``zeta ~ pi f mu``).  Shell blades: ``beta K``
+  with ``beta`` the larger of the two bending coefficients (the layup has no per-direction split).
+* Tower: modal ratios (ElastoDyn ``TwrFADmp``/``TwrSSDmp``) as stiffness-proportional damping
+  ``beta = zeta_1 / (pi f_1)`` at the support's first mode.
+* A file without damping data gives none (the conservative choice); ``damping="none"`` ignores
+  what the files give.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import scipy.sparse as sp
+
+from windflutter.structure.assembly import assemble_matrices
+from windflutter.structure.fem import BeamSection
+
+
+def blade_mu(turbine) -> np.ndarray | None:
+    """(6,) stiffness-proportional coefficients (s), BeamSection order, or None."""
+    d = getattr(turbine.blade, "damping", None)
+    mu = None if d is None else getattr(d, "mu", None)
+    if mu is None:
+        return None
+    mu = np.asarray(mu, float)
+    return mu if np.any(mu > 0) else None
+
+
+def blade_damping_matrix(fe, mu: np.ndarray | None) -> sp.csr_matrix | None:
+    """Full-numbering damping matrix (N s/m) of the blade elements of ``fe`` for coefficients
+    ``mu``; None without coefficients."""
+    if mu is None:
+        return None
+    mu = np.asarray(mu, float)
+    if len(fe.beam_conn):
+        D = np.diag(mu)
+        secs = [BeamSection(stiffness=0.5 * (D @ s.stiffness + s.stiffness @ D), mass=s.mass, name=s.name)
+                for s in fe.beam_sections]
+        _, K = assemble_matrices(replace(fe, beam_sections=secs, masses=[], springs=[]))
+        return sp.csr_matrix(K)
+    beta = float(max(mu[4], mu[5]))
+    _, K = assemble_matrices(replace(fe, masses=[], springs=[]))
+    return sp.csr_matrix(beta * K)
+
+
+def tower_ratio(turbine) -> float:
+    """First fore-aft / side-side modal damping ratio of the files (-), 0 if none."""
+    d = getattr(turbine.tower, "damping", None)
+    if d is None:
+        return 0.0
+    vals = np.concatenate([np.atleast_1d(d.fore_aft_ratio)[:1], np.atleast_1d(d.side_side_ratio)[:1]])
+    vals = vals[np.isfinite(vals)]
+    return float(vals.mean()) if vals.size else 0.0
+
+
+def stiffness_proportional(K, M, zeta: float) -> np.ndarray | None:
+    """``beta K`` with ``beta = zeta / (pi f_1)`` at the first mode of the dense pencil (K, M)."""
+    if zeta <= 0:
+        return None
+    import scipy.linalg as sla
+
+    w2 = sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T), eigvals_only=True, subset_by_index=[0, 0])[0]
+    w1 = np.sqrt(max(w2, 0.0))
+    return (2.0 * zeta / w1) * K if w1 > 0 else None

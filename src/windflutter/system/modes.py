@@ -1,0 +1,169 @@
+"""Modes of the multi-blade system and their names in the field's terms.
+
+For an eigenpair ``(lambda, x)`` of the first-order system (``x = [q, q', z]``, ``q`` over the
+ground-fixed coordinates and the multi-blade coordinates of the blades) the kinetic-energy shares
+of the groups -- support, drivetrain (azimuth and generator), blade collective, blade cyclic --
+come from the diagonal blocks of the mass matrix.  Then
+
+* **family**: the group with most energy; support modes are ``tower_fa`` / ``tower_ss`` /
+  ``tower_torsion`` by the tower nodes' motion (along the wind, across it, twist about the tower
+  axis); blade modes ``flap`` / ``edge`` / ``torsion`` by the strips' motion (flapwise, edgewise,
+  twist times a quarter chord), :func:`windflutter.structure.labels.blade_motion_components`;
+* **whirl** of a blade mode: ``collective`` when the collective coordinates carry more energy than
+  the cyclic ones, otherwise forward (``FW``) or backward (``BW``) whirl from the phase of the
+  cosine and sine coordinates: with ``eta_b = eta_c cos psi_b + eta_s sin psi_b`` and
+  ``e^{i omega t}``, ``eta_s = -i eta_c`` is a pattern turning with the rotor (FW, at the
+  rotating-frame frequency + Omega) and ``eta_s = +i eta_c`` against it (BW, - Omega);
+* **order**: rank in frequency among the modes of the same family and whirl at the point.
+
+Names: ``"1st flap BW"``, ``"2nd edge collective"``, ``"1st tower fore-aft"``, ``"drivetrain"``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from windflutter.structure.labels import blade_motion_components, ordinal
+
+FAMILIES = ("flap", "edge", "torsion", "tower_fa", "tower_ss", "tower_torsion", "drivetrain", "other")
+WHIRLS = ("BW", "FW", "collective", "none")
+_TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
+
+
+@dataclass
+class ModeRecord:
+    """One mode at one operating point (SI inside; Hz at the reporting edge).
+
+    eigenvalue : lambda (1/s).  frequency_hz : undamped ``|lambda| / 2 pi``; damped_frequency_hz :
+    ``Im lambda / 2 pi``; damping_ratio : ``-Re lambda / |lambda|``.  shape : the mode's ``q``
+    (multi-blade coordinates), unit norm, for tracking.  energy : kinetic-energy shares by group.
+    """
+
+    eigenvalue: complex
+    family: str
+    whirl: str
+    order: int = 0
+    name: str = ""
+    shape: np.ndarray | None = field(default=None, repr=False)
+    energy: dict = field(default_factory=dict)
+
+    @property
+    def frequency_hz(self) -> float:
+        return float(abs(self.eigenvalue) / (2 * np.pi))
+
+    @property
+    def damped_frequency_hz(self) -> float:
+        return float(self.eigenvalue.imag / (2 * np.pi))
+
+    @property
+    def damping_ratio(self) -> float:
+        a = abs(self.eigenvalue)
+        return float(-self.eigenvalue.real / a) if a > 0 else 0.0
+
+    def as_dict(self) -> dict:
+        return {"name": self.name, "family": self.family, "order": int(self.order), "whirl": self.whirl,
+                "frequency_hz": self.frequency_hz, "damped_frequency_hz": self.damped_frequency_hz,
+                "damping_ratio": self.damping_ratio}
+
+
+def _block_energy(q: np.ndarray, M: np.ndarray, sl: slice) -> float:
+    v = q[sl]
+    return float(np.real(np.vdot(v, M[sl, sl] @ v))) if v.size else 0.0
+
+
+def _tower_family(ps, qs: np.ndarray) -> str:
+    """FA / SS / torsion of a support motion ``qs`` (support coordinates): kinetic energy (mass
+    diagonal of the support model) in translations along the wind (x), across it (y) and in
+    twist about the vertical (rz), over every support node (tower, nacelle, hub)."""
+    sm = ps.support
+    u = np.asarray(sm.expand @ qs)
+    md = np.asarray(sm.struct.M.diagonal())
+    e = (md * np.abs(u) ** 2).reshape(-1, 6).sum(axis=0)
+    if e[5] > max(e[0], e[1]):
+        return "tower_torsion"
+    return "tower_fa" if e[0] >= e[1] else "tower_ss"
+
+
+def _blade_family(ps, q_eta: list[np.ndarray]) -> str:
+    """flap / edge / torsion of the blade coordinates (one array per multi-blade coordinate)."""
+    rb = ps.blade
+    E = rb.struct.T if ps.Phi is None else rb.struct.T @ ps.Phi
+    X = np.stack(q_eta, 1)
+    W = np.asarray(E @ X)
+    c = blade_motion_components(rb.sections, W)  # (3, ns, k)
+    w = rb.sections.width[None, :, None]
+    en = np.sum(np.abs(c) ** 2 * w, axis=(1, 2))
+    return ("flap", "edge", "torsion")[int(np.argmax(en))]
+
+
+def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
+    """Family, whirl and energy shares of one eigenpair of ``ps.mbc`` (a :class:`PointSystem`)."""
+    mb = ps.mbc
+    n = mb.M.shape[0]
+    q = x[:n]
+    nF, m, N = mb.n_fixed, mb.n_eta, mb.n_blades
+    labels = ps.labels
+    ns = sum(1 for lb in labels if lb.startswith("support"))
+    groups = {"support": _block_energy(q, mb.M, slice(0, ns)),
+              "drivetrain": _block_energy(q, mb.M, slice(ns, nF))}
+    coords = [slice(nF + j * m, nF + (j + 1) * m) for j in range(N)]
+    e_coord = [_block_energy(q, mb.M, s) for s in coords]
+    groups["blade"] = float(sum(e_coord))
+    tot = max(sum(groups.values()), 1e-300)
+    energy = {k: v / tot for k, v in groups.items()}
+    top = max(groups, key=groups.get)
+    shape = q / max(np.linalg.norm(q), 1e-300)
+    if top == "support":
+        return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", shape=shape, energy=energy)
+    if top == "drivetrain":
+        return ModeRecord(lam, "drivetrain", "none", shape=shape, energy=energy)
+    fam = _blade_family(ps, [q[s] for s in coords])
+    whirl = "collective"
+    if len(coords) >= 3 and e_coord[0] < e_coord[1] + e_coord[2]:
+        Mc = mb.M[coords[1], coords[1]]
+        qc, qs = q[coords[1]], q[coords[2]]
+        fw = np.real(np.vdot(qc + 1j * qs, Mc @ (qc + 1j * qs)))
+        bw = np.real(np.vdot(qc - 1j * qs, Mc @ (qc - 1j * qs)))
+        whirl = "FW" if fw > bw else "BW"
+    return ModeRecord(lam, fam, whirl, shape=shape, energy=energy)
+
+
+def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99) -> list[ModeRecord]:
+    """Every oscillatory mode of the point up to ``max_hz`` (undamped frequency), named.
+
+    Roots with ``Im lambda <= 0`` (the conjugates), the drivetrain's rigid-body root (|lambda| far
+    below any structural frequency) and over-damped aerodynamic lag roots (``zeta >= max_damping``)
+    are left out.
+    """
+    S = ps.mbc.state_matrix()
+    lam, X = np.linalg.eig(S)
+    keep = (lam.imag > 1e-3 * 2 * np.pi) & (np.abs(lam) <= 2 * np.pi * max_hz)
+    keep &= -lam.real < max_damping * np.abs(lam)
+    idx = np.where(keep)[0]
+    idx = idx[np.argsort(np.abs(lam[idx]))]
+    modes = [classify(ps, complex(lam[i]), X[:, i]) for i in idx]
+    return name_modes(modes)
+
+
+def name_modes(modes: list[ModeRecord]) -> list[ModeRecord]:
+    """Orders (rank in frequency within family and whirl) and names, in place; returns ``modes``."""
+    count: dict = {}
+    for md in sorted(modes, key=lambda r: r.frequency_hz):
+        key = (md.family, md.whirl)
+        count[key] = count.get(key, 0) + 1
+        md.order = count[key]
+        md.name = mode_name(md.family, md.whirl, md.order)
+    return modes
+
+
+def mode_name(family: str, whirl: str, order: int) -> str:
+    """``"1st flap BW"``, ``"1st tower fore-aft"``, ``"drivetrain"`` ..."""
+    if family in _TOWER_NAMES:
+        return f"{ordinal(order)} {_TOWER_NAMES[family]}"
+    if family == "drivetrain":
+        return "drivetrain" if order == 1 else f"{ordinal(order)} drivetrain"
+    if family == "other":
+        return f"other {order}"
+    return f"{ordinal(order)} {family} {whirl}"
