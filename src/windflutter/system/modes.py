@@ -29,6 +29,10 @@ from windflutter.structure.labels import blade_motion_components, ordinal
 
 FAMILIES = ("flap", "edge", "torsion", "tower_fa", "tower_ss", "tower_torsion", "drivetrain", "other")
 WHIRLS = ("BW", "FW", "collective", "none")
+#: a drivetrain-dominated mode whose blades carry at least this share of the kinetic energy is
+#: named by its blade motion (the collective edge mode turning the rotor against the generator,
+#: HAWCStab2's "sym. edge"), not "drivetrain"
+BLADE_SHARE_DRIVETRAIN = 0.2
 _TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
 
 
@@ -48,6 +52,7 @@ class ModeRecord:
     name: str = ""
     shape: np.ndarray | None = field(default=None, repr=False)
     energy: dict = field(default_factory=dict)
+    rigid: bool = False
 
     @property
     def frequency_hz(self) -> float:
@@ -98,6 +103,15 @@ def _blade_family(ps, q_eta: list[np.ndarray]) -> str:
     return ("flap", "edge", "torsion")[int(np.argmax(en))]
 
 
+def _rigid_drivetrain(q: np.ndarray, labels: list) -> bool:
+    """The rotor and generator turn together (the drivetrain's rigid-body mode, aerodynamically
+    damped in operation), rather than against each other (shaft torsion)."""
+    if "generator" not in labels:
+        return True
+    a, g = q[labels.index("azimuth")], q[labels.index("generator")]
+    return bool(abs(a - g) < 0.5 * max(abs(a), abs(g), 1e-300))
+
+
 def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     """Family, whirl and energy shares of one eigenpair of ``ps.mbc`` (a :class:`PointSystem`)."""
     mb = ps.mbc
@@ -117,8 +131,8 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     shape = q / max(np.linalg.norm(q), 1e-300)
     if top == "support":
         return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", shape=shape, energy=energy)
-    if top == "drivetrain":
-        return ModeRecord(lam, "drivetrain", "none", shape=shape, energy=energy)
+    if top == "drivetrain" and energy["blade"] < BLADE_SHARE_DRIVETRAIN:
+        return ModeRecord(lam, "drivetrain", "none", shape=shape, energy=energy, rigid=_rigid_drivetrain(q, labels))
     fam = _blade_family(ps, [q[s] for s in coords])
     whirl = "collective"
     if len(coords) >= 3 and e_coord[0] < e_coord[1] + e_coord[2]:
@@ -130,17 +144,24 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     return ModeRecord(lam, fam, whirl, shape=shape, energy=energy)
 
 
-def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99) -> list[ModeRecord]:
-    """Every oscillatory mode of the point up to ``max_hz`` (undamped frequency), named.
+def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8) -> list[ModeRecord]:
+    """Every oscillatory structural mode of the point up to ``max_hz`` (undamped frequency), named.
 
-    Roots with ``Im lambda <= 0`` (the conjugates), the drivetrain's rigid-body root (|lambda| far
-    below any structural frequency) and over-damped aerodynamic lag roots (``zeta >= max_damping``)
-    are left out.
+    Left out: roots with ``Im lambda <= 0`` (the conjugates), the drivetrain's rigid-body root,
+    over-damped roots (``zeta >= max_damping``) and the aerodynamic lag roots -- real in the
+    rotating frame, ``-beta U/b +- i Omega`` for the cyclic states -- recognised by their
+    participation factors ``|u_i v_i|`` (left and right eigenvectors, scale-invariant): a mode is
+    structural when the structural states ``[q, q']`` carry at least ``min_structural`` of it.
     """
+    import scipy.linalg as sla
+
     S = ps.mbc.state_matrix()
-    lam, X = np.linalg.eig(S)
+    lam, UL, X = sla.eig(S, left=True, right=True)
+    n2 = 2 * ps.mbc.M.shape[0]
+    part = np.abs(UL.conj() * X)
+    share = part[:n2].sum(axis=0) / np.maximum(part.sum(axis=0), 1e-300)
     keep = (lam.imag > 1e-3 * 2 * np.pi) & (np.abs(lam) <= 2 * np.pi * max_hz)
-    keep &= -lam.real < max_damping * np.abs(lam)
+    keep &= (-lam.real < max_damping * np.abs(lam)) & (share >= min_structural)
     idx = np.where(keep)[0]
     idx = idx[np.argsort(np.abs(lam[idx]))]
     modes = [classify(ps, complex(lam[i]), X[:, i]) for i in idx]
@@ -151,6 +172,9 @@ def name_modes(modes: list[ModeRecord]) -> list[ModeRecord]:
     """Orders (rank in frequency within family and whirl) and names, in place; returns ``modes``."""
     count: dict = {}
     for md in sorted(modes, key=lambda r: r.frequency_hz):
+        if md.rigid:
+            md.order, md.name = 0, "drivetrain rigid-body"
+            continue
         key = (md.family, md.whirl)
         count[key] = count.get(key, 0) + 1
         md.order = count[key]
