@@ -53,6 +53,7 @@ class ModeRecord:
     shape: np.ndarray | None = field(default=None, repr=False)
     energy: dict = field(default_factory=dict)
     rigid: bool = False
+    signature: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def frequency_hz(self) -> float:
@@ -91,16 +92,40 @@ def _tower_family(ps, qs: np.ndarray) -> str:
     return "tower_fa" if e[0] >= e[1] else "tower_ss"
 
 
-def _blade_family(ps, q_eta: list[np.ndarray]) -> str:
-    """flap / edge / torsion of the blade coordinates (one array per multi-blade coordinate)."""
+def _blade_components(ps, q_eta: list[np.ndarray]) -> np.ndarray:
+    """(3, ns, k) flap, edge and torsion (x quarter chord) motion of the strips for each of the
+    ``k`` multi-blade coordinates (blade frame, the blade's fixed-interface deformation)."""
     rb = ps.blade
     E = rb.struct.T if ps.Phi is None else rb.struct.T @ ps.Phi
-    X = np.stack(q_eta, 1)
-    W = np.asarray(E @ X)
-    c = blade_motion_components(rb.sections, W)  # (3, ns, k)
-    w = rb.sections.width[None, :, None]
-    en = np.sum(np.abs(c) ** 2 * w, axis=(1, 2))
+    W = np.asarray(E @ np.stack(q_eta, 1))
+    return blade_motion_components(rb.sections, W)
+
+
+def _blade_family(comps: np.ndarray, width: np.ndarray) -> str:
+    """flap / edge / torsion: the largest strip-motion energy of :func:`_blade_components`."""
+    en = np.sum(np.abs(comps) ** 2 * width[None, :, None], axis=(1, 2))
     return ("flap", "edge", "torsion")[int(np.argmax(en))]
+
+
+def _unit_block(v: np.ndarray, weight: float) -> np.ndarray:
+    v = np.asarray(v, complex).ravel()
+    nv = np.linalg.norm(v)
+    return v * (np.sqrt(max(weight, 0.0)) / nv) if nv > 0 else v
+
+
+def mode_signature(ps, q: np.ndarray, energy: dict, comps: np.ndarray | None) -> np.ndarray:
+    """A physical description of a mode that does not depend on the reduction bases: the support's
+    node motions, the drivetrain coordinates, the strips' motion per multi-blade coordinate; each
+    block of unit norm times the square root of its energy share (so MAC weighs them by energy)."""
+    mb = ps.mbc
+    ns = sum(1 for lb in ps.labels if lb.startswith("support"))
+    parts = []
+    if ps.support is not None:
+        parts.append(_unit_block(ps.support.expand @ q[:ns], energy.get("support", 0.0)))
+    parts.append(_unit_block(q[ns:mb.n_fixed], energy.get("drivetrain", 0.0)))
+    if comps is not None:
+        parts.append(_unit_block(comps * np.sqrt(ps.blade.sections.width)[None, :, None], energy.get("blade", 0.0)))
+    return np.concatenate(parts)
 
 
 def _rigid_drivetrain(q: np.ndarray, labels: list) -> bool:
@@ -129,11 +154,16 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     energy = {k: v / tot for k, v in groups.items()}
     top = max(groups, key=groups.get)
     shape = q / max(np.linalg.norm(q), 1e-300)
+    comps = _blade_components(ps, [q[s] for s in coords]) if m else None
+    sig = mode_signature(ps, q, energy, comps)
+    rec = {"shape": shape, "energy": energy, "signature": sig}
     if top == "support":
-        return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", shape=shape, energy=energy)
+        return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", **rec)
     if top == "drivetrain" and energy["blade"] < BLADE_SHARE_DRIVETRAIN:
-        return ModeRecord(lam, "drivetrain", "none", shape=shape, energy=energy, rigid=_rigid_drivetrain(q, labels))
-    fam = _blade_family(ps, [q[s] for s in coords])
+        return ModeRecord(lam, "drivetrain", "none", rigid=_rigid_drivetrain(q, labels), **rec)
+    if comps is None:
+        return ModeRecord(lam, "other", "none", **rec)
+    fam = _blade_family(comps, ps.blade.sections.width)
     whirl = "collective"
     if len(coords) >= 3 and e_coord[0] < e_coord[1] + e_coord[2]:
         Mc = mb.M[coords[1], coords[1]]
@@ -141,7 +171,7 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
         fw = np.real(np.vdot(qc + 1j * qs, Mc @ (qc + 1j * qs)))
         bw = np.real(np.vdot(qc - 1j * qs, Mc @ (qc - 1j * qs)))
         whirl = "FW" if fw > bw else "BW"
-    return ModeRecord(lam, fam, whirl, shape=shape, energy=energy)
+    return ModeRecord(lam, fam, whirl, **rec)
 
 
 def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8) -> list[ModeRecord]:

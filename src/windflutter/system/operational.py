@@ -187,6 +187,32 @@ class OperationalModel:
     def drivetrain(self) -> Drivetrain:
         return Drivetrain.from_turbine(self.turbine, mode=self.options.drivetrain)
 
+    def describe(self) -> dict:
+        """The modelling assumptions, for reports and result attributes (plain strings / numbers)."""
+        o = self.options
+        a = o.aero
+        if a is None:
+            aero = "none"
+        elif hasattr(a, "circulation"):
+            aero = (f"unsteady strips ({a.circulation} lag states), "
+                    f"{'polar tables, local slopes' if a.polar == 'table' else 'flat plate'}"
+                    f"{', mean-load terms' if a.mean_loads else ''}{', dynamic stall' if a.dynamic_stall else ''}")
+        else:
+            aero = f"quasi-steady Theodorsen strips ({getattr(a, 'model', '?')})"
+        from windflutter.system.damping import blade_mu, tower_ratio
+
+        mu = blade_mu(self.turbine) if o.damping == "file" else None
+        zt = tower_ratio(self.turbine) if o.damping == "file" else 0.0
+        return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
+                "drivetrain": o.drivetrain, "aerodynamics": aero,
+                "steady_state": "deflected (BEM, centrifugal + aero loads)" if o.deflection else "undeformed",
+                "induction": "steady BEM" if o.induction else "none",
+                "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
+                "tower_damping": f"{100 * zt:.2g} % (stiffness-proportional)" if zt > 0 else "none",
+                "blade_basis": "full order" if o.blade_modes is None else f"{o.blade_modes} fixed-interface modes"
+                               + (" + aero corrections" if o.corrections else ""),
+                "inflow": "axisymmetric along the shaft (no tilt, shear, yaw, gravity)"}
+
     # -- operating point ---------------------------------------------------------------------
     def operating_point(self, wind_speed: float) -> tuple[float, float]:
         """(rotor speed rad/s, pitch rad) of the turbine's operating curve at ``wind_speed``."""

@@ -1,0 +1,170 @@
+"""The operating-point Campbell analysis: every mode of the turbine along its operating curve.
+
+:func:`campbell` runs :class:`~windflutter.system.operational.OperationalModel` at each wind speed
+(rotor speed and pitch from the turbine's operating curve), names the modes
+(:mod:`windflutter.system.modes`) and follows them from one wind speed to the next by the MAC of
+their physical signatures (:func:`windflutter.system.modes.mode_signature`: tower and nacelle
+motion, drivetrain, the strips' flap/edge/torsion motion per multi-blade coordinate -- a
+comparison that does not depend on the reduction bases, which change with the operating point).
+
+The result (:class:`CampbellResult`) is what the CLI prints (``--json``), exports (CSV,
+HAWCStab2-style ``.cmb``) and plots.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from windflutter.errors import InputError
+from windflutter.system.modes import ModeRecord, point_modes
+
+RPM = math.pi / 30.0
+
+
+@dataclass
+class CampbellPoint:
+    """One operating point: wind speed (m/s), rotor speed (RPM), pitch (deg), its modes (in
+    ascending frequency) and the steady state's rotor power (W), thrust (N) and blade-tip
+    flapwise deflection (m) (NaN without aerodynamics)."""
+
+    wind_speed: float
+    rotor_speed_rpm: float
+    pitch_deg: float
+    modes: list[ModeRecord]
+    power: float = float("nan")
+    thrust: float = float("nan")
+    tip_deflection: float = float("nan")
+
+    def as_dict(self) -> dict:
+        return {"wind_speed": float(self.wind_speed), "rotor_speed_rpm": float(self.rotor_speed_rpm),
+                "pitch_deg": float(self.pitch_deg), "modes": [m.as_dict() for m in self.modes]}
+
+
+@dataclass
+class Track:
+    """A mode followed along the wind speeds: ``index[i]`` is its position in point ``i``'s mode
+    list (-1 where it is not found); ``names`` the distinct names it carried, in order (more than
+    one: its identity changes along the curve)."""
+
+    index: list[int]
+    names: list[str] = field(default_factory=list)
+
+    @property
+    def name(self) -> str:
+        return self.names[-1] if self.names else ""
+
+    @property
+    def changes_identity(self) -> bool:
+        return len(self.names) > 1
+
+
+@dataclass
+class CampbellResult:
+    """Modes of the whole turbine (or the rotor on a fixed nacelle) along the operating curve."""
+
+    turbine: str
+    part: str
+    points: list[CampbellPoint]
+    tracks: list[Track] = field(default_factory=list)
+    frame: str = "ground-fixed"
+    assumptions: dict = field(default_factory=dict)
+
+    def as_dict(self) -> dict:
+        """The JSON of ``windflutter campbell --json`` (exactly these keys)."""
+        return {"turbine": self.turbine, "part": self.part, "frame": self.frame,
+                "points": [p.as_dict() for p in self.points]}
+
+    def least_damped(self, exclude_rigid: bool = True):
+        """``(point, mode)`` of the least damped mode over all points (None if no modes)."""
+        best = None
+        for p in self.points:
+            for m in p.modes:
+                if exclude_rigid and m.rigid:
+                    continue
+                if best is None or m.damping_ratio < best[1].damping_ratio:
+                    best = (p, m)
+        return best
+
+    def unstable(self):
+        """``[(point, mode)]`` with negative damping (the rigid-body drivetrain root excluded)."""
+        return [(p, m) for p in self.points for m in p.modes if m.damping_ratio < 0 and not m.rigid]
+
+
+def track_modes(points: list[CampbellPoint], min_mac: float = 0.5) -> list[Track]:
+    """Follow the modes from point to point: assignment of maximum MAC of their signatures
+    (Hungarian algorithm); a pair with MAC below ``min_mac`` starts a new track."""
+    from scipy.optimize import linear_sum_assignment
+
+    from windflutter.linalg_tools import mac_matrix
+
+    n = len(points)
+    tracks: list[Track] = []
+    live: dict[int, int] = {}  # mode index at the previous point -> track
+    for i, p in enumerate(points):
+        new_live: dict[int, int] = {}
+        if i > 0 and live and p.modes:
+            prev = points[i - 1].modes
+            A = np.stack([prev[j].signature for j in live], 1)
+            B = np.stack([m.signature for m in p.modes], 1)
+            mac = mac_matrix(A, B)
+            rows, cols = linear_sum_assignment(-mac)
+            keys = list(live)
+            for r, c in zip(rows, cols):
+                if mac[r, c] >= min_mac:
+                    new_live[int(c)] = live[keys[r]]
+        for k, m in enumerate(p.modes):
+            if k not in new_live:
+                tracks.append(Track(index=[-1] * n))
+                new_live[k] = len(tracks) - 1
+            t = tracks[new_live[k]]
+            t.index[i] = k
+            if not t.names or t.names[-1] != m.name:
+                t.names.append(m.name)
+        live = new_live
+    return tracks
+
+
+def default_wind_speeds(turbine) -> np.ndarray:
+    """The operating curve's wind speeds within 3-25 m/s (its own range if narrower)."""
+    oc = turbine.operating_curve
+    if oc is None:
+        raise InputError("operating curve", None, "a turbine with an operating curve (wind, rotor speed, pitch)")
+    v = np.asarray(oc.wind_speed, float)
+    sel = v[(v >= 3.0 - 1e-9) & (v <= 25.0 + 1e-9)]
+    return sel if sel.size else v
+
+
+def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progress=None,
+             model=None) -> CampbellResult:
+    """The Campbell analysis of ``turbine`` (see module docstring).
+
+    Parameters
+    ----------
+    wind_speeds : m/s; default :func:`default_wind_speeds`.
+    options : :class:`~windflutter.system.operational.OperationalOptions`.
+    max_hz : modes up to this undamped frequency (Hz).
+    progress : optional ``progress(fraction, text)``.
+    model : an :class:`~windflutter.system.operational.OperationalModel` to reuse (its parts are cached).
+    """
+    from windflutter.system.operational import OperationalModel
+
+    om = model or OperationalModel(turbine, options)
+    ws = default_wind_speeds(turbine) if wind_speeds is None else np.asarray(wind_speeds, float)
+    pts = []
+    for i, v in enumerate(ws):
+        if progress is not None:
+            progress(i / len(ws), f"V = {v:g} m/s")
+        ps = om.at(float(v))
+        modes = point_modes(ps, max_hz=max_hz)
+        st = ps.steady
+        pts.append(CampbellPoint(wind_speed=float(v), rotor_speed_rpm=ps.omega / RPM, pitch_deg=math.degrees(ps.pitch),
+                                 modes=modes, power=float(st.power) if st is not None else float("nan"),
+                                 thrust=float(st.thrust) if st is not None else float("nan"),
+                                 tip_deflection=float(st.tip_flap) if st is not None else float("nan")))
+    if progress is not None:
+        progress(1.0, "done")
+    return CampbellResult(turbine=str(getattr(turbine, "name", "")), part=om.options.part, points=pts,
+                          tracks=track_modes(pts), assumptions=om.describe())
