@@ -36,10 +36,12 @@ from windflutter.errors import InputError
 from windflutter.schema import Spec, check_keys, is_number
 
 AERO_VARIANTS = ("potential", "viscous")
-SEARCH_METHODS = ("thesis", "pk")
+SEARCH_METHODS = ("p", "pk", "thesis")
 MODEL_TYPES = ("shell", "beam", "section")
 MODEL_PARTS = ("turbine", "rotor")
-DAMPING_MODELS = ("none", "stiffness", "rayleigh", "modal")
+DAMPING_MODELS = ("file", "none", "stiffness", "rayleigh", "modal")
+DRIVETRAINS = ("flexible", "rigid", "locked")
+CIRCULATIONS = ("jones", "rfa", "quasi_steady")
 PLOT_FORMATS = ("png", "svg", "pdf")
 REDUCTIONS = ("mta", "modal", "none")
 AERO_DISTRIBUTIONS = ("spline", "skin")
@@ -55,6 +57,7 @@ MAX_AIR_DENSITY = 2.0       # kg/m^3; dry air at -50 degC and 1050 hPa is 1.64
 
 # keys of earlier versions: a clear message instead of "unknown key"
 _RENAMED = {"solver": {
+    "steady_loads": "renamed: solver.mean_loads (the mean-load terms, now on by default)",
     "n_modes": "renamed: solver.n_eig (eigenvalues per eigen-solve); the projection basis is solver.basis_modes",
     "shift_hz": "removed: the p-k search shifts each eigen-solve to the tracked mode's own frequency",
 }}
@@ -146,15 +149,19 @@ class ModelConfig:
                               lower=0.1, upper=4.0, unit="-")
     n_aero_sections: int = opt(30, "int", "blade elements along the span, one aerodynamic strip each (at "
                                "mesh_density 1)", lower=4, upper=MAX_BLADE_ELEMENTS)
+    drivetrain: str = opt("flexible", "choice", "method p: flexible (shaft spring and generator inertia of the "
+                          "turbine file), rigid (one rotor azimuth freedom) or locked (the rotor locked to the "
+                          "nacelle, as the seed's model; pk and thesis always lock it)", choices=DRIVETRAINS)
 
 
 @dataclass(frozen=True)
 class DampingConfig:
     """Structural damping."""
 
-    model: str = opt("none", "choice", "none, stiffness (D = beta K), rayleigh (alpha M + beta K) or modal (the "
-                     "ratio in every structural mode of the basis; needs solver.reduction mta or modal)",
-                     choices=DAMPING_MODELS)
+    model: str = opt("file", "choice", "file (the turbine files' structural damping: blade mu per direction, "
+                     "tower modal ratios; none where a file gives none), none, stiffness (D = beta K), rayleigh "
+                     "(alpha M + beta K) or modal (the ratio in every structural mode of the basis; needs "
+                     "solver.reduction mta or modal)", choices=DAMPING_MODELS)
     ratio: float = opt(0.0, "float", "damping ratio; 0 gives the onset of the undamped structure (conservative); "
                        "> 0 with model none switches the model to modal", lower=0.0, upper=1.0, upper_open=True,
                        unit="-")
@@ -184,10 +191,30 @@ class SolverConfig:
                                  "or skin (the seed's skin quads); beams need spline", choices=AERO_DISTRIBUTIONS)
     geometric_stiffness: bool = opt(True, "bool", "centrifugal stress stiffness K_sigma (full physics); false "
                                     "reproduces the thesis")
-    induction: bool = opt(False, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
+    induction: bool = opt(True, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
                           "the stability problem; false is the thesis's inflow V, Omega r")
-    steady_loads: bool = opt(False, "bool", "quasi-steady damping of the mean lift, drag and moment (edgewise "
-                             "aerodynamic damping); false is the thesis's model")
+    mean_loads: bool = opt(True, "bool", "the mean-load terms: the quasi-steady force of the mean lift, drag "
+                           "and moment (polars at each strip's steady angle of attack) under section motion -- "
+                           "the edgewise aerodynamic damping; false is the thesis's model")
+    deflection: bool = opt(True, "bool", "method p: linearize about the deflected steady state (BEM, centrifugal "
+                           "and aerodynamic loads, elastic twist); false: the undeformed blade (pk and thesis "
+                           "always)")
+    circulation: str = opt("jones", "choice", "method p: the rational approximation of Theodorsen's C(k) behind "
+                           "the aerodynamic lag states: jones (R.T. Jones, 2 states per strip), rfa (Roger fit "
+                           "with n_lag poles) or quasi_steady (C = 1, no states)", choices=CIRCULATIONS)
+    n_lag: int = opt(4, "int", "method p, circulation rfa: lag poles of the Roger fit", lower=1, upper=8)
+    dynamic_stall: bool = opt(False, "bool", "method p: the separation-point lag of Oye's dynamic-stall model "
+                              "(one more state per strip)")
+
+
+@dataclass(frozen=True)
+class CampbellConfig:
+    """The operating-point Campbell analysis of ``windflutter run`` (method p)."""
+
+    enabled: bool = opt(True, "bool", "add the operating-point Campbell diagram (every mode along the operating "
+                        "curve, ground-fixed frame) to the run")
+    max_hz: float | None = opt(None, "float", "modes up to this frequency; null: 1.25 x the first blade torsion "
+                               "frequency", lower=0.01, upper=100.0, nullable=True, unit="Hz")
 
 
 @dataclass(frozen=True)
@@ -226,10 +253,13 @@ class AnalysisConfig:
         (4.0, 6.0, 8.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 22.0, 25.0), "custom",
         f"a list of positive, strictly increasing wind speeds up to {MAX_WIND_SPEED:g} m/s, or {{start, stop, "
         f"step}} (inclusive); at most {MAX_WIND_SPEEDS}", parse=_wind_speeds, unit="m/s")
-    aero: tuple[str, ...] = opt(("potential", "viscous"), "choices", "aerodynamic variants: potential (2 pi, "
-                                "no drag) and/or viscous (the polars' fitted slopes and drag)", choices=AERO_VARIANTS)
-    method: tuple[str, ...] = opt(("pk",), "choices", "search methods: pk (p-k with onset root-finding) and/or "
-                                  "thesis (the seed's 8 reduced frequencies)", choices=SEARCH_METHODS)
+    aero: tuple[str, ...] = opt(("viscous",), "choices", "aerodynamic variants: viscous (the airfoil polars: "
+                                "method p their local slopes at the steady angle of attack, pk / thesis the seed's "
+                                "fitted slopes and drag) and/or potential (2 pi, no drag)", choices=AERO_VARIANTS)
+    method: tuple[str, ...] = opt(("p",), "choices", "search methods: p (eigenvalues of the whole turbine in "
+                                  "multi-blade coordinates with aerodynamic states: valid at any damping), pk "
+                                  "(the seed's model: p-k with onset root-finding) and/or thesis (the seed's 8 "
+                                  "reduced frequencies)", choices=SEARCH_METHODS)
     air_density: float = opt(1.225, "float", "air density", lower=0.0, lower_open=True, upper=MAX_AIR_DENSITY,
                              unit="kg/m^3")
     title: str = opt("", "str", "free text shown in the report", max_len=500)
@@ -237,6 +267,7 @@ class AnalysisConfig:
     model: ModelConfig = section(ModelConfig)
     damping: DampingConfig = section(DampingConfig)
     solver: SolverConfig = section(SolverConfig)
+    campbell: CampbellConfig = section(CampbellConfig)
     operating: OperatingConfig = section(OperatingConfig)
     output: OutputConfig = section(OutputConfig)
 
@@ -307,7 +338,7 @@ def _document(cls: type) -> None:
     cls.__doc__ = (cls.__doc__ or "") + "\n    ".join(lines)
 
 
-for _cls in (RotorSpeedConfig, ModelConfig, DampingConfig, SolverConfig, OperatingConfig, OutputConfig,
+for _cls in (RotorSpeedConfig, ModelConfig, DampingConfig, SolverConfig, CampbellConfig, OperatingConfig, OutputConfig,
              AnalysisConfig):
     _document(_cls)
 

@@ -187,61 +187,56 @@ def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
 
 
 def mesh_settings(config: AnalysisConfig) -> dict[str, Any]:
-    """Mesh-setting overrides from ``model.part``, ``model.mesh_density`` and ``model.n_aero_sections``.
+    """Mesh-setting overrides of ``config`` (:func:`windflutter.stability.build.mesh_settings`)."""
+    from windflutter.stability.build import mesh_settings as _mesh  # noqa: PLC0415
 
-    Element counts of :class:`windflutter.mesh.settings.MeshSettings` scaled by the density:
-    strips / elements along the blade ``n_aero_sections * density`` (at least 4: the config
-    refuses fewer); for shells also the elements around a section (default 40, kept even, at
-    least 8) and around (at least 8) and along (at least 4) the tower.
-    """
-    d = config.model.mesh_density
-    out: dict[str, Any] = {"part": config.model.part,
-                           "n_span": max(4, int(round(config.model.n_aero_sections * d)))}
-    if config.model.type == "shell" and d != 1.0:
-        out["n_chord"] = max(8, 2 * int(round(20 * d)))
-        out["n_tower_circ"] = max(8, int(round(20 * d)))
-        out["n_tower_axial"] = max(4, int(round(22 * d)))
-    return out
+    return _mesh(config)
 
 
 def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any = None):
-    """The stability solver's options for one ``(aero, method)`` case of ``config``: the bridge
-    ``options_from_config`` plus the mesh of :func:`mesh_settings` (``windflutter run`` and
-    ``windflutter stability`` both use this)."""
+    """The seed's solver options of one ``(aero, method)`` case (methods pk, thesis), with the mesh
+    (:func:`windflutter.stability.build.turbine_options`; ``module`` only for tests that substitute
+    the solver module)."""
     if module is None:
-        from windflutter.stability import turbine as module  # noqa: PLC0415
+        from windflutter.stability.build import turbine_options as _opts  # noqa: PLC0415
+
+        return _opts(config, aero, method)
     opts = module.options_from_config(config, aero, method)
     return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
 
 
 class TurbinePointAnalyser:
-    """Adapter: :class:`windflutter.stability.turbine.TurbineStability` -> ``analyse(point)``.
-
-    One ``TurbineStability`` per (aero, method) case, so FE models are built once per blade
-    pitch and reused across wind speeds.
+    """Adapter: the solver of each (aero, method) case (:func:`windflutter.stability.build.
+    stability_analysis`) -> ``analyse(point)``; one solver per case, so models are built once per
+    blade pitch and reused across wind speeds.
     """
 
-    def __init__(self, turbine: Any, config: AnalysisConfig, module: Any):
+    def __init__(self, turbine: Any, config: AnalysisConfig, module: Any = None):
         self.turbine = turbine
         self.config = config
-        self._st = module
         self._cases: dict[tuple[str, str], Any] = {}
         self._size: dict[str, Any] = {}
         # validate the options now, so a bad combination fails before the first point
+        from windflutter.stability.build import operational_options  # noqa: PLC0415
+
         for aero, method in config.cases:
-            turbine_options(config, aero, method, module)
+            if method == "p":
+                operational_options(config, aero)
+            else:
+                turbine_options(config, aero, method, module)
 
     def _stability(self, aero: str, method: str):
         key = (aero, method)
         if key not in self._cases:
-            self._cases[key] = self._st.TurbineStability(self.turbine, turbine_options(self.config, aero, method,
-                                                                                       self._st))
+            from windflutter.stability.build import stability_analysis  # noqa: PLC0415
+
+            self._cases[key] = stability_analysis(self.turbine, self.config, aero, method)
         return self._cases[key]
 
     def fe_model(self, point: OperatingPoint):
-        """The FE model of ``point`` (its blade pitch), for the mode animation."""
+        """The FE model of ``point`` (its blade pitch), for the mode animation (seed's methods)."""
         ts = self._stability(point.aero, point.method)
-        return ts.model(ts.pitch_at(point.wind_speed))[0]
+        return ts.model(ts.pitch_at(point.wind_speed))[0] if hasattr(ts, "model") and callable(ts.model) else None
 
     def describe(self) -> dict[str, Any]:
         info: dict[str, Any] = {"model_type": self.config.model.type,
@@ -249,15 +244,23 @@ class TurbinePointAnalyser:
         info.update(self._size)
         return info
 
+    def _model_size(self, ts, pitch: float) -> dict[str, int]:
+        if hasattr(ts, "model") and callable(ts.model):
+            fe, sections, am = ts.model(pitch)
+            return {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
+                    "n_aero_sections": int(sections.n_sections), "n_reduced_dof": int(am.size)}
+        rb = ts.model.blade(pitch)
+        n_b = int(ts.model.n_blades)
+        return {"n_nodes": int(rb.fe.n_nodes) * n_b, "n_dof": int(rb.fe.n_dof) * n_b,
+                "n_aero_sections": int(rb.sections.n_sections) * n_b}
+
     def __call__(self, point: OperatingPoint, progress: ProgressCallback | None = None) -> PointResult:
         ts = self._stability(point.aero, point.method)
         if progress is not None:
             progress(0.02, f"{point.label}: model and search")
-        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=np.asarray(point.sweep_rpm, float))
-        pitch = ts.pitch_at(point.wind_speed)
-        fe, sections, am = ts.model(pitch)
-        size = {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
-                "n_aero_sections": int(sections.n_sections), "n_reduced_dof": int(am.size)}
+        grid = None if point.method == "p" else np.asarray(point.sweep_rpm, float)
+        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=grid)
+        size = self._model_size(ts, ts.pitch_at(point.wind_speed))
         if not self._size:
             self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
         nan = float("nan")
@@ -277,6 +280,7 @@ class TurbinePointAnalyser:
                 progress(0.95, f"{point.label}: flutter mode")
             from windflutter.post.aerowork import flutter_mode_diagnostics  # noqa: PLC0415
 
+            _, sections, am = ts.model(ts.pitch_at(point.wind_speed))
             sys_on = am.at(point.wind_speed, float(s.flutter_rpm) * math.pi / 30.0)
             u = sys_on.expand(on.flutter_vector)
             omega = float(on.flutter_frequency) if on.flutter_frequency else 2 * math.pi * res.flutter_frequency_hz

@@ -17,7 +17,7 @@ from windflutter import __version__
 from windflutter.errors import InputError, ModelError, WindflutterError
 
 #: Sub-command modules, in the order shown by ``--help``.
-COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "run")
+COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "campbell", "run")
 
 
 @functools.lru_cache(maxsize=1)

@@ -82,7 +82,7 @@ class Flag:
         spec = self.the_spec() if (self.spec is not None or self.path) else None
         kw: dict[str, Any] = {"dest": self.dest, "default": None}
         if spec is not None and spec.kind == "bool" and self.nargs is None:
-            kw["action"] = "store_true"
+            kw["action"] = argparse.BooleanOptionalAction  # --x / --no-x (defaults may be true)
         else:
             kw.update(type=scalar if spec is None or spec.kind in ("float", "int", "custom") else str,
                       nargs=self.nargs)
@@ -213,6 +213,11 @@ SOLVER_FLAGS = (
     Flag("--basis-modes", "solver.basis_modes", metavar="N"),
     Flag("--n-tracked", "solver.n_tracked", metavar="N"),
     Flag("--aero-distribution", "solver.aero_distribution"),
-    Flag("--steady-loads", "solver.steady_loads"),
+    Flag("--mean-loads", "solver.mean_loads"),
     Flag("--induction", "solver.induction"),
+    Flag("--deflection", "solver.deflection"),
+    Flag("--circulation", "solver.circulation"),
+    Flag("--dynamic-stall", "solver.dynamic_stall"),
+    Flag("--drivetrain", "model.drivetrain"),
+    Flag("--damping", "damping.model"),
 )

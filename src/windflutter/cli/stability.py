@@ -18,8 +18,9 @@ from windflutter.errors import InputError
 
 FLAGS = (
     Flag("--wind-speeds", "wind_speeds", nargs="+", metavar="V", default=[10.0], help="wind speeds (m/s)"),
-    Flag("--aero", "aero", default="potential", help="aerodynamic variant"),
-    Flag("--method", "method", default="pk", help="search method"),
+    Flag("--aero", "aero", help="aerodynamic variant (default viscous: the airfoil polars)"),
+    Flag("--method", "method", help="search method (default p: whole turbine in multi-blade coordinates with "
+         "aerodynamic states; pk, thesis: the seed's model)"),
     Flag("--model", "model.type", help="structural model (shell or beam)"),
     rpm_flag(default=[2.0, 40.0, 2.0]),
 ) + SOLVER_FLAGS
@@ -39,13 +40,16 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def options_from_args(args: argparse.Namespace):
-    """``(AnalysisConfig, TurbineOptions)`` of the command line (errors name the flag)."""
+    """``(AnalysisConfig, options)`` of the command line (errors name the flag): the options of the
+    solver :func:`windflutter.stability.build.stability_analysis` builds for the case."""
     from windflutter.config import load_config  # noqa: PLC0415
-    from windflutter.workflow import turbine_options  # noqa: PLC0415
+    from windflutter.stability.build import operational_options, turbine_options  # noqa: PLC0415
 
     try:
         config = load_config(None, config_overrides(args, FLAGS))
-        return config, turbine_options(config, config.aero[0], config.method[0])
+        aero, method = config.aero[0], config.method[0]
+        opts = operational_options(config, aero) if method == "p" else turbine_options(config, aero, method)
+        return config, opts
     except InputError as exc:
         raise flag_error(exc, args, FLAGS, RPM_PATHS) from None
 
@@ -53,13 +57,13 @@ def options_from_args(args: argparse.Namespace):
 def run(args: argparse.Namespace) -> int:
     from windflutter.files import check_output_file, prepare_output_file
     from windflutter.model.windio import load_turbine
-    from windflutter.stability.turbine import TurbineStability
+    from windflutter.stability.build import stability_analysis
 
     config, opts = options_from_args(args)
     if args.plot is not None:  # before the analysis
         check_output_file(args.plot, "--plot", PLOT_EXTENSIONS)
     turbine = load_turbine(args.turbine)
-    ts = TurbineStability(turbine, opts)
+    ts = stability_analysis(turbine, config, config.aero[0], config.method[0])
     points = [ts.analyse_operating_point(v) for v in config.wind_speeds]
     if args.plot:
         from windflutter.post.stability_plots import campbell
@@ -69,7 +73,8 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps({"points": [p.as_dict() for p in points]}))
         return 0
     physics = "full" if config.solver.geometric_stiffness else "thesis"
-    print(f"{turbine.name}: {opts.model} model, {opts.aero} aero, {opts.method} search, {physics} physics")
+    print(f"{turbine.name}: {config.model.type} model, {config.aero[0]} aero, {config.method[0]} search, "
+          f"{physics} physics")
     print(f"{'V (m/s)':>8} {'pitch':>6} {'flutter RPM':>12} {'f (Hz)':>7} {'divergence RPM':>15}  mode")
     for p in points:
         fr = "-" if p.flutter_rpm is None else f"{p.flutter_rpm:.2f}"

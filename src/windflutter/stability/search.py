@@ -57,6 +57,7 @@ class Onset:
     eigenvalues: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), complex))
     method: str = "pk"
     vectors0: list | None = None
+    reason: str = ""
 
 
 def _qep(M, D, K, n_eig, shift=0.0):

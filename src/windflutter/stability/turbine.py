@@ -43,7 +43,7 @@ class TurbineOptions:
     model : ``"beam"`` or ``"shell"``.
     aero : ``"potential"`` or ``"viscous"``.
     method : ``"pk"`` (p-k + root-finding) or ``"thesis"`` (the seed's 8-k search).
-    physics : ``"full"`` (with centrifugal prestress Ksigma) or ``"thesis"`` (without, as the seed).
+    geometric_stiffness : with the centrifugal prestress Ksigma (True) or without (False, as the seed).
     air_density : kg/m^3.
     rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
     tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
@@ -54,11 +54,11 @@ class TurbineOptions:
         NREL 5 MW whole turbine, beam, 10 m/s: 21.985 / 23.597 RPM flutter / divergence vs
         21.99 / 23.60 at full order), ``"modal"`` (structural modes only: 23.60 / 25.73 RPM with
         30 modes, non-conservative on whole turbines) or ``"none"`` (full order, the reference).
-    n_modes : structural modes per reference speed in the projection basis; ``None`` means
+    basis_modes : structural modes per reference speed in the projection basis; ``None`` means
         full order (the same as ``reduction="none"``).
     mta_wind_speeds : wind speeds (m/s) whose aero loads build the correction vectors of
         ``reduction="mta"`` (fixed, so results do not depend on the order of the points).
-    mta_tol : relative cut-off of those correction directions
+    correction_tol : relative cut-off of those correction directions
         (:class:`~windflutter.solve.aero_reduction.MTAAeroelasticModel`); 1e-8 (default) is safe,
         1e-4 halves the basis but was 2-5 % low on the seed 20 MW.
     n_tracked : modes followed by the p-k search; ``None`` (default) tracks every mode up to
@@ -70,12 +70,13 @@ class TurbineOptions:
     aero_distribution : ``"spline"`` (strip motion from a rigid-section fit of its skin nodes;
         the only choice for beams) or ``"skin"`` (the seed's skin quads, shell models only;
         ``docs/aero_distribution.md``).
-    steady_loads : add the quasi-steady damping of the mean lift, drag and moment (polars at the
+    mean_loads : add the quasi-steady damping of the mean lift, drag and moment (polars at the
         strips' steady angles of attack; :class:`~windflutter.aero.strip.AeroOptions`): the
         edgewise aerodynamic damping; ``False`` is the thesis's model.
     induction : steady BEM axial/tangential induction in the inflow (frozen in the stability
         problem); ``False`` is the thesis's ``V, Omega r``.
-    damping : ``"none"``, ``"stiffness"``, ``"rayleigh"`` or ``"modal"``; ``damping_ratio`` at
+    damping : ``"file"`` (the turbine files' blade ``mu`` and tower ratios,
+        :mod:`windflutter.system.damping`), ``"none"``, ``"stiffness"``, ``"rayleigh"`` or ``"modal"``; ``damping_ratio`` at
         ``damping_reference_hz`` (Rayleigh: and at 10x it; modal: in every non-rotating
         structural mode of the basis).
     mesh : extra :class:`~windflutter.mesh.settings.MeshSettings` fields (dict).
@@ -84,7 +85,7 @@ class TurbineOptions:
     model: str = "beam"
     aero: str = "potential"
     method: str = "pk"
-    physics: str = "full"
+    geometric_stiffness: bool = True
     air_density: float = 1.225
     rpm_min: float = 2.0
     rpm_max: float = 40.0
@@ -92,15 +93,15 @@ class TurbineOptions:
     tolerance_rpm: float = 0.01
     full_sweep: bool = False
     reduction: str = "mta"
-    n_modes: int = 30
+    basis_modes: int = 30
     mta_wind_speeds: tuple[float, ...] = (4.0, 25.0)
-    mta_tol: float = 1e-8
+    correction_tol: float = 1e-8
     n_tracked: int | None = None
     n_eig: int = 20
     apparent_mass_scaling: bool = False
     aero_distribution: str = "spline"
     induction: bool = False
-    steady_loads: bool = False
+    mean_loads: bool = False
     damping: str = "none"
     damping_ratio: float = 0.0
     damping_reference_hz: float = 1.0
@@ -108,12 +109,12 @@ class TurbineOptions:
 
     def __post_init__(self):
         for name, choices in (("model", ("beam", "shell")), ("aero", AERO_VARIANTS), ("method", SEARCH_METHODS),
-                              ("physics", ("full", "thesis")), ("damping", DAMPING_MODELS),
+                              ("damping", DAMPING_MODELS),
                               ("reduction", REDUCTIONS), ("aero_distribution", AERO_DISTRIBUTIONS)):
             check_choice(name, getattr(self, name), choices)
-        if self.n_modes is None:  # full order
+        if self.basis_modes is None:  # full order
             object.__setattr__(self, "reduction", "none")
-            object.__setattr__(self, "n_modes", 30)
+            object.__setattr__(self, "basis_modes", 30)
         if self.aero_distribution == "skin" and self.model != "shell":
             raise InputError("aero_distribution", "skin", "'spline' for a beam model (skin quads need shells)")
         if not (0 <= self.rpm_min < self.rpm_max):
@@ -124,13 +125,13 @@ class TurbineOptions:
             raise InputError("tolerance_rpm", self.tolerance_rpm, "a positive tolerance (RPM)")
         if not self.air_density > 0:
             raise InputError("air_density", self.air_density, "a positive density (kg/m^3)")
-        if not (isinstance(self.n_modes, (int, np.integer)) and self.n_modes >= 1):
-            raise InputError("n_modes", self.n_modes, "a positive number of modes")
+        if not (isinstance(self.basis_modes, (int, np.integer)) and self.basis_modes >= 1):
+            raise InputError("basis_modes", self.basis_modes, "a positive number of modes")
         if self.n_tracked is not None and not (isinstance(self.n_tracked, (int, np.integer))
                                                and self.n_tracked >= 1):
             raise InputError("n_tracked", self.n_tracked, "a positive number of modes, or None (auto)")
-        if not (0.0 < self.mta_tol < 1.0):
-            raise InputError("mta_tol", self.mta_tol, "a relative cut-off in (0, 1), e.g. 1e-8")
+        if not (0.0 < self.correction_tol < 1.0):
+            raise InputError("correction_tol", self.correction_tol, "a relative cut-off in (0, 1), e.g. 1e-8")
         if not (isinstance(self.n_eig, (int, np.integer)) and self.n_eig >= 2):
             raise InputError("n_eig", self.n_eig, "at least 2 eigenvalues per solve")
         if self.damping == "modal" and self.reduction == "none":
@@ -217,12 +218,12 @@ class TurbineStability:
         fe, sections = build_model(self.turbine, settings)
         st = assemble(fe)
         geom = rotor_geometry(self.turbine)
-        terms = rotor_terms(fe, st, geom, prestress=(o.physics == "full"))
+        terms = rotor_terms(fe, st, geom, prestress=bool(o.geometric_stiffness))
         sm = StructuralMatrices.from_structural(st)
         sm.D = self._damping(st)
-        aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling, steady_loads=o.steady_loads)
+        aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling, steady_loads=o.mean_loads)
         kw = dict(structure=sm, sections=sections, rotor=terms, rotor_geometry=geom, aero=aero,
-                  air_density=o.air_density, n_modes=None if o.reduction == "none" else o.n_modes,
+                  air_density=o.air_density, n_modes=None if o.reduction == "none" else o.basis_modes,
                   omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
         if o.induction:
             kw["induction"] = True
@@ -236,7 +237,7 @@ class TurbineStability:
         if o.reduction == "mta":
             from windflutter.solve.aero_reduction import MTAAeroelasticModel
 
-            am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds), mta_tol=o.mta_tol)
+            am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds), mta_tol=o.correction_tol)
         elif skin is not None:
             from windflutter.solve.skin_model import SkinAeroelasticModel
 
@@ -250,6 +251,10 @@ class TurbineStability:
 
     def _damping(self, st):
         o = self.options
+        if o.damping == "file":
+            from windflutter.system.damping import turbine_damping_matrix
+
+            return turbine_damping_matrix(self.turbine, st)
         if o.damping in ("none", "modal") or o.damping_ratio == 0.0:
             return None  # modal damping is added in the modal basis (AeroelasticModel)
         from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
@@ -352,12 +357,12 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
         mesh["n_span"] = max(2, int(config.model.n_aero_sections))
     s = config.solver
     return TurbineOptions(model=mtype, aero=aero, method=method,
-                          physics="full" if s.geometric_stiffness else "thesis",
+                          geometric_stiffness=s.geometric_stiffness,
                           air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
                           tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction,
-                          n_modes=s.basis_modes, mta_tol=s.correction_tol,
+                          basis_modes=s.basis_modes, correction_tol=s.correction_tol,
                           n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,
-                          induction=s.induction, steady_loads=s.steady_loads, damping=config.damping.model,
+                          induction=s.induction, mean_loads=s.mean_loads, damping=config.damping.model,
                           damping_ratio=config.damping.ratio,
                           damping_reference_hz=config.damping.reference_hz, mesh=mesh)
 

@@ -68,3 +68,34 @@ def stiffness_proportional(K, M, zeta: float) -> np.ndarray | None:
     w2 = sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T), eigvals_only=True, subset_by_index=[0, 0])[0]
     w1 = np.sqrt(max(w2, 0.0))
     return (2.0 * zeta / w1) * K if w1 > 0 else None
+
+
+def element_subset(fe, prefix: str):
+    """``fe`` with only the elements whose region name starts with ``prefix`` (no masses or springs):
+    for assembling a damping matrix of one part of a model."""
+    names = list(fe.region_names)
+    keep = {i for i, nm in enumerate(names) if nm.startswith(prefix)}
+    sh = np.isin(np.asarray(fe.element_regions.get("shell", np.zeros(0, int))), list(keep))
+    bm = np.isin(np.asarray(fe.element_regions.get("beam", np.zeros(0, int))), list(keep))
+    return replace(fe, shell_conn=fe.shell_conn[sh], shell_prop=fe.shell_prop[sh], shell_matdir=fe.shell_matdir[sh],
+                   beam_conn=fe.beam_conn[bm], beam_section=fe.beam_section[bm], beam_orient=fe.beam_orient[bm],
+                   masses=[], springs=[], element_regions={"shell": fe.element_regions["shell"][sh],
+                                                           "beam": fe.element_regions["beam"][bm]})
+
+
+def turbine_damping_matrix(turbine, struct) -> sp.csr_matrix | None:
+    """Full-numbering structural damping of a whole (frozen-azimuth) model from the files: the
+    blades' ``mu`` on the blade elements, the tower's modal ratio as ``beta K`` on the tower
+    elements with ``beta = 2 zeta / omega_1`` at the model's first mode; None if the files give none."""
+    fe = struct.fe
+    D = blade_damping_matrix(element_subset(fe, "blade"), blade_mu(turbine))
+    zeta = tower_ratio(turbine)
+    if zeta > 0 and "tower" in fe.region_names:
+        import scipy.sparse.linalg as spla
+
+        Kr, Mr = struct.Kr.tocsc(), struct.Mr.tocsc()
+        w2 = spla.eigsh(Kr, k=1, M=Mr, sigma=-1.0, which="LM", return_eigenvectors=False)[0]
+        _, Kt = assemble_matrices(element_subset(fe, "tower"))
+        Dt = sp.csr_matrix((2.0 * zeta / np.sqrt(max(w2, 1e-12))) * Kt)
+        D = Dt if D is None else (D + Dt).tocsr()
+    return D

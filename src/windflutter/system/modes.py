@@ -181,7 +181,9 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
     over-damped roots (``zeta >= max_damping``) and the aerodynamic lag roots -- real in the
     rotating frame, ``-beta U/b +- i Omega`` for the cyclic states -- recognised by their
     participation factors ``|u_i v_i|`` (left and right eigenvectors, scale-invariant): a mode is
-    structural when the structural states ``[q, q']`` carry at least ``min_structural`` of it.
+    structural when the structural states ``[q, q']`` carry at least ``min_structural`` of it, or at
+    least half of it and its damped frequency is not within 10 % of the rotor speed's multiples
+    (heavily damped flap modes in operation share much of themselves with the lag states).
     """
     import scipy.linalg as sla
 
@@ -191,7 +193,13 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
     part = np.abs(UL.conj() * X)
     share = part[:n2].sum(axis=0) / np.maximum(part.sum(axis=0), 1e-300)
     keep = (lam.imag > 1e-3 * 2 * np.pi) & (np.abs(lam) <= 2 * np.pi * max_hz)
-    keep &= (-lam.real < max_damping * np.abs(lam)) & (share >= min_structural)
+    keep &= (-lam.real < max_damping * np.abs(lam)) & (share >= 0.5)
+    # between half and min_structural: heavily damped structural modes (flap in operation), or
+    # cyclic aerodynamic lag roots, whose damped frequency is a multiple of the rotor speed
+    om = max(ps.omega, 1e-12)
+    k = np.arange(1, max(1, (ps.n_blades - 1) // 2) + 1)
+    near_kp = np.min(np.abs(lam.imag[:, None] - k[None, :] * om), axis=1) < 0.1 * om
+    keep &= (share >= min_structural) | ~near_kp
     idx = np.where(keep)[0]
     idx = idx[np.argsort(np.abs(lam[idx]))]
     modes = [classify(ps, complex(lam[i]), X[:, i]) for i in idx]

@@ -118,6 +118,7 @@ class PointSystem:
     steady: object
     n_blades: int
     labels: list
+    blade_system: object = None
 
 
 class OperationalModel:
@@ -254,7 +255,8 @@ class OperationalModel:
         ff = fixed_frame(self.support(), self.hub_mass(), self.rotor.shaft_axis, self.drivetrain())
         mbc = multiblade_system(ff, blade, self.n_blades, omega, self.rotor.shaft_axis)
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
-                           support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels)
+                           support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
+                           blade_system=blade)
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):

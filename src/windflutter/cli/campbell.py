@@ -1,0 +1,104 @@
+"""`windflutter campbell TURBINE`: the operating-point Campbell diagram -- frequency and damping of
+every mode of the whole turbine (ground-fixed frame, multi-blade coordinates) along its operating
+curve, with mode names in the field's terms.
+
+The flags are analysis-config fields (:mod:`windflutter.cli.options`), checked as a config is;
+the model is method p's (:func:`windflutter.stability.build.operational_options`).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+from windflutter.cli.options import PLOT_EXTENSIONS, SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error
+from windflutter.errors import InputError
+
+FLAGS = (
+    Flag("--wind-speeds", "wind_speeds", nargs="+", metavar="V",
+         help="wind speeds (m/s); default: the operating curve's within 3-25 m/s"),
+    Flag("--aero", "aero", help="aerodynamic variant (default viscous: the airfoil polars)"),
+    Flag("--model", "model.type", help="structural model (beam or shell)"),
+    Flag("--max-hz", "campbell.max_hz", metavar="F", help="modes up to this frequency (Hz; default 1.25 x the "
+         "first blade torsion frequency)"),
+) + SOLVER_FLAGS
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("campbell", help="frequency and damping of every mode along the operating curve",
+                       description="The operating-point Campbell diagram of a turbine: at each wind speed of "
+                                   "its operating curve (rotor speed and pitch from the curve) the frequency "
+                                   "and aeroelastic damping of every mode of the whole turbine in the "
+                                   "ground-fixed frame, named (1st edge BW, 1st tower fore-aft, ...).")
+    p.add_argument("turbine", help="turbine file (windIO, OpenFAST .fst, HAWC2 .htc) or bundled name")
+    add_flags(p, FLAGS)
+    p.add_argument("--json", action="store_true", help="print the result as one JSON object")
+    p.add_argument("--csv", default=None, metavar="FILE", help="write one row per wind speed and mode")
+    p.add_argument("--cmb", default=None, metavar="FILE", help="write a HAWCStab2-style .cmb text file")
+    p.add_argument("--plot", default=None, metavar="FILE",
+                   help="write the Campbell figure (" + ", ".join(PLOT_EXTENSIONS) + ")")
+    p.set_defaults(func=run)
+
+
+def _config(args: argparse.Namespace):
+    from windflutter.config import load_config  # noqa: PLC0415
+    from windflutter.stability.build import operational_options  # noqa: PLC0415
+
+    try:
+        config = load_config(None, config_overrides(args, FLAGS))
+        return config, operational_options(config, config.aero[0])
+    except InputError as exc:
+        raise flag_error(exc, args, FLAGS, {}) from None
+
+
+def run(args: argparse.Namespace) -> int:
+    from windflutter.files import check_output_file, prepare_output_file  # noqa: PLC0415
+    from windflutter.model import load_turbine  # noqa: PLC0415
+    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
+    from windflutter.system.campbell import campbell  # noqa: PLC0415
+    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
+
+    config, options = _config(args)
+    for flag, exts in (("--plot", PLOT_EXTENSIONS), ("--csv", (".csv",)), ("--cmb", (".cmb", ".txt"))):
+        path = getattr(args, flag.lstrip("-"))
+        if path is not None:  # before the analysis
+            check_output_file(path, flag, exts)
+    turbine = load_turbine(args.turbine)
+    model = OperationalModel(turbine, options)
+    winds = config.wind_speeds if args.wind_speeds is not None else None
+    max_hz = config.campbell.max_hz
+    if max_hz is None:
+        max_hz = 1.25 * torsion_frequency(model, 0.0)
+    res = campbell(turbine, winds, max_hz=max_hz, model=model)
+    if args.csv:
+        from windflutter.post.campbell_export import write_csv  # noqa: PLC0415
+
+        write_csv(res, prepare_output_file(args.csv))
+    if args.cmb:
+        from windflutter.post.campbell_export import write_cmb  # noqa: PLC0415
+
+        write_cmb(res, prepare_output_file(args.cmb))
+    if args.plot:
+        from windflutter.post.campbell_plots import campbell_figure  # noqa: PLC0415
+
+        campbell_figure(res).savefig(prepare_output_file(args.plot), dpi=config.output.dpi)
+    if args.json:
+        print(json.dumps(res.as_dict()))
+        return 0
+    _print_table(res)
+    return 0
+
+
+def _print_table(res) -> None:
+    print(f"{res.turbine}: {res.part}, {res.frame} frame; {res.assumptions.get('aerodynamics', '')}")
+    for p in res.points:
+        print(f"V = {p.wind_speed:5.2f} m/s  {p.rotor_speed_rpm:6.2f} RPM  pitch {p.pitch_deg:6.2f} deg")
+        for m in p.modes:
+            print(f"   {m.name:26s} {m.frequency_hz:7.4f} Hz   zeta {100 * m.damping_ratio:7.2f} %")
+    worst = res.least_damped()
+    if worst is not None:
+        p, m = worst
+        print(f"least damped mode in operation: {m.name}, zeta {100 * m.damping_ratio:.2f} % at {p.wind_speed:g} m/s")
+    bad = res.unstable()
+    print("every mode damped in operation" if not bad else
+          f"UNSTABLE: {bad[0][1].name} at {bad[0][0].wind_speed:g} m/s (zeta {100 * bad[0][1].damping_ratio:.2f} %)")

@@ -1,0 +1,95 @@
+"""The composition root: an analysis config -> the models and the solver of one ``(aero, method)`` case.
+
+Every command that analyses a turbine (``run``, ``stability``, ``campbell``) builds its solver here,
+from the one options vocabulary of :mod:`windflutter.config`:
+
+* method ``p`` -> :class:`~windflutter.stability.operational.OperationalStability`: the whole turbine
+  in multi-blade coordinates with the drivetrain, unsteady (state-space) strip aerodynamics with the
+  mean-load terms and local polar slopes, linearized about the deflected steady state, with the
+  turbine files' structural damping (:class:`~windflutter.system.operational.OperationalOptions`);
+* methods ``pk`` and ``thesis`` -> :class:`~windflutter.stability.turbine.TurbineStability`: the
+  seed's model (frozen azimuth, rotor locked to the nacelle, Theodorsen strips in the frequency
+  domain, undeformed blades) with the config's options (:class:`~windflutter.stability.turbine.
+  TurbineOptions`, via :func:`~windflutter.stability.turbine.options_from_config`).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+
+from windflutter.errors import InputError
+
+
+def mesh_settings(config) -> dict:
+    """Mesh-setting overrides from ``model.part``, ``model.mesh_density`` and ``model.n_aero_sections``: blade
+    elements (= strips) along the span ``n_aero_sections * density``; for shells also the elements
+    around a section (default 40, kept even) and along / around the tower."""
+    d = config.model.mesh_density
+    out = {"part": config.model.part, "n_span": max(4, int(round(config.model.n_aero_sections * d)))}
+    if config.model.type == "shell" and d != 1.0:
+        out["n_chord"] = max(8, 2 * int(round(20 * d)))
+        out["n_tower_circ"] = max(8, int(round(20 * d)))
+        out["n_tower_axial"] = max(4, int(round(22 * d)))
+    return out
+
+
+def unsteady_options(config, aero: str):
+    """The strip operator of method p for aero variant ``aero`` (viscous: the polars' local slopes;
+    potential: a flat plate, 2 pi, no drag)."""
+    from windflutter.aero.unsteady import UnsteadyOptions
+
+    s = config.solver
+    return UnsteadyOptions(circulation=s.circulation, n_lag=s.n_lag,
+                           polar="table" if aero == "viscous" else "flat_plate",
+                           mean_loads=bool(s.mean_loads), dynamic_stall=bool(s.dynamic_stall and aero == "viscous"))
+
+
+def operational_options(config, aero: str):
+    """:class:`~windflutter.system.operational.OperationalOptions` of a config (method p)."""
+    from windflutter.system.operational import OperationalOptions
+
+    m, s = config.model, config.solver
+    if m.type not in ("beam", "shell"):
+        raise InputError("model.type", m.type, "'beam' or 'shell' for the turbine solver")
+    if config.damping.model not in ("file", "none"):
+        raise InputError("damping.model", config.damping.model, "file or none with method p (the turbine files' "
+                         "damping; stiffness, rayleigh and modal belong to the seed's methods pk and thesis)")
+    return OperationalOptions(model=m.type, part=m.part, mesh=mesh_settings(config),
+                              blade_modes=None if s.reduction == "none" else s.basis_modes,
+                              corrections=s.reduction == "mta", correction_tol=max(s.correction_tol, 1e-10),
+                              drivetrain=m.drivetrain, aero=unsteady_options(config, aero),
+                              deflection=bool(s.deflection), induction=bool(s.induction), damping=config.damping.model,
+                              air_density=config.air_density)
+
+
+def search_settings(config):
+    """The rotor-speed sweep of method p from the config's rotor_speed and campbell sections."""
+    from windflutter.stability.operational import SearchSettings
+
+    r = config.rotor_speed
+    step = (r.max_rpm - r.min_rpm) / max(r.n_points - 1, 1)
+    return SearchSettings(rpm_max=r.max_rpm, rpm_step=step, tolerance_rpm=r.tolerance_rpm,
+                          max_hz=config.campbell.max_hz, full_sweep=r.full_sweep)
+
+
+def turbine_options(config, aero: str, method: str):
+    """The seed's solver options (methods pk, thesis) of one case, with the mesh."""
+    from windflutter.stability.turbine import options_from_config
+
+    opts = options_from_config(config, aero, method)
+    return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
+
+
+def stability_analysis(turbine, config, aero: str, method: str):
+    """The solver of one ``(aero, method)`` case: ``.analyse_operating_point(V, rpm_grid)``."""
+    if method == "p":
+        from windflutter.stability.operational import OperationalStability
+
+        return OperationalStability(turbine, operational_options(config, aero), search_settings(config))
+    from windflutter.stability.turbine import TurbineStability
+
+    return TurbineStability(turbine, turbine_options(config, aero, method))
+
+
+__all__ = ["mesh_settings", "unsteady_options", "operational_options", "search_settings", "turbine_options",
+           "stability_analysis"]

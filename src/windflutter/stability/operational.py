@@ -1,0 +1,197 @@
+"""Flutter and divergence of the whole turbine in multi-blade coordinates (method ``p``).
+
+At a wind speed the blade pitch is the operating curve's and the rotor speed is raised from the
+operating rotor speed of that wind speed (the steady operating point; lower speeds are not reached
+in steady operation) to ``rpm_max``.  At each rotor speed the turbine is linearized about its
+steady state (:class:`~windflutter.system.operational.OperationalModel`) and the eigenvalues of
+the first-order system with aerodynamic states are its damped modes -- valid at any damping, so
+no frequency matching is needed (the p-method; the seed's p-k and 8-k searches remain as methods
+``pk`` and ``thesis`` on the seed's frozen-azimuth model, :mod:`windflutter.stability.turbine`).
+
+* Modes are named (:mod:`windflutter.system.modes`) and followed along the rotor speed by the MAC
+  of their physical signatures.
+* Flutter: the first rotor speed where a followed mode's damping ratio turns negative (the
+  drivetrain's rigid-body root excluded), located by Brent's method on that mode.
+* Divergence: the blades' static stiffness in the rotating frame with the aerodynamic stiffness at
+  zero frequency (the lag states at their static values) losing positive definiteness: the
+  smallest eigenvalue of ``(K + F (-A)^-1 ... )`` changing sign, located by Brent's method.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+from scipy.optimize import brentq
+
+from windflutter.errors import InputError, ModelError
+from windflutter.linalg_tools import mac_matrix
+from windflutter.stability.search import Onset
+from windflutter.stability.turbine import PointSummary
+from windflutter.system.modes import point_modes
+
+RPM = math.pi / 30.0
+
+
+@dataclass(frozen=True)
+class SearchSettings:
+    """Rotor-speed sweep of method p: up to ``rpm_max`` (RPM) in steps of ``rpm_step`` from the
+    operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: 1.25 x
+    the first blade torsion frequency); ``full_sweep`` False stops past both onsets."""
+
+    rpm_max: float = 40.0
+    rpm_step: float = 2.0
+    tolerance_rpm: float = 0.01
+    max_hz: float | None = None
+    full_sweep: bool = False
+
+
+def blade_static_margin(ps) -> float:
+    """Smallest eigenvalue (1/s^2) of the blade's static stiffness over its mass, with the
+    aerodynamic states at their static values (``z = -A^-1 (Bq y)``), hub clamped: negative beyond
+    static divergence.  ``ps`` is a :class:`~windflutter.system.operational.PointSystem`."""
+    bs = ps.blade_system
+    K = bs.K.copy()
+    if bs.n_states:
+        K = K + bs.F @ np.linalg.solve(bs.Az, bs.Bq)
+    e = slice(6, None)
+    Ke, Me = K[e, e], bs.M[e, e]
+    w = sla.eigvals(Ke, Me)
+    w = w[np.isfinite(w)]
+    return float(np.min(w.real)) if w.size else float("inf")
+
+
+def torsion_frequency(om, pitch: float) -> float:
+    """The first torsion-dominated fixed-interface blade mode (Hz) at standstill (structure only)."""
+    from windflutter.structure.labels import blade_motion_components
+
+    rb = om.blade(pitch)
+    st = rb.struct
+    K, M = st.Kr.toarray(), st.Mr.toarray()
+    n = min(40, K.shape[0])
+    w2, V = sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T), subset_by_index=[0, n - 1])
+    c = blade_motion_components(rb.sections, np.asarray(st.T @ V))
+    en = np.sum(np.abs(c) ** 2 * rb.sections.width[None, :, None], axis=1)
+    tors = np.where(np.argmax(en, axis=0) == 2)[0]
+    i = int(tors[0]) if tors.size else n - 1
+    return float(np.sqrt(max(w2[i], 0.0)) / (2 * np.pi))
+
+
+class OperationalStability:
+    """Method p on a turbine: :meth:`analyse_operating_point` per wind speed (models cached)."""
+
+    def __init__(self, turbine, options=None, search: SearchSettings | None = None):
+        from windflutter.system.operational import OperationalModel
+
+        self.turbine = turbine
+        self.model = OperationalModel(turbine, options)
+        self.search = search or SearchSettings()
+        self._max_hz = None
+
+    def max_hz(self, pitch: float) -> float:
+        if self.search.max_hz is not None:
+            return float(self.search.max_hz)
+        if self._max_hz is None:
+            self._max_hz = 1.25 * torsion_frequency(self.model, pitch)
+        return self._max_hz
+
+    def pitch_at(self, wind_speed: float) -> float:
+        return self.model.operating_point(wind_speed)[1]
+
+    def grid(self, wind_speed: float, rpm_grid=None) -> np.ndarray:
+        """Rotor speeds (RPM): the operating one, then the grid above it."""
+        om_op = self.model.operating_point(wind_speed)[0] / RPM
+        s = self.search
+        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), s.rpm_max + 1e-9, s.rpm_step) \
+            if rpm_grid is None else np.asarray(rpm_grid, float)
+        return np.concatenate([[om_op], g[g > om_op + 1e-9]])
+
+    def _modes(self, wind_speed: float, rpm: float, pitch: float):
+        ps = self.model.at(wind_speed, rpm=rpm, pitch=pitch)
+        return ps, [m for m in point_modes(ps, max_hz=self.max_hz(pitch)) if not m.rigid]
+
+    def analyse_operating_point(self, wind_speed: float, rpm_grid=None, progress=None) -> PointSummary:
+        """Onsets of flutter and divergence above the operating point at ``wind_speed`` (m/s)."""
+        if not (np.isfinite(wind_speed) and wind_speed > 0):
+            raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s) on the operating curve")
+        pitch = self.pitch_at(wind_speed)
+        grid = self.grid(wind_speed, rpm_grid)
+        sweep, margins = [], []
+        on = Onset(method="p")
+        flutter = None
+        for i, rpm in enumerate(grid):
+            try:
+                ps, modes = self._modes(wind_speed, rpm, pitch)
+            except ModelError as exc:  # no steady state (e.g. it diverges at this overspeed)
+                if not sweep:
+                    raise
+                on.reason = str(exc)
+                break
+            sweep.append((float(rpm), modes))
+            margins.append(blade_static_margin(ps))
+            if on.divergence is None and i > 0 and margins[-2] > 0 >= margins[-1]:
+                on.divergence = self._locate(lambda r: blade_static_margin(self.model.at(wind_speed, r, pitch)),
+                                             grid[i - 1], rpm)
+            if flutter is None and i > 0:
+                flutter = self._flutter(wind_speed, pitch, sweep[-2], sweep[-1])
+            if flutter is not None and on.divergence is not None and not self.search.full_sweep:
+                break
+            if progress is not None:
+                progress((i + 1) / len(grid), f"{rpm:.1f} RPM")
+        return self._summary(wind_speed, pitch, sweep, flutter, on)
+
+    # -- pieces ------------------------------------------------------------------------------
+    def _locate(self, f, a: float, b: float) -> float:
+        try:
+            return float(brentq(f, a, b, xtol=self.search.tolerance_rpm))
+        except ValueError:
+            return float(b)
+
+    def _flutter(self, V: float, pitch: float, prev, cur):
+        """``(rpm, mode)`` of a damping sign change between two sweep points, or None."""
+        (ra, ma), (rb, mb) = prev, cur
+        if not ma or not mb:
+            return None
+        mac = mac_matrix(np.stack([m.signature for m in ma], 1), np.stack([m.signature for m in mb], 1))
+        for j, m in enumerate(mb):
+            i = int(np.argmax(mac[:, j]))
+            if m.damping_ratio < 0 <= ma[i].damping_ratio:
+                ref = m.signature
+
+                def zeta(r):
+                    _, mods = self._modes(V, r, pitch)
+                    k = int(np.argmax(mac_matrix(ref[:, None], np.stack([x.signature for x in mods], 1))[0]))
+                    return mods[k].damping_ratio
+
+                r0 = self._locate(zeta, ra, rb)
+                _, mods = self._modes(V, r0, pitch)
+                k = int(np.argmax(mac_matrix(ref[:, None], np.stack([x.signature for x in mods], 1))[0]))
+                return r0, mods[k]
+        return None
+
+    def _summary(self, V, pitch, sweep, flutter, on: Onset) -> PointSummary:
+        """Campbell arrays over the sweep (modes followed by signature MAC) and the onsets."""
+        from windflutter.system.campbell import CampbellPoint, track_modes
+
+        pts = [CampbellPoint(wind_speed=V, rotor_speed_rpm=r, pitch_deg=math.degrees(pitch), modes=m)
+               for r, m in sweep]
+        tracks = track_modes(pts)
+        rpm = np.array([r for r, _ in sweep])
+        lam = np.full((len(sweep), len(tracks)), np.nan + 0j)
+        for t, tr in enumerate(tracks):
+            for i, k in enumerate(tr.index):
+                if k >= 0:
+                    lam[i, t] = pts[i].modes[k].eigenvalue
+        on.params, on.eigenvalues = rpm, lam
+        if flutter is not None:
+            on.flutter, on.flutter_frequency = flutter[0], float(flutter[1].eigenvalue.imag)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            zeta = -lam.real / np.abs(lam)
+        return PointSummary(wind_speed=float(V), pitch_deg=float(np.degrees(pitch)),
+                            flutter_rpm=None if flutter is None else float(flutter[0]),
+                            flutter_frequency_hz=None if flutter is None else flutter[1].frequency_hz,
+                            flutter_mode=None if flutter is None else flutter[1].name,
+                            divergence_rpm=on.divergence, sweep_rpm=rpm, frequency_hz=np.abs(lam) / (2 * np.pi),
+                            damping_ratio=zeta, mode_labels=[t.name for t in tracks], onset=on)
