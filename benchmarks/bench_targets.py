@@ -70,7 +70,7 @@ def case_solve(reduction: str) -> dict:
     from windflutter.solve import qep
 
     tb = _turbine()
-    ts = tmod.TurbineStability(tb, tmod.TurbineOptions(model="shell", reduction=reduction, n_modes=30,
+    ts = tmod.TurbineStability(tb, tmod.TurbineOptions(model="shell", reduction=reduction, basis_modes=30,
                                                        mesh=SHELL_MESH, rpm_max=40.0))
     t0 = time.perf_counter()
     fe, sections, am = ts.model(0.0)

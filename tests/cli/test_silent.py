@@ -168,22 +168,24 @@ def test_stability_options_are_the_run_options():
     from windflutter.workflow import turbine_options
 
     args = build_parser().parse_args(["stability", "nrel5mw", "--basis-modes", "24", "--physics", "thesis",
-                                      "--n-span", "12", "--part", "rotor", "--rpm", "4", "30", "2"])
+                                      "--n-span", "12", "--part", "rotor", "--rpm", "4", "30", "2",
+                                      "--aero", "potential", "--method", "pk"])
     cfg, opts = options_from_args(args)
     same = config_from_dict({"wind_speeds": [10], "aero": "potential", "method": "pk",
                              "rotor_speed": {"min_rpm": 4, "max_rpm": 30, "n_points": 14},
                              "model": {"n_aero_sections": 12, "part": "rotor"},
                              "solver": {"basis_modes": 24, "geometric_stiffness": False}})
     assert cfg == same and opts == turbine_options(same, "potential", "pk")
-    assert (opts.n_modes, opts.physics, opts.mesh["n_span"], opts.mesh["part"]) == (24, "thesis", 12, "rotor")
-    # the defaults are those the command had when it built TurbineOptions itself
-    _, d = options_from_args(build_parser().parse_args(["stability", "nrel5mw"]))
-    old = TurbineOptions(model="beam", aero="potential", method="pk", physics="full", air_density=1.225,
-                         rpm_min=2.0, rpm_max=40.0, rpm_step=2.0, reduction="mta", n_modes=30, n_tracked=None,
-                         aero_distribution="spline", induction=False, steady_loads=False, mesh={"part": "turbine"})
-    assert dataclasses.replace(d, mesh={}) == dataclasses.replace(old, mesh={})
-    assert np.array_equal(d.grid(), old.grid())
-    assert MeshSettings(**{"model": "beam", **d.mesh}) == MeshSettings(**{"model": "beam", **old.mesh})
+    assert (opts.basis_modes, opts.geometric_stiffness, opts.mesh["n_span"], opts.mesh["part"]) == (24, False, 12,
+                                                                                                    "rotor")
+    # the defaults are the run's: method p on the whole turbine (OperationalOptions of the config)
+    from windflutter.stability.build import operational_options
+
+    cfg_d, d = options_from_args(build_parser().parse_args(["stability", "nrel5mw"]))
+    assert cfg_d == config_from_dict({"wind_speeds": [10], "rotor_speed": {"min_rpm": 2, "max_rpm": 40, "n_points": 20}})
+    assert d == operational_options(cfg_d, "viscous")
+    assert (d.part, d.drivetrain, d.deflection, d.induction, d.damping) == ("turbine", "flexible", True, True, "file")
+    assert MeshSettings(**{"model": "beam", **d.mesh}) == MeshSettings(model="beam", part="turbine", n_span=30)
 
 
 @pytest.mark.parametrize("lo, hi, step", [(2, 40, 2), (2, 40, 3), (0, 25, 0.5), (4, 30, 7), (2, 2.5, 2)])

@@ -148,7 +148,7 @@ def test_newton_pencil_equals_the_matrices():
     from windflutter.model import load_turbine
     from windflutter.stability.turbine import TurbineOptions, TurbineStability
 
-    ts = TurbineStability(load_turbine("nrel5mw"), TurbineOptions(mesh={"n_span": 6, "part": "rotor"}, n_modes=8))
+    ts = TurbineStability(load_turbine("nrel5mw"), TurbineOptions(mesh={"n_span": 6, "part": "rotor"}, basis_modes=8))
     _, _, am = ts.model(0.0)
     sysx = am.at(10.0, 1.5)
     x = np.random.default_rng(1).standard_normal(am.size) + 0j

@@ -21,7 +21,7 @@ def test_bad_combinations_name_the_field():
         TurbineOptions(reduction="guyan")
     with pytest.raises(InputError, match="damping"):
         TurbineOptions(damping="modal", reduction="none")
-    assert TurbineOptions(n_modes=None).reduction == "none"  # n_modes=None: full order
+    assert TurbineOptions(basis_modes=None).reduction == "none"  # basis_modes=None: full order
 
 
 def test_skin_distribution_builds_the_seed_sub_strips():
@@ -30,8 +30,8 @@ def test_skin_distribution_builds_the_seed_sub_strips():
 
     mesh = {"part": "rotor", "n_chord": 8, "n_span": 4}
     t = load_turbine("nrel5mw")
-    spline = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh, reduction="modal"))
-    skin = TurbineStability(t, TurbineOptions(model="shell", n_modes=6, mesh=mesh, aero_distribution="skin",
+    spline = TurbineStability(t, TurbineOptions(model="shell", basis_modes=6, mesh=mesh, reduction="modal"))
+    skin = TurbineStability(t, TurbineOptions(model="shell", basis_modes=6, mesh=mesh, aero_distribution="skin",
                                               reduction="modal"))
     fe, sec, am = spline.model(0.0)
     fe2, sub, am2 = skin.model(0.0)
@@ -64,15 +64,15 @@ def test_config_reaches_the_turbine_options():
 
     c = config_from_dict({"rotor_speed": {"full_sweep": True},
                           "solver": {"correction_tol": 1e-6, "basis_modes": 12, "n_eig": 8, "reduction": "modal",
-                                     "steady_loads": True}})
+                                     "mean_loads": False}})
     o = options_from_config(c, "viscous", "pk")
-    assert (o.full_sweep, o.mta_tol, o.n_modes, o.n_eig, o.reduction, o.aero, o.steady_loads) == (
-        True, 1e-6, 12, 8, "modal", "viscous", True)
+    assert (o.full_sweep, o.correction_tol, o.basis_modes, o.n_eig, o.reduction, o.aero, o.mean_loads) == (
+        True, 1e-6, 12, 8, "modal", "viscous", False)
     d = options_from_config(config_from_dict({}), "potential", "pk")
-    assert (d.full_sweep, d.mta_tol, d.steady_loads) == (TurbineOptions().full_sweep, TurbineOptions().mta_tol,
-                                                         TurbineOptions().steady_loads) == (False, 1e-8, False)
-    with pytest.raises(InputError, match="mta_tol"):
-        TurbineOptions(mta_tol=0.0)
+    # the config's defaults: the mean-load terms and the induction on, the files' damping
+    assert (d.full_sweep, d.correction_tol, d.mean_loads, d.induction, d.damping) == (False, 1e-8, True, True, "file")
+    with pytest.raises(InputError, match="correction_tol"):
+        TurbineOptions(correction_tol=0.0)
 
 
 def test_steady_loads_reach_the_strips_and_need_polars():
@@ -83,7 +83,7 @@ def test_steady_loads_reach_the_strips_and_need_polars():
     from windflutter.model import load_turbine
     import scipy.sparse as sp
 
-    ts = TurbineStability(load_turbine("nrel5mw"), TurbineOptions(steady_loads=True, mesh={"n_span": 6}))
+    ts = TurbineStability(load_turbine("nrel5mw"), TurbineOptions(mean_loads=True, mesh={"n_span": 6}))
     _, _, am = ts.model(0.0)
     st = am.strip(10.0, 1.2)
     assert am.aero.steady_loads and st.steady is not None and np.all(np.isfinite(st.steady))

@@ -194,7 +194,7 @@ def test_full_order_whole_turbine(nrel5mw):
     o = dict(model="beam", rpm_min=18.0, rpm_max=28.0, rpm_step=2.0)
     full = TurbineStability(nrel5mw, TurbineOptions(reduction="none", mesh={"n_span": 6, "part": "turbine", **mesh},
                                                     **o)).analyse_operating_point(10.0)
-    red = TurbineStability(nrel5mw, TurbineOptions(n_modes=60, mesh={"n_span": 6, "part": "turbine", **mesh},
+    red = TurbineStability(nrel5mw, TurbineOptions(basis_modes=60, mesh={"n_span": 6, "part": "turbine", **mesh},
                                                    **o)).analyse_operating_point(10.0)
     rot = _analyse(nrel5mw, "rotor", reduction="none", n_span=6, **{k: o[k] for k in ("rpm_min", "rpm_max", "rpm_step")})
     for p in (full, red, rot):  # the same flap-torsion family, ~3.0-3.1 Hz on this coarse mesh

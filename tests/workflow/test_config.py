@@ -25,8 +25,8 @@ def test_partial_file_merges_over_defaults(tmp_path):
     assert c.wind_speeds == (4.0, 6.0, 8.0)
     assert c.rotor_speed.max_rpm == 30.0 and c.rotor_speed.min_rpm == AnalysisConfig().rotor_speed.min_rpm
     assert c.method == ("thesis",)
-    assert c.aero == ("potential", "viscous")
-    assert c.cases == [("potential", "thesis"), ("viscous", "thesis")]
+    assert c.aero == ("viscous",)
+    assert c.cases == [("viscous", "thesis")]
     # the resolved config survives a YAML round trip
     assert config_from_dict(yaml.safe_load(c.to_yaml())) == c
 
@@ -45,7 +45,7 @@ BAD = [
     ({"wind_speeds": [8, 6]}, "wind_speeds[1]", "increasing"),
     ({"rotor_speed": {"min_rpm": 20, "max_rpm": 10}}, "rotor_speed.max_rpm", "reversed"),
     ({"rotor_speed": {"max_rpm": -1}}, "rotor_speed.max_rpm", "(0, 1000] (RPM)"),
-    ({"method": ["pk", "newton"]}, "method[1]", "thesis, pk"),
+    ({"method": ["pk", "newton"]}, "method[1]", "p, pk, thesis"),
     ({"aero": "inviscid"}, "aero[0]", "potential, viscous"),
     ({"model": {"type": "solid"}}, "model.type", "shell, beam"),
     ({"damping": {"ratio": 1.5}}, "damping.ratio", "[0, 1)"),
@@ -64,7 +64,8 @@ BAD = [
     ({"rotor_speed": 5}, "rotor_speed", "mapping"),
     ({"rotor_speed": {"full_sweep": "yes"}}, "rotor_speed.full_sweep", "true or false"),
     ({"solver": {"correction_tol": 0}}, "solver.correction_tol", "[1e-16, 1)"),
-    ({"solver": {"steady_loads": 1}}, "solver.steady_loads", "true or false"),
+    ({"solver": {"mean_loads": 1}}, "solver.mean_loads", "true or false"),
+    ({"solver": {"steady_loads": True}}, "solver.steady_loads", "renamed: solver.mean_loads"),
     ({"solver": {"correction_tol": 2.0}}, "solver.correction_tol", "[1e-16, 1)"),
 ]
 

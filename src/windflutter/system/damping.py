@@ -49,6 +49,44 @@ def blade_damping_matrix(fe, mu: np.ndarray | None) -> sp.csr_matrix | None:
     return sp.csr_matrix(beta * K)
 
 
+def tower_ratios(turbine) -> tuple[np.ndarray, np.ndarray]:
+    """``(fore_aft, side_side)`` modal damping ratios (-) of the files, NaN-free (empty if none)."""
+    d = getattr(turbine.tower, "damping", None)
+    if d is None:
+        return np.zeros(0), np.zeros(0)
+    fa, ss = (np.atleast_1d(np.asarray(x, float)) for x in (d.fore_aft_ratio, d.side_side_ratio))
+    return fa[np.isfinite(fa)], ss[np.isfinite(ss)]
+
+
+def support_modal_damping(K: np.ndarray, M: np.ndarray, M_rotor: np.ndarray, fa: np.ndarray, ss: np.ndarray,
+                          direction_energy) -> np.ndarray | None:
+    """Modal damping (N s/m) of the support in its coordinates from the files' tower modal ratios.
+
+    The modes are those of the support with the rotor lumped at the hub (``M + M_rotor``), i.e. the
+    turbine's tower modes; a mode is fore-aft or side-side by ``direction_energy(v) -> (e_x, e_y)``
+    and gets the files' ratio of its order (the last one given for higher orders, the mean of
+    fore-aft and side-side for modes that are neither): ``D = M' V diag(2 zeta omega) V^T M'``.
+    """
+    if fa.size == 0 and ss.size == 0:
+        return None
+    fa = fa if fa.size else ss
+    ss = ss if ss.size else fa
+    import scipy.linalg as sla
+
+    Mt = M + M_rotor
+    w2, V = sla.eigh(0.5 * (K + K.T), 0.5 * (Mt + Mt.T))
+    zeta = np.zeros(w2.size)
+    count = {"fa": 0, "ss": 0}
+    for i in range(w2.size):
+        ex, ey = direction_energy(V[:, i])
+        key = "fa" if ex >= ey else "ss"
+        ratios = fa if key == "fa" else ss
+        zeta[i] = ratios[min(count[key], ratios.size - 1)]
+        count[key] += 1
+    MV = Mt @ V
+    return (MV * (2.0 * zeta * np.sqrt(np.maximum(w2, 0.0)))[None, :]) @ MV.T
+
+
 def tower_ratio(turbine) -> float:
     """First fore-aft / side-side modal damping ratio of the files (-), 0 if none."""
     d = getattr(turbine.tower, "damping", None)

@@ -164,7 +164,6 @@ class OperationalModel:
         if self._support is None:
             from windflutter.mesh.turbine import build_model
             from windflutter.structure.assembly import assemble
-            from windflutter.system.damping import stiffness_proportional, tower_ratio
 
             fe, _ = build_model(self.turbine, self._mesh("support"))
             st = assemble(fe)
@@ -172,12 +171,42 @@ class OperationalModel:
             if self.options.support_modes is not None:
                 basis = _support_basis(st, self.options.support_modes)
             sm = support_model(fe, st, basis=basis)
-            zeta = tower_ratio(self.turbine) if self.options.damping == "file" else 0.0
-            D = stiffness_proportional(sm.K, sm.M, zeta)
-            if D is not None:
-                sm.D = D
+            if self.options.damping == "file":
+                sm.D = self._support_damping(sm)
             self._support = sm
         return self._support
+
+    def _support_damping(self, sm):
+        """The files' tower modal ratios on the turbine's tower modes (support + rotor lumped at the hub)."""
+        from windflutter.system.damping import support_modal_damping, tower_ratios
+
+        fa, ss = tower_ratios(self.turbine)
+        Mr = sm.H.T @ self.rotor_rigid_mass() @ sm.H
+        md = np.asarray(sm.struct.M.diagonal())
+
+        def direction(v):
+            u = np.asarray(sm.expand @ v)
+            e = (md * u**2).reshape(-1, 6).sum(axis=0)
+            return e[0], e[1]
+
+        D = support_modal_damping(sm.K, sm.M, Mr, fa, ss, direction)
+        return np.zeros_like(sm.K) if D is None else D
+
+    def rotor_rigid_mass(self, pitch: float = 0.0) -> np.ndarray:
+        """(6, 6) rigid-body mass of the whole rotor (hub + blades) at the apex, ground-fixed axes:
+        ``sum_b Q_b^T (Gamma^T M Gamma) Q_b`` over the blade azimuths plus the hub."""
+        from windflutter.system.multiblade import axis_rotation
+
+        rb = self.blade(pitch)
+        G = rb.Gamma
+        Mb = G.T @ (rb.struct.M @ G)
+        out = self.hub_mass().copy()
+        for b in range(self.n_blades):
+            R = axis_rotation(self.rotor.shaft_axis, 2 * np.pi * b / self.n_blades)
+            Q = np.zeros((6, 6))
+            Q[:3, :3] = Q[3:, 3:] = R.T
+            out += Q.T @ Mb @ Q
+        return out
 
     def hub_mass(self) -> np.ndarray:
         from windflutter.mesh.parts import hub_mass
@@ -200,16 +229,17 @@ class OperationalModel:
                     f"{', mean-load terms' if a.mean_loads else ''}{', dynamic stall' if a.dynamic_stall else ''}")
         else:
             aero = f"quasi-steady Theodorsen strips ({getattr(a, 'model', '?')})"
-        from windflutter.system.damping import blade_mu, tower_ratio
+        from windflutter.system.damping import blade_mu, tower_ratios
 
         mu = blade_mu(self.turbine) if o.damping == "file" else None
-        zt = tower_ratio(self.turbine) if o.damping == "file" else 0.0
+        fa, ss = tower_ratios(self.turbine) if o.damping == "file" else (np.zeros(0), np.zeros(0))
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
                 "steady_state": "deflected (BEM, centrifugal + aero loads)" if o.deflection else "undeformed",
                 "induction": "steady BEM" if o.induction else "none",
                 "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
-                "tower_damping": f"{100 * zt:.2g} % (stiffness-proportional)" if zt > 0 else "none",
+                "tower_damping": ("modal: fore-aft " + ", ".join(f"{100 * x:.2g} %" for x in fa) + "; side-side "
+                                  + ", ".join(f"{100 * x:.2g} %" for x in ss)) if (fa.size or ss.size) else "none",
                 "blade_basis": "full order" if o.blade_modes is None else f"{o.blade_modes} fixed-interface modes"
                                + (" + aero corrections" if o.corrections else ""),
                 "inflow": "axisymmetric along the shaft (no tilt, shear, yaw, gravity)"}
