@@ -36,6 +36,10 @@ from windflutter.system.support import Drivetrain, fixed_frame, rigid_body_mass,
 
 RPM = math.pi / 30.0
 
+#: blade models up to this many free DOFs get their fixed-interface basis from a dense eigen-solve
+#: (beams: ~200); above (shells: ~8000 per blade) sparse shift-invert Lanczos
+DENSE_BASIS_LIMIT = 1500
+
 PARTS = ("turbine", "rotor")
 DRIVETRAINS = ("flexible", "rigid", "locked")
 
@@ -144,18 +148,31 @@ class OperationalModel:
         return MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": part, "pitch": float(pitch)})
 
     def blade(self, pitch: float) -> RotorBlade:
-        """The fixed-interface blade at collective ``pitch`` (rad), cached."""
+        """The fixed-interface blade at collective ``pitch`` (rad), cached: the pitch-0 model meshed and
+        assembled once and turned about the pitch axis (:mod:`windflutter.system.pitch`)."""
         key = round(float(pitch), 8)
         if key not in self._blades:
-            from windflutter.mesh.turbine import build_model
-            from windflutter.structure.assembly import assemble
             from windflutter.system.damping import blade_damping_matrix, blade_mu
+            from windflutter.system.pitch import pitch_rotation, rotate_blade
 
-            fe, sec = build_model(self.turbine, self._mesh("rotor_blade", pitch))
+            fe, st, sec = self._blade0()
+            if key != 0.0:
+                R, root = pitch_rotation(self.turbine, pitch)
+                fe, st, sec = rotate_blade(fe, st, sec, R, root, self.rotor.hub_center, self.rotor.shaft_axis)
             mu = blade_mu(self.turbine) if self.options.damping == "file" else None
-            self._blades[key] = RotorBlade(fe, assemble(fe), sec, self.rotor.hub_center, self.rotor.shaft_axis,
+            self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis,
                                            damping=blade_damping_matrix(fe, mu))
         return self._blades[key]
+
+    def _blade0(self):
+        """The pitch-0 blade model ``(fe, struct, sections)``, built once."""
+        if getattr(self, "_blade_zero", None) is None:
+            from windflutter.mesh.turbine import build_model
+            from windflutter.structure.assembly import assemble
+
+            fe, sec = build_model(self.turbine, self._mesh("rotor_blade", 0.0))
+            self._blade_zero = (fe, assemble(fe), sec)
+        return self._blade_zero
 
     def support(self):
         """The support model (None for the rotor on a fixed nacelle), cached."""
@@ -328,10 +345,22 @@ class OperationalModel:
         if n is None or n >= st.nq:
             return None
         T = st.T
-        K = (st.Kr + T.T @ (ksig - omega**2 * rb.Kr1) @ T).toarray()
-        M = st.Mr.toarray()
-        K = 0.5 * (K + K.T)
-        w2, V = sla.eigh(K, 0.5 * (M + M.T), subset_by_index=[0, n - 1])
+        Ks = (st.Kr + T.T @ (ksig - omega**2 * rb.Kr1) @ T).tocsc()
+        Ks = 0.5 * (Ks + Ks.T)
+        if st.nq <= DENSE_BASIS_LIMIT:
+            K, M = Ks.toarray(), st.Mr.toarray()
+            w2, V = sla.eigh(K, 0.5 * (M + M.T), subset_by_index=[0, n - 1])
+            solve = lambda F: np.linalg.solve(K, F)  # noqa: E731
+        else:  # shells: sparse shift-invert Lanczos and one sparse LU
+            import scipy.sparse.linalg as spla
+
+            M = st.Mr.tocsc()
+            lu = spla.splu(Ks)
+            op = spla.LinearOperator(Ks.shape, matvec=lu.solve, dtype=float)
+            w2, V = spla.eigsh(Ks, k=n, M=M, sigma=0.0, OPinv=op, which="LM", v0=np.ones(st.nq))
+            order = np.argsort(w2)
+            w2, V = w2[order], V[:, order]
+            solve = lu.solve
         if not (self.options.corrections and blocks is not None):
             return V
         # static responses to the strip loads the retained modes generate (modal truncation
@@ -342,7 +371,7 @@ class OperationalModel:
         loads = np.concatenate([np.einsum("jab,jbk->jak", blocks.Ka, Rs), np.einsum("jab,jbk->jak", blocks.Da, Rs)],
                                axis=2).reshape(3 * ns, -1)
         F = np.asarray(T.T @ (strip_P.T @ loads))
-        X = np.linalg.solve(K, F)
+        X = solve(F)
         X -= V @ (V.T @ (M @ X))
         G = X.T @ M @ X
         w, U = np.linalg.eigh(0.5 * (G + G.T))
