@@ -146,26 +146,35 @@ def axial_from_k(k, F, high_thrust: bool = True) -> np.ndarray:
 
 
 class _PolarTable:
-    """Static Cl, Cd of every element from its polar (linear interpolation, alpha wrapped to +-pi)."""
+    """Static Cl, Cd of every element from its polar (linear interpolation, alpha wrapped to +-pi).
+
+    The polars are resampled once onto the union of their angle grids (so each one's piecewise-
+    linear curve is unchanged) and every call interpolates all elements at once: one search in the
+    common grid and a gather of the two bracketing table entries of each element's own polar.
+    """
 
     def __init__(self, polars: list[Polar], index):
         self.index = np.asarray(index, dtype=np.int64)
-        self.groups = []
-        for p in np.unique(self.index):
-            pol = polars[int(p)]
-            al = np.asarray(pol.alpha, float)
-            self.groups.append((self.index == p, al, np.asarray(pol.cl, float), np.asarray(pol.cd, float)))
+        used = np.unique(self.index)
+        grid = np.unique(np.concatenate([np.asarray(polars[int(p)].alpha, float) for p in used]))
+        self.grid = grid
+        rows = np.zeros(int(used.max()) + 1 if used.size else 1, dtype=np.int64)
+        rows[used] = np.arange(used.size)
+        self.row = rows[self.index]
+        self.cl = np.stack([np.interp(grid, polars[int(p)].alpha, polars[int(p)].cl) for p in used])
+        self.cd = np.stack([np.interp(grid, polars[int(p)].alpha, polars[int(p)].cd) for p in used])
 
     def __call__(self, alpha: np.ndarray, sel: np.ndarray | None = None):
-        alpha = np.asarray(alpha, float)
-        al = np.mod(alpha + np.pi, 2 * np.pi) - np.pi
-        cl = np.zeros_like(al)
-        cd = np.zeros_like(al)
-        for mask, a, c_l, c_d in self.groups:
-            m = mask if sel is None else mask[sel]
-            if np.any(m):
-                cl[m] = np.interp(al[m], a, c_l)
-                cd[m] = np.interp(al[m], a, c_d)
+        al = np.mod(np.asarray(alpha, float) + np.pi, 2 * np.pi) - np.pi
+        row = self.row if sel is None else self.row[sel]
+        g = self.grid
+        if g.size == 1:
+            return self.cl[row, 0] + 0 * al, self.cd[row, 0] + 0 * al
+        x = np.clip(al, g[0], g[-1])  # constant beyond the tables, as np.interp
+        j = np.clip(np.searchsorted(g, x, side="right") - 1, 0, g.size - 2)
+        t = (x - g[j]) / (g[j + 1] - g[j])
+        cl = self.cl[row, j] * (1.0 - t) + self.cl[row, j + 1] * t
+        cd = self.cd[row, j] * (1.0 - t) + self.cd[row, j + 1] * t
         return cl, cd
 
 

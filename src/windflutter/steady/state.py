@@ -289,11 +289,12 @@ def _change(new: np.ndarray, old: np.ndarray, floor: np.ndarray) -> float:
     return out
 
 
-def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, options: SteadyOptions):
-    """Aitken-relaxed fixed point ``u = S^-1 (F_cf + F_aero(u))``; (u, aero, iterations, residual, converged)."""
+def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, options: SteadyOptions, u0=None):
+    """Aitken-relaxed fixed point ``u = S^-1 (F_cf + F_aero(u))`` from ``u0`` (default: the centrifugal
+    displacement); (u, aero, iterations, residual, converged)."""
     radius = float(np.max(sections.radius)) + float(np.max(sections.width))
     floor_u = (1e-9 * radius, 1e-9)
-    u = static.u_cf
+    u = static.u_cf if u0 is None else np.asarray(u0, float)
     aero = _aero_at(u, sections, rotor, V, omega, n_blades, rho, pitch, options, True)
     r_prev, w, res = None, options.relaxation, 1.0
     for it in range(1, options.max_iterations + 1):
@@ -328,7 +329,7 @@ def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, o
 
 def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeometry, wind_speed: float,
                  omega: float, *, n_blades: int, air_density: float = 1.225, pitch: float = 0.0,
-                 options: SteadyOptions | None = None) -> SteadyState:
+                 options: SteadyOptions | None = None, initial=None) -> SteadyState:
     """Deflected steady state of a clamped rotor (or blade) at one operating point (module docstring).
 
     Parameters
@@ -344,6 +345,8 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
         ``e_chord`` (rad, as ``OperatingPoint.pitch``); build the model with its pitch
         (``MeshSettings.pitch``) so that the structure is turned too.
     options : :class:`SteadyOptions`.
+    initial : optional displacement (n_dof,) to start the iteration from, e.g. the steady state of
+        a nearby operating point (the same state is reached, in fewer iterations).
 
     Returns
     -------
@@ -360,7 +363,7 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
     static = _Static(fe, struct, rotor_geometry, om, options.rotating_group, seed=not options.deflection)
     if options.deflection:
         u, aero, iterations, residual, converged = _iterate(static, sections, rotor_geometry, V, om, n_blades, rho,
-                                                            pitch, options)
+                                                            pitch, options, u0=initial)
     else:
         u, iterations, residual, converged = static.u_cf, 0, 0.0, True
         aero = _aero_at(u, sections, rotor_geometry, V, om, n_blades, rho, pitch, options, False)
