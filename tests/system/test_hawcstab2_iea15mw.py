@@ -76,7 +76,7 @@ def test_iea15mw_structural_modes_match_hawcstab2(wind):
     (tower, flap and edge BW / collective / FW, the collective edge with the drivetrain, 2nd flap,
     2nd tower) against HAWCStab2's structural Campbell, in frequency order.  Measured 0.05-3.2 % (the
     largest: the 2nd tower side-side mode; the two models' tower and blade data differ: windIO 6x6 and
-    tower here, HAWCStab2's own model there); tolerance 4 %.""""
+    tower here, HAWCStab2's own model there); tolerance 4 %."""
     from windflutter.model import load_turbine
     from windflutter.system.modes import point_modes
     from windflutter.system.operational import OperationalModel, OperationalOptions
