@@ -8,8 +8,8 @@ root, and analytic damping crossings of uncoupled oscillators for the onset logi
 import numpy as np
 import pytest
 
-from windflutter.solve.qep import solve_qep_dense
-from windflutter.stability.search import (_clusters, _relabel, _similarity, _subspace_mac, newton_mode, pk_mode,
+from windflutter.solve.qep import qep_pencil, solve_qep_dense
+from windflutter.stability.search import (PencilSystem, _clusters, _relabel, _similarity, _subspace_mac, newton_mode, pk_mode,
                                           pk_search)
 
 
@@ -24,10 +24,16 @@ class _FreqSystem:
         self.Ks = B @ B.T * 20 + 5 * np.eye(6)
         self.D0 = 0.05 * (rng.standard_normal((6, 6)) + 1j * rng.standard_normal((6, 6)))
         self.K1 = 0.2 * rng.standard_normal((6, 6))
-        self.model = type("M", (), {"Mr": self.M})()
+        self.eig_cache, self.size = {}, 6
 
     def matrices(self, w):
         return self.M, self.D0 * (1 + 0.1 * np.sin(w)), self.Ks + self.K1 * np.cos(0.3 * w)
+
+    def newton_pencil(self, lam, w):
+        return qep_pencil(*self.matrices(w), lam)
+
+    def structural_pencil(self):
+        return self.Ks, self.M
 
 
 def test_newton_root_is_the_pk_fixed_point_of_the_dense_solve():
@@ -53,12 +59,9 @@ def _blades(p, split=0.0, cross=(8.0, 8.0, 8.0)):
     Q = np.linalg.qr(np.random.default_rng(5).standard_normal((6, 6)))[0]
     k = np.concatenate([[4.0, 9.0 * (1 + split * j) ** 2] for j in range(3)])
     d = np.concatenate([[1.0, 0.3 * (c - p)] for c in cross])
-    sys_ = type("S", (), {})()
-    sys_.Ks = Q @ np.diag(k) @ Q.T
-    sys_.model = type("M", (), {"Mr": np.eye(6)})()
+    K = Q @ np.diag(k) @ Q.T
     D = Q @ np.diag(d) @ Q.T
-    sys_.matrices = lambda w: (np.eye(6), D, sys_.Ks)
-    return sys_
+    return PencilSystem(lambda w: (np.eye(6), D, K), K, np.eye(6))
 
 
 @pytest.mark.parametrize("split", [0.0, 1e-3, 1e-2])
@@ -102,8 +105,8 @@ def test_newton_sparse_path_equals_dense():
     import scipy.sparse as sp
 
     s = _FreqSystem(seed=3)
-    sparse = type("S", (), {"Ks": sp.csr_matrix(s.Ks), "model": s.model,
-                            "matrices": lambda self, w: tuple(sp.csr_matrix(A) for A in s.matrices(w))})()
+    sparse = PencilSystem(lambda w: tuple(sp.csr_matrix(A) for A in s.matrices(w)), sp.csr_matrix(s.Ks),
+                          sp.csr_matrix(s.M))
     e0 = solve_qep_dense(*s.matrices(0.0))
     i = int(np.argmax(e0.values.imag > 0))
     a = newton_mode(s, e0.values[i], e0.vectors[:, i])

@@ -30,10 +30,18 @@ class _Toy:
         # mode 1 (2 rad/s): damping ratio 2.5e-10 (5 - p) -- neutral to rounding level, crosses 0 at p = 5
         # mode 2 (3 rad/s): damping 0.3 (8 - p) -> Re(lambda) = -0.15 (8 - p), flutter exactly at p = 8
         self.D = Q @ np.diag([1e-9 * (5.0 - p), 0.3 * (8.0 - p)]) @ Q.T
-        self.model = type("M", (), {"Mr": np.eye(2)})()
+        self.eig_cache, self.size = {}, 2
 
     def matrices(self, omega):
         return np.eye(2), self.D, self.Ks
+
+    def newton_pencil(self, lam, omega):
+        from windflutter.solve.qep import qep_pencil
+
+        return qep_pencil(*self.matrices(omega), lam)
+
+    def structural_pencil(self):
+        return self.Ks, np.eye(2)
 
 
 def test_pk_onset_analytic_and_neutral_mode_ignored():

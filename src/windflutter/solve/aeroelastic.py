@@ -217,6 +217,7 @@ class OperatingSystem:
         self.wind_speed = wind_speed
         self.omega_rot = omega_rot
         self.strip = model.strip(wind_speed, omega_rot)
+        self.eig_cache: dict = {}
         self.Ks = model.structural_stiffness(omega_rot)
         self.Ds = model.structural_damping(omega_rot)
         if model.TPhi is not None:
@@ -229,6 +230,15 @@ class OperatingSystem:
                 return tuple((TT @ A @ T).tocsr() for A in self.strip.matrices(om))
 
             self._aero = f
+
+    @property
+    def size(self) -> int:
+        """Coordinates of the working basis."""
+        return int(self.model.size)
+
+    def structural_pencil(self):
+        """``(Ks(Omega), M)``: the structure with the rotor terms at this point, working basis."""
+        return self.Ks, self.model.Mr
 
     def newton_pencil(self, lam: complex, omega: float):
         """``T = lam^2 Mt + lam Dt + Kt`` at frequency ``omega`` and ``x -> T'(lam) x = (2 lam Mt + Dt) x``.
@@ -270,16 +280,6 @@ class OperatingSystem:
         """Working-basis vector -> unconstrained DOF vector."""
         m = self.model
         return m.TPhi @ x if m.TPhi is not None else m.structure.T @ x
-
-
-def check_positive(name: str, value, unit: str) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        raise InputError(name, value, f"a positive number ({unit})") from None
-    if not (np.isfinite(v) and v > 0):
-        raise InputError(name, value, f"a positive number ({unit})")
-    return v
 
 
 __all__ = ["StructuralMatrices", "AeroelasticModel", "OperatingSystem", "structural_modes", "ModelError"]

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass, field
-from typing import Callable
+from typing import Callable, Protocol
 
 import numpy as np
 import scipy.linalg as sla
@@ -60,6 +60,61 @@ class Onset:
     reason: str = ""
 
 
+class FrequencyDomainSystem(Protocol):
+    """What the p-k and the seed's 8-k searches need of a system at one parameter value (a
+    :class:`~windflutter.solve.aeroelastic.OperatingSystem` is one).
+
+    Attributes
+    ----------
+    size : number of coordinates of the working basis.
+    eig_cache : dict owned by the system: frozen-frequency eigen-solves keyed by ``(omega, n_eig)``
+        (identical frequencies of symmetric blades share solves).
+
+    Methods
+    -------
+    matrices(omega) : ``(Mt, Dt, Kt)`` with the aerodynamics frozen at frequency ``omega`` (rad/s).
+    newton_pencil(lam, omega) : ``T(lam)`` at ``omega`` and the map ``x -> T'(lam) x``.
+    structural_pencil() : ``(K, M)`` of the structure alone (with the rotor terms) at this point.
+    reference(fraction) : ``(U, b)`` of the strip nearest ``fraction`` of the span (the seed's k).
+    """
+
+    size: int
+    eig_cache: dict
+
+    def matrices(self, omega: float): ...
+
+    def newton_pencil(self, lam: complex, omega: float): ...
+
+    def structural_pencil(self): ...
+
+    def reference(self, fraction: float = 0.75): ...
+
+
+class PencilSystem:
+    """A :class:`FrequencyDomainSystem` from a function ``matrices(omega) -> (M, D, K)`` and the
+    structural pencil ``(K, M)`` (test problems, stand-ins, small models)."""
+
+    def __init__(self, matrices: Callable, K, M, reference: tuple[float, float] = (1.0, 1.0)):
+        self._matrices, self._K, self._M, self._ref = matrices, K, M, reference
+        self.eig_cache: dict = {}
+
+    @property
+    def size(self) -> int:
+        return int(self._M.shape[0])
+
+    def matrices(self, omega: float):
+        return self._matrices(omega)
+
+    def newton_pencil(self, lam: complex, omega: float):
+        return qep_pencil(*self._matrices(omega), lam)
+
+    def structural_pencil(self):
+        return self._K, self._M
+
+    def reference(self, fraction: float = 0.75):
+        return self._ref
+
+
 def _qep(M, D, K, n_eig, shift=0.0):
     return solve_qep(M, D, K, shift=shift, n_eig=min(n_eig, 2 * M.shape[0]))
 
@@ -79,11 +134,6 @@ def _excluded(vals: np.ndarray, vecs: np.ndarray, exclude) -> np.ndarray:
             m = mac_matrix(x_x[:, None], vecs)[0]
             out |= close & (m > 0.9)
     return out
-
-
-#: largest working-basis size refined by the Newton iteration of :func:`newton_mode` (0: never,
-#: every root by frozen-frequency Arnoldi solves -- the former search, kept for comparison)
-NEWTON_LIMIT = 10**9
 
 
 def _dense(A) -> np.ndarray:
@@ -107,12 +157,9 @@ def _solve_near_singular(T, b):
     return sla.lu_solve(lu, b, check_finite=False)
 
 
-def _pencil(system, lam, w):
-    """``T(lam)`` at frequency ``w`` and ``x -> T'(lam) x`` (``OperatingSystem.newton_pencil`` if any)."""
-    f = getattr(system, "newton_pencil", None)
-    if f is not None:
-        return f(lam, w)
-    return qep_pencil(*system.matrices(w), lam)
+def _pencil(system: FrequencyDomainSystem, lam, w):
+    """``T(lam)`` at frequency ``w`` and ``x -> T'(lam) x``."""
+    return system.newton_pencil(lam, w)
 
 
 def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-8, maxiter: int = 12):
@@ -171,13 +218,7 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
 
     Returns (lambda, x).  A mode whose frequency falls to zero is returned with the aero at k=0.
     """
-    cache = getattr(system, "_qep_cache", None)
-    if cache is None:
-        cache = {}
-        try:
-            system._qep_cache = cache  # identical frequencies (symmetric blades) share solves
-        except AttributeError:
-            pass
+    cache = system.eig_cache  # identical frequencies (symmetric blades) share solves
 
     def pick(w, x, exclude):
         """The frozen-frequency root at ``w`` of best shape match to ``x`` (None: none free)."""
@@ -205,7 +246,7 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
         return lam.imag >= -1e-9 * max(1.0, abs(lam))
 
     w = max(float(omega0), 0.0)
-    if lam0 is not None and x0 is not None and not exclude and system.Ks.shape[0] <= NEWTON_LIMIT:
+    if lam0 is not None and x0 is not None and not exclude:
         lam, x, ok = newton_mode(system, lam0, x0)
         if ok and upper(lam) and (mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
             return lam, x
@@ -465,9 +506,9 @@ def _cluster_onset(system_at, pa, pb, ca, cb, g, n_eig, xtol):
     return q0, lam, xq, g[k]
 
 
-def structural_eig(system):
+def structural_eig(system: FrequencyDomainSystem):
     """Eigenpairs ``(w^2, V)`` of the structural pencil ``(Ks(Omega), M)`` of ``system``, dense."""
-    K, M = _dense(system.Ks), _dense(system.model.Mr)
+    K, M = (_dense(A) for A in system.structural_pencil())
     return sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T))
 
 
