@@ -38,12 +38,12 @@ def _load(name: str):
 
 
 def _box(b, h, m):
-    """Rectangle b (chordwise z) x h (flapwise y) midline, TE -> suction -> LE -> pressure -> TE."""
-    top = np.column_stack([np.full(m + 1, h / 2), np.linspace(b / 2, -b / 2, m + 1)])
-    le = np.column_stack([np.linspace(h / 2, -h / 2, m + 1)[1:], np.full(m, -b / 2)])
-    bot = np.column_stack([np.full(m, -h / 2), np.linspace(-b / 2, b / 2, m + 1)[1:]])
-    te = np.column_stack([np.linspace(-h / 2, h / 2, m + 1)[1:], np.full(m, b / 2)])
-    return np.vstack([top, le, bot, te])
+    """Closed rectangular midline b (chordwise z) x h (flapwise y), m segments a side, from the
+    trailing-edge upper corner round the suction side first (first point repeated at the end)."""
+    corners = np.array([[h / 2, b / 2], [h / 2, -b / 2], [-h / 2, -b / 2], [-h / 2, b / 2], [h / 2, b / 2]])
+    u = np.linspace(0.0, 1.0, m + 1)[:-1]
+    sides = [c0 + u[:, None] * (c1 - c0) for c0, c1 in zip(corners[:-1], corners[1:])]
+    return np.vstack(sides + [corners[-1:]])
 
 
 def test_principal_bending_is_independent_of_reference_point_and_frame():

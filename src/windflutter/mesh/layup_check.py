@@ -132,11 +132,8 @@ class LayupCheck:
     quantities: tuple[QuantityCheck, ...] = ()
 
     def quantity(self, name: str) -> QuantityCheck:
-        """The :class:`QuantityCheck` called ``name``."""
-        for q in self.quantities:
-            if q.name == name:
-                return q
-        raise KeyError(name)
+        """The :class:`QuantityCheck` called ``name`` (KeyError if there is none)."""
+        return {q.name: q for q in self.quantities}[name]
 
     @property
     def disagreeing(self) -> tuple[QuantityCheck, ...]:
