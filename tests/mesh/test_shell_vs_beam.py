@@ -12,7 +12,7 @@ shell 40x30 (default)      0.754  1.018  2.113   6.266
 shell 40x60                0.739  1.008  2.083   5.913
 shell 40x120               0.729  1.002  2.066   5.773
 shell 40x180               0.725  0.999  2.060   5.726
-shell, Richardson along    0.724  0.998  2.061   5.69
+shell, Richardson along    -      -      -       5.68
 shell midsurface 40x120    0.682  0.993  1.933   5.518
 beam (default, converged)  0.737  1.052  2.032   5.651
 beam, midline on the OML   0.789  1.059  2.161   5.959
@@ -20,7 +20,8 @@ beam, midline on the OML   0.789  1.059  2.161   5.959
 
 The default shell's +11 % in torsion is a mesh effect: its skin quads are 2.05 m along the span
 and 0.2 m around (median aspect ratio 10), and the torsion frequency converges at observed order
-~1.4 in the spanwise element length.
+1.3 in the spanwise element length (bending converges more slowly still, order ~0.6,
+so only the torsion limit is extrapolated).
 """
 
 from __future__ import annotations
@@ -86,7 +87,7 @@ def test_seed5mw_shell_torsion_converges_to_the_beam_along_the_span():
 @pytest.mark.slow
 def test_seed5mw_shell_vs_beam_torsion_convergence_and_reference_surface(monkeypatch):
     """Full study (~1 min).  (1) The shell sequence 40 x 30 / 60 / 120 converges monotonically
-    (observed order 1-2) to a Richardson limit within 2 % of the converged beam (measured 5.69 vs
+    (observed order 1-2) to a Richardson limit within 2 % of the converged beam (measured 5.68 vs
     5.65 Hz).  (2) Moving the shell skin to the laminate midsurface lowers the torsion by the
     same factor as moving the beam's wall midline from the outer mould line to the midline
     (measured 0.956 shell at 40 x 120 vs 0.948 beam): within 2 points, so the reference surface
@@ -114,7 +115,10 @@ def _onset(model, capsys):
 
     from windflutter.cli import main
 
-    assert main(["stability", "seed5mw", "--model", model, "--part", "rotor", "--json"]) == 0
+    # options pinned (p-k, potential flow): the defaults of `stability` changed on main (fa95a52);
+    # the measured numbers are without induction and steady loads, this branch's defaults
+    assert main(["stability", "seed5mw", "--model", model, "--part", "rotor", "--aero", "potential",
+                 "--method", "pk", "--json"]) == 0
     return json.loads(capsys.readouterr().out)["points"][0]
 
 
