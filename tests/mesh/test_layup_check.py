@@ -103,8 +103,8 @@ def test_nrel5mw_layup_is_another_blade(nrel5mw):
 def test_iea_layups_are_their_blades(name):
     """IEA 15 / 22 / 10 MW: each file's 6x6 was computed upstream from its own layup, so the check
     must not warn.  Measured span medians (mass, flap EI, edge EI, GJ): IEA 15 +2/+5/0/-6 %,
-    IEA 22 +1/0/+2/-3 %, IEA 10 -1/-6/-2/+21 %.  IEA 10 MW's GJ is +27..+60 % at 16 of its 30
-    stations (45-90 % span) -- reported in docs/verification.md, under the blade-level tolerance.
+    IEA 22 +1/0/+2/-3 %, IEA 10 -1/-6/-2/+21 %.  IEA 10 MW's GJ is beyond 25 % at 16 of its 30
+    stations (-27..-33 % at 17-21 % span, +27..+60 % at 45-90 %) -- reported in docs/verification.md, under the blade-level tolerance.
     IEA 22 MW is *slow* (its 0.7 MB file takes 5 s to read)."""
     res = check_layup_against_6x6(_load(name))
     assert res.applicable and not res.disagrees and res.warning is None
