@@ -13,7 +13,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from windflutter.errors import InputError
+from windflutter.errors import InputError, check_choice
 from windflutter.mesh import loft as lf
 from windflutter.mesh.layup import group_laminates, layer_tables
 from windflutter.mesh.settings import MeshSettings
@@ -109,7 +109,11 @@ def _oriented_stack(blade, airfoils) -> tuple[np.ndarray, list[np.ndarray]]:
     return pos, shapes
 
 
-def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSettings) -> BladeShellMesh:
+REFERENCE_SURFACES = ("outer", "midsurface")
+
+
+def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSettings,
+                     reference_surface: str = "outer") -> BladeShellMesh:
     """Loft and mesh one blade (skin + webs) with laminates from its layup.
 
     Parameters
@@ -118,7 +122,13 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     airfoils : name -> :class:`windflutter.model.turbine.Airfoil`.
     materials : name -> FE material.
     settings : element counts.
+    reference_surface : where the skin elements' reference (mid-)surface lies: ``"outer"`` on
+        the outer mould line (the seed's model: half of each laminate outside the airfoil), or
+        ``"midsurface"`` moved inwards in the section plane by half the local laminate thickness
+        (capped at a quarter of the local airfoil thickness), the wall midline of the thin-walled
+        beam sections (:mod:`windflutter.model.section`); the webs then end on the moved skin.
     """
+    check_choice("reference_surface", reference_surface, REFERENCE_SURFACES)
     if blade.layup is None or not blade.layup.layers:
         raise InputError("blade.layup", None, "a composite layup (layers and webs) for the shell model")
     eta = station_positions(settings.n_span, settings.span_clustering)
@@ -187,6 +197,11 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     mats = [_material(materials, lay.material, lay.name) for lay in shell_layers]
     T, A = fill_uncovered(T, A, n_st - 1, nc)
     prop_skin, props = group_laminates(T, A, mats, "skin")
+    if reference_surface == "midsurface":
+        e_c, e_n = lf.chord_frame(twist)
+        off = midsurface_offsets(sec, T.sum(axis=1).reshape(n_st - 1, nc), chord)  # (n_st, nc, 2)
+        skin = skin + off[:, :, 0:1] * e_c[:, None, :] + off[:, :, 1:2] * e_n[:, None, :]
+        nodes = [skin.reshape(-1, 3)]
     conns = [conn_skin]
     prop_list = [prop_skin]
     region = [np.zeros(len(conn_skin), dtype=np.int64)]
@@ -250,6 +265,40 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
         twist=twist,
         pitch_axis=pa,
     )
+
+
+def midsurface_offsets(sec: np.ndarray, t_elem: np.ndarray, chord: np.ndarray) -> np.ndarray:
+    """In-plane offsets (m) moving skin nodes from the outer mould line to the laminate midsurface.
+
+    Parameters
+    ----------
+    sec : (n_st, nc, 2) unit airfoil coordinates of the stations (chordwise, flapwise), ordered
+        TE -> suction side -> LE -> pressure side (counter-clockwise).
+    t_elem : (n_st - 1, nc) total laminate thickness of each skin element (m); element (i, j)
+        lies between stations i, i+1 and chordwise points j, j+1.
+    chord : (n_st,) chord (m).
+
+    Returns
+    -------
+    (n_st, nc, 2) offsets in the (chord, flapwise-normal) frame of each station: the inward
+    normal of the contour times half the node's laminate thickness (mean of its neighbouring
+    elements), capped at a quarter of the local airfoil thickness (where the skins meet at the
+    trailing edge), as the thin-walled sections of :mod:`windflutter.model.section` do.
+    """
+    rows = np.vstack([t_elem[:1], t_elem, t_elem[-1:]])
+    t_st = 0.5 * (rows[:-1] + rows[1:])  # (n_st, nc): mean over the elements above and below
+    t_node = 0.5 * (t_st + np.roll(t_st, 1, axis=1))  # node j between elements j-1 and j
+    tang = np.roll(sec, -1, axis=1) - np.roll(sec, 1, axis=1)
+    tang /= np.maximum(np.linalg.norm(tang, axis=2, keepdims=True), 1e-30)
+    inward = np.stack([-tang[:, :, 1], tang[:, :, 0]], axis=2)  # counter-clockwise contour
+    h = np.empty(t_node.shape)
+    for i, xy in enumerate(sec):  # local airfoil thickness at each node's chordwise position
+        i_le = int(np.argmin(xy[:, 0]))
+        up, lo = xy[: i_le + 1], xy[i_le:]
+        ou, ol = np.argsort(up[:, 0]), np.argsort(lo[:, 0])
+        h[i] = np.interp(xy[:, 0], up[ou, 0], up[ou, 1]) - np.interp(xy[:, 0], lo[ol, 0], lo[ol, 1])
+    off = np.minimum(0.5 * t_node, 0.25 * np.abs(h) * np.asarray(chord)[:, None])
+    return inward * off[:, :, None]
 
 
 class _ExtendedLayer:

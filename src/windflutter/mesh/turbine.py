@@ -26,6 +26,7 @@ from windflutter.mesh import aero_map as am
 from windflutter.mesh.beam_model import blade_beam_mesh, blade_beam_properties
 from windflutter.mesh.blade_shell import blade_shell_mesh
 from windflutter.mesh.frames import blade_placement, rot_y
+from windflutter.mesh.layup_check import warn_if_shell_is_another_blade
 from windflutter.mesh.parts import ModelBuilder, add_blades, add_tower, hub_mass
 from windflutter.mesh.settings import MeshSettings
 from windflutter.structure.fem import LumpedMass, RigidLink
@@ -64,6 +65,8 @@ def build_model(turbine, settings: MeshSettings | None = None):
     st = settings or MeshSettings()
     if hasattr(turbine, "require"):  # refuse a turbine file that lacks what this part needs
         turbine.require(st.part)
+    if st.model == "shell" and st.part != "support":  # the shell blades are the layup's blade
+        warn_if_shell_is_another_blade(turbine)
     b = ModelBuilder()
     blade_ids = _blade_ids(turbine, st.part)
     roots = add_blades(b, turbine, st, blade_ids) if len(blade_ids) else []
