@@ -167,6 +167,9 @@ class DampingConfig:
                        unit="-")
     reference_hz: float = opt(1.0, "float", "reference frequency of stiffness / Rayleigh damping (Rayleigh: and "
                               "10 x it)", lower=1e-3, upper=1000.0, unit="Hz")
+    tower_ratio: float | None = opt(None, "float", "model file, method p: the modal damping ratio of every tower "
+                                    "mode in place of the files' (e.g. to match another code's tower model); null: "
+                                    "the files'", lower=0.0, upper=1.0, upper_open=True, nullable=True, unit="-")
 
 
 @dataclass(frozen=True)

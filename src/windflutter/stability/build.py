@@ -59,6 +59,7 @@ def operational_options(config, aero: str):
                               corrections=s.reduction == "mta", correction_tol=max(s.correction_tol, 1e-10),
                               drivetrain=m.drivetrain, aero=unsteady_options(config, aero),
                               deflection=bool(s.deflection), induction=bool(s.induction), damping=config.damping.model,
+                              tower_damping=config.damping.tower_ratio,
                               air_density=config.air_density)
 
 

@@ -70,6 +70,8 @@ class OperationalOptions:
     deflection : linearize about the deflected steady state (False: the undeformed blade).
     induction : steady BEM induction in the inflow.
     damping : ``"file"`` (the turbine files' structural damping) or ``"none"``.
+    tower_damping : modal damping ratio (-) of every tower mode in place of the files' ratios
+        (``None``: the files'; e.g. to match another code's tower model).
     air_density : kg/m^3.
     """
 
@@ -85,6 +87,7 @@ class OperationalOptions:
     deflection: bool = True
     induction: bool = True
     damping: str = "file"
+    tower_damping: float | None = None
     air_density: float = 1.225
 
     def __post_init__(self):
@@ -104,6 +107,8 @@ class OperationalOptions:
                 raise InputError(name, v, "a positive number of modes, or None (full order)")
         if not (np.isfinite(self.air_density) and self.air_density > 0):
             raise InputError("air_density", self.air_density, "a positive density (kg/m^3)")
+        if self.tower_damping is not None and not (np.isfinite(self.tower_damping) and 0 <= self.tower_damping < 1):
+            raise InputError("damping.tower_ratio", self.tower_damping, "a damping ratio in [0, 1) or null")
 
 
 @dataclass
@@ -203,6 +208,8 @@ class OperationalModel:
         from windflutter.system.damping import support_modal_damping, tower_ratios
 
         fa, ss = tower_ratios(self.turbine)
+        if self.options.tower_damping is not None:
+            fa = ss = np.array([float(self.options.tower_damping)])
         Mr = sm.H.T @ self.rotor_rigid_mass() @ sm.H
         md = np.asarray(sm.struct.M.diagonal())
 
@@ -255,6 +262,8 @@ class OperationalModel:
 
         mu = blade_mu(self.turbine) if o.damping == "file" else None
         fa, ss = tower_ratios(self.turbine) if o.damping == "file" else (np.zeros(0), np.zeros(0))
+        if o.damping == "file" and o.tower_damping is not None:
+            fa = ss = np.array([float(o.tower_damping)])
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
                 "steady_state": "deflected (BEM, centrifugal + aero loads)" if o.deflection else "undeformed",
