@@ -79,6 +79,14 @@ def torsion_frequency(om, pitch: float) -> float:
     return float(np.sqrt(max(w2[i], 0.0)) / (2 * np.pi))
 
 
+def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
+    """The mode's rotating-frame frequency is (about) zero: ``omega_r = omega -+ Omega`` for FW/BW,
+    ``omega`` for collective (and non-blade) modes."""
+    w = abs(mode.eigenvalue.imag)
+    w_r = {"FW": w - omega, "BW": w + omega}.get(mode.whirl, w)
+    return abs(w_r) < rel * max(omega, 1e-9)
+
+
 class OperationalStability:
     """Method p on a turbine: :meth:`analyse_operating_point` per wind speed (models cached)."""
 
@@ -150,26 +158,32 @@ class OperationalStability:
             return float(b)
 
     def _flutter(self, V: float, pitch: float, prev, cur):
-        """``(rpm, mode)`` of a damping sign change between two sweep points, or None."""
+        """``(rpm, mode)`` of the lowest damping sign change between two sweep points, or None.
+
+        A root whose rotating-frame frequency is about zero (a cyclic mode at the rotor speed in the
+        ground-fixed frame, a collective one at zero) is the blades' static divergence seen from
+        the ground, not flutter: left to the divergence search.
+        """
         (ra, ma), (rb, mb) = prev, cur
         if not ma or not mb:
             return None
         mac = mac_matrix(np.stack([m.signature for m in ma], 1), np.stack([m.signature for m in mb], 1))
+        best = None
         for j, m in enumerate(mb):
             i = int(np.argmax(mac[:, j]))
-            if m.damping_ratio < 0 <= ma[i].damping_ratio:
-                ref = m.signature
+            if not (m.damping_ratio < 0 <= ma[i].damping_ratio) or _static_image(m, rb * RPM):
+                continue
+            ref = m.signature
 
-                def zeta(r):
-                    _, mods = self._modes(V, r, pitch)
-                    k = int(np.argmax(mac_matrix(ref[:, None], np.stack([x.signature for x in mods], 1))[0]))
-                    return mods[k].damping_ratio
-
-                r0 = self._locate(zeta, ra, rb)
-                _, mods = self._modes(V, r0, pitch)
+            def follow(r, ref=ref):
+                _, mods = self._modes(V, r, pitch)
                 k = int(np.argmax(mac_matrix(ref[:, None], np.stack([x.signature for x in mods], 1))[0]))
-                return r0, mods[k]
-        return None
+                return mods[k]
+
+            r0 = self._locate(lambda r: follow(r).damping_ratio, ra, rb)
+            if best is None or r0 < best[0]:
+                best = (r0, follow(r0))
+        return best
 
     def _summary(self, V, pitch, sweep, flutter, on: Onset) -> PointSummary:
         """Campbell arrays over the sweep (modes followed by signature MAC) and the onsets."""
