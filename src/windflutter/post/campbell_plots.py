@@ -151,34 +151,13 @@ def campbell_figure(campbell, harmonics=HARMONICS, max_hz: float | None = None, 
 
 def _damping_axes(fig, v, zp, tracks, unstable_t, lo, cut, top):
     """The damping panel(s) in %: the main one ``[lo, cut]`` and, if ``top``, a small one above."""
-    axes = []
-    if top is not None:
-        axh = fig.add_axes((_LEFT, _HIGH[0], _WIDTH, _HIGH[1]))
-        _draw_lines(axh, v, zp, tracks, unstable_t)
-        axh.set_ylim(cut, top)
-        axh.spines["bottom"].set_visible(False)
-        axh.tick_params(bottom=False)
-        axh.text(0.005, 0.95, "heavily damped (break in the axis)", transform=axh.transAxes, fontsize=7,
-                 va="top", color="0.35")
-        axes.append(axh)
-        low = (_LOW[0], _LOW[1])
-    else:
-        low = (_LOW[0], _LOW[1] + _HIGH[1] + 0.035)
-    axl = fig.add_axes((_LEFT, low[0], _WIDTH, low[1]))
-    _draw_lines(axl, v, zp, tracks, unstable_t)
-    axl.set_ylim(lo, cut)
-    axl.axhline(0.0, color="k", lw=1.0)
-    axl.axhspan(lo, 0.0, color=fs.UNSTABLE_COLOUR, alpha=0.08, lw=0)
+    rect = (_LEFT, _LOW[0], _WIDTH, _HIGH[0] + _HIGH[1] - _LOW[0])
+    axes = fs.damping_panels(fig, rect, lo, cut, top, lambda ax: _draw_lines(ax, v, zp, tracks, unstable_t),
+                             high_share=0.22)
     bad = np.where(np.nan_to_num(zp, nan=1.0) < 0)
     if bad[0].size:
-        axl.plot(v[bad[0]], zp[bad], "x", ms=8, mew=2, color=fs.UNSTABLE_COLOUR, zorder=5)
-    if top is not None:
-        axl.spines["top"].set_visible(False)
-        for ax, y in ((axes[0], 0.0), (axl, 1.0)):  # the break marks
-            ax.plot([-0.006, 0.006], [y - 0.03 / (ax.get_position().height * 4), y + 0.03 / (ax.get_position().height * 4)],
-                    transform=ax.transAxes, color="k", lw=1, clip_on=False)
-    axl.set_ylabel("damping ratio ζ (%)")
-    axes.append(axl)
+        axes[-1].plot(v[bad[0]], zp[bad], "x", ms=8, mew=2, color=fs.UNSTABLE_COLOUR, zorder=5)
+    axes[-1].set_ylabel("damping ratio ζ (%)")
     return axes
 
 

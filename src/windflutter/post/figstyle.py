@@ -146,3 +146,36 @@ def damping_split(z, light: float = 0.10, floor: float = 0.02):
     lo = min(-0.08 * cut, 1.15 * zmin - 0.03 * cut)
     top = float(fin.max())
     return lo, cut, (1.06 * top if top > cut else None)
+
+
+def damping_panels(fig, rect, lo: float, cut: float, top: float | None, draw, high_share: float = 0.25) -> list:
+    """The damping axis in ``rect`` (left, bottom, width, height; figure fraction): one panel
+    ``[lo, cut]``, or, when ``top`` is given, a main panel ``[lo, cut]`` under a small one
+    ``[cut, top]`` (``high_share`` of the height) with break marks between them.  ``draw(ax)``
+    plots the lines into a panel (called for each).  The zero line is drawn and the negative
+    region shaded.  Returns the axes, top first."""
+    left, bottom, width, height = rect
+    axes = []
+    if top is not None:
+        hh = high_share * height
+        axh = fig.add_axes((left, bottom + height - hh, width, hh))
+        draw(axh)
+        axh.set_ylim(cut, top)
+        axh.spines["bottom"].set_visible(False)
+        axh.tick_params(bottom=False, labelbottom=False)
+        axh.text(0.005, 0.95, "heavily damped (axis broken)", transform=axh.transAxes, fontsize=7,
+                 va="top", color="0.35")
+        axes.append(axh)
+        height -= hh + 0.012
+    axl = fig.add_axes((left, bottom, width, height))
+    draw(axl)
+    axl.set_ylim(lo, cut)
+    axl.axhline(0.0, color="k", lw=1.0)
+    axl.axhspan(lo, 0.0, color=UNSTABLE_COLOUR, alpha=0.08, lw=0)
+    if top is not None:
+        axl.spines["top"].set_visible(False)
+        for ax, y in ((axes[0], 0.0), (axl, 1.0)):  # the break marks, 6 pt tall
+            d = 3.0 / axis_height_pt(ax)
+            ax.plot([-0.006, 0.006], [y - d, y + d], transform=ax.transAxes, color="k", lw=1, clip_on=False)
+    axes.append(axl)
+    return axes
