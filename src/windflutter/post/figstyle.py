@@ -31,6 +31,7 @@ WHIRL_NAMES = {"collective": "collective", "BW": "backward whirl (BW)", "FW": "f
                "none": "fixed frame (tower, drivetrain)"}
 UNSTABLE_COLOUR = "tab:red"
 LABEL_FONTSIZE = 7.5
+MIN_FONTSIZE = 5.0
 #: vertical distance between label centres, in multiples of the font size
 LINE_SPACING = 1.2
 
@@ -97,13 +98,16 @@ def label_ends(ax, x, y, texts, colours, *, x_text=None, fontsize: float = LABEL
 
     ``x_text``: the x of the text column in axes fraction (e.g. 1.01: the right margin); None: at
     the points themselves, 4 pt to their right (all points of one call should share their x).
-    The y limits must be final.  Returns the Text artists.
+    The y limits must be final.  When the labels do not fit the axis height at ``fontsize``, the
+    type shrinks to fit (down to :data:`MIN_FONTSIZE`).  Returns the Text artists.
     """
     y = np.asarray(y, float)
     if y.size == 0:
         return []
     y0, y1 = ax.get_ylim()
-    gap = LINE_SPACING * fontsize / axis_height_pt(ax) * (y1 - y0)
+    h = axis_height_pt(ax)
+    fontsize = max(min(fontsize, h / (LINE_SPACING * y.size)), MIN_FONTSIZE)  # smaller type when crowded
+    gap = LINE_SPACING * fontsize / h * (y1 - y0)
     pos = spread_labels(np.clip(y, y0, y1), gap, y0 + 0.5 * gap, y1 - 0.5 * gap)
     out = []
     for xi, yi, pi, t, c in zip(np.broadcast_to(x, y.shape), y, pos, texts, colours):

@@ -83,7 +83,7 @@ def field_label(label: Any) -> str:
     if not m:
         return s
     r = float(m["r"])
-    where = "" if r >= 0.995 else f", peak at r/R {r:.2f}"
+    where = "" if r >= 0.75 else f", peak at r/R {r:.2f}"  # an inboard peak is worth saying
     return f"{m['kind']}, blade {m['blade']}{where}"
 
 
