@@ -133,6 +133,7 @@ def campbell_dataset(result) -> xr.Dataset:
     for name in ds.variables:
         ds[name].attrs.update(_var_attrs(name))
     ds["wind_speed"].attrs["standard_name"] = "wind_speed"
+    ds["wind_speed"].encoding["_FillValue"] = None  # CF 2.5.1: no fill value on a coordinate variable
     ds["rigid_body"].attrs.update(flag_values=np.array([0, 1], np.int8), flag_meanings="elastic rigid_body")
     ds.attrs.update(campbell_attrs(result))
     return ds

@@ -25,6 +25,7 @@ from matplotlib.figure import Figure
 
 from windflutter.post import figstyle as fs
 from windflutter.post.fmt import field_label
+from windflutter.post.store import flutter_shape
 
 CASE_STYLES = {("potential", "pk"): "C0", ("viscous", "pk"): "C1",
                ("potential", "thesis"): "C2", ("viscous", "thesis"): "C3"}
@@ -240,7 +241,7 @@ def flutter_mode(ds: xr.Dataset, i: int) -> Figure:
     p = ds.isel(point=i)
     r = p["station_radius"].values
     ok = np.isfinite(r)
-    shape = (p["flutter_shape_real"].values + 1j * p["flutter_shape_imag"].values)[ok]
+    shape = flutter_shape(ds).values[i][ok]
     r = r[ok]
     ref = shape.ravel()[np.nanargmax(np.abs(shape.ravel()))] if shape.size else 1.0
     shape = shape / (ref if abs(ref) > 0 else 1.0)
@@ -311,8 +312,8 @@ def all_figures(ds: xr.Dataset, operating=None) -> dict[str, Figure]:
         if "rotor_speed" in ds and np.any(np.isfinite(ds["rotor_speed"].values[i])):
             figs[f"campbell_{tag}"] = campbell(ds, i)
             figs[f"damping_{tag}"] = damping_plot(ds, i)
-        if ("flutter_shape_real" in ds and "station_radius" in ds
-                and np.any(np.isfinite(ds["flutter_shape_real"].values[i]))):
+        if (("flutter_torsion_real" in ds or "flutter_shape_real" in ds) and "station_radius" in ds
+                and np.any(np.isfinite(flutter_shape(ds).values[i]))):
             figs[f"flutter_mode_{tag}"] = flutter_mode(ds, i)
         if "aero_work" in ds and np.any(np.isfinite(ds["aero_work"].values[i])):
             figs[f"aero_work_{tag}"] = aero_work_plot(ds, i)
