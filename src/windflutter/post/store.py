@@ -364,6 +364,7 @@ def combine(points: dict[int, xr.Dataset] | list[xr.Dataset], attrs: dict | None
                 ds[dim] = ds[dim].astype(np.int32)
         ds["mode_name"] = (("mode",), np.array(names, dtype=object))
         _set_attrs(ds)
+    ds.attrs.update({"Conventions": "CF-1.8", "history": "created by windflutter run"})
     ds.attrs.update({k: _attr_value(v) for k, v in (attrs or {}).items()})
     return ds
 
