@@ -68,6 +68,7 @@ def _checker():
     return [exe] if exe else None
 
 
+@pytest.mark.slow  # ~12 s: the checker loads its CF tables for each file
 @pytest.mark.skipif(_checker() is None, reason="IOOS compliance-checker not installed "
                     "(pip install compliance-checker, or WINDFLUTTER_CF_CHECKER=path)")
 def test_files_pass_the_cf_checker(tmp_path):
