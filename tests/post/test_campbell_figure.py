@@ -79,3 +79,14 @@ def test_campbell_dataset_and_result_draw_the_same(stable_campbell):
     da = [ln.get_xydata().tolist() for ax in a.axes for ln in ax.lines]
     db = [ln.get_xydata().tolist() for ax in b.axes for ln in ax.lines]
     np.testing.assert_equal(da, db)
+
+
+def test_save_campbell_plot_writes_the_file_or_names_the_option(stable_campbell, tmp_path):
+    from windflutter.errors import InputError
+    from windflutter.post.campbell_plots import save_campbell_plot
+
+    p = save_campbell_plot(stable_campbell, tmp_path / "sub" / "c.png", dpi=30)
+    assert p.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    for bad in (tmp_path / "c.txt", tmp_path):
+        with pytest.raises(InputError, match="--plot"):
+            save_campbell_plot(stable_campbell, bad)

@@ -14,10 +14,13 @@ so a stored diagram can be re-plotted.  Matplotlib's object interface (no pyplot
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 from matplotlib.figure import Figure
 from matplotlib.lines import Line2D
 
+from windflutter.errors import InputError
 from windflutter.post import figstyle as fs
 from windflutter.post.campbell_data import as_campbell_dataset, least_damped, present, track_style_keys
 
@@ -174,3 +177,31 @@ def _mark_least_damped(ds, axf, axes_z, cut):
     axes_z[0].set_title(f"{word}: {ld['name']}, ζ = {100 * z:.2f} % at {ld['wind_speed']:g} m/s "
                         f"({ld['frequency_hz']:.3f} Hz, {ld['rotor_speed_rpm']:.2f} RPM)", fontsize=9,
                         color=fs.UNSTABLE_COLOUR if z < 0 else "k")
+
+
+PLOT_FORMATS = (".png", ".pdf", ".svg")
+
+
+def save_campbell_plot(campbell, path, dpi: int = 110, field: str = "--plot", **kw) -> Path:
+    """Draw :func:`campbell_figure` (``kw`` passed on) and write it to ``path`` (.png, .pdf, .svg).
+
+    Raises
+    ------
+    InputError
+        another file type, a folder, or a location that cannot be written (``field`` names the
+        option).
+    """
+    p = Path(path)
+    if p.suffix.lower() not in PLOT_FORMATS:
+        raise InputError(field, str(path), f"a file name ending in {', '.join(PLOT_FORMATS)}")
+    if p.is_dir():
+        raise InputError(field, str(path), "a file name, not a folder")
+    fig = campbell_figure(campbell, **kw)
+    try:
+        p.parent.mkdir(parents=True, exist_ok=True)
+        fig.savefig(p, dpi=dpi)
+    except OSError as exc:
+        raise InputError(field, str(path), f"a writable file ({exc.strerror})") from None
+    finally:
+        fig.clear()
+    return p

@@ -21,13 +21,18 @@ DASH = "—"
 _LEGACY = re.compile(r"^(?P<kind>[a-z]+(?:-[a-z]+)?) b(?P<blade>\d+) r/R=(?P<r>[0-9.]+)$")
 
 
-def num(x: Any, digits: int = 2) -> str:
-    """``x`` with ``digits`` decimals; NaN/None: a dash; not a number: the text."""
+def _as_number(x: Any, spec: str) -> str:
+    """``x`` formatted with ``spec``; NaN/None: a dash; not a number: its text."""
     try:
         v = float(x)
     except (TypeError, ValueError):
         return str(x)
-    return DASH if not math.isfinite(v) else f"{v:.{digits}f}"
+    return DASH if not math.isfinite(v) else format(v, spec)
+
+
+def num(x: Any, digits: int = 2) -> str:
+    """``x`` with ``digits`` decimals; NaN/None: a dash; not a number: the text."""
+    return _as_number(x, f".{digits}f")
 
 
 def qty(x: Any, unit: str, digits: int = 2) -> str:
@@ -38,11 +43,7 @@ def qty(x: Any, unit: str, digits: int = 2) -> str:
 
 def sig(x: Any, n: int = 4) -> str:
     """``n`` significant digits, no trailing float noise (``12.100000000000001`` -> ``12.1``)."""
-    try:
-        v = float(x)
-    except (TypeError, ValueError):
-        return str(x)
-    return DASH if not math.isfinite(v) else f"{v:.{n}g}"
+    return _as_number(x, f".{n}g")
 
 
 def pct(fraction: Any, digits: int = 1, signed: bool = True) -> str:
