@@ -59,11 +59,11 @@ def _harmonic_lines(ax, v, rpm, fmax, harmonics):
             continue
         j = inside[-1]
         if j == len(v) - 1:
-            xy = (v[j], f[j])
-        else:  # where the line leaves the top of the axis
+            xy, dy, va = (v[j], f[j]), 2, "bottom"
+        else:  # where the line leaves the top of the axis: the name inside, under the edge
             x = np.interp(fmax, [f[j], f[j + 1]], [v[j], v[j + 1]])
-            xy = (x, fmax)
-        ax.annotate(f"{n}P", xy, xytext=(-2, 2), textcoords="offset points", ha="right", va="bottom",
+            xy, dy, va = (x, fmax), -2, "top"
+        ax.annotate(f"{n}P", xy, xytext=(-3, dy), textcoords="offset points", ha="right", va=va,
                     fontsize=7.5, color="0.35")
 
 
@@ -138,7 +138,8 @@ def campbell_figure(campbell, harmonics=HARMONICS, max_hz: float | None = None, 
     lo, cut, top = fs.damping_split(z[:, drawn] if drawn else z)
     axes_z = _damping_axes(fig, v, 100 * z, tracks, unstable_t, 100 * lo, 100 * cut, None if top is None else 100 * top)
     for ax in (axf, *axes_z):
-        ax.set_xlim(v[0] - 0.02 * np.ptp(v), v[-1] + 0.02 * np.ptp(v) if v.size > 1 else v[0] + 1)
+        pad = 0.02 * np.ptp(v) if v.size > 1 else 1.0
+        ax.set_xlim(v[0] - pad, v[-1] + pad)
         ax.grid(alpha=0.3)
     axes_z[-1].set_xlabel("wind speed (m/s)")
     for ax in (axf, *axes_z[:-1]):
@@ -159,7 +160,7 @@ def _damping_axes(fig, v, zp, tracks, unstable_t, lo, cut, top):
                              high_share=0.22)
     bad = np.where(np.nan_to_num(zp, nan=1.0) < 0)
     if bad[0].size:
-        axes[-1].plot(v[bad[0]], zp[bad], "x", ms=8, mew=2, color=fs.UNSTABLE_COLOUR, zorder=5)
+        axes[-1].plot(v[bad[0]], zp[bad], "x", ms=8, mew=2, color=fs.UNSTABLE_COLOUR, zorder=7)  # over the star
     axes[-1].set_ylabel("damping ratio ζ (%)")
     return axes
 
