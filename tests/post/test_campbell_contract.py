@@ -4,8 +4,7 @@ wind speeds, coarse mesh; about 4 s): the dataset, the CSV equal to the JSON, th
 from __future__ import annotations
 
 import pytest
-from test_campbell_export import _json_rows
-from test_cf_datasets import assert_cf_rules
+from post_fixtures import assert_cf_rules, json_rows
 
 from windflutter.post import store
 from windflutter.post.campbell_data import campbell_dataset
@@ -26,7 +25,7 @@ def test_real_campbell_result_exports_and_stores(nrel_result, tmp_path):
     res = nrel_result
     ds = campbell_dataset(res)
     assert int((ds["frequency"].notnull()).sum()) == sum(len(p.modes) for p in res.points)
-    assert read_csv(write_csv(res, tmp_path / "c.csv")) == _json_rows(res)
+    assert read_csv(write_csv(res, tmp_path / "c.csv")) == json_rows(res)
     cmb = read_cmb(write_cmb(res, tmp_path / "c.cmb"))
     assert cmb.frequency.shape == (2, ds.sizes["track"])
     assert_cf_rules(store.write_campbell(tmp_path, res))

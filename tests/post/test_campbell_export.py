@@ -7,31 +7,25 @@ import math
 
 import numpy as np
 import pytest
-from conftest import DATA
+from post_fixtures import DATA, json_rows
 
 from windflutter.errors import InputError
 from windflutter.post.campbell_export import CSV_FIELDS, read_cmb, read_csv, write_cmb, write_csv
 
 
-def _json_rows(result):
-    """The rows the CSV must hold, taken from the result's JSON (the CLI's --json)."""
-    return [{"wind_speed": p["wind_speed"], "rotor_speed_rpm": p["rotor_speed_rpm"], "pitch_deg": p["pitch_deg"],
-             **{k: m[k] for k in CSV_FIELDS[3:]}} for p in result.as_dict()["points"] for m in p["modes"]]
-
-
 def test_csv_round_trip_equals_the_json_exactly(stable_campbell, tmp_path):
     path = write_csv(stable_campbell, tmp_path / "c.csv")
     rows = read_csv(path)
-    assert rows == _json_rows(stable_campbell)          # same order, same floats (repr round trip)
+    assert rows == json_rows(stable_campbell)          # same order, same floats (repr round trip)
     assert path.read_text().splitlines()[0] == ",".join(CSV_FIELDS)
 
 
 def test_csv_rows_in_wind_order_when_the_points_are_not(tmp_path):
-    from conftest import synthetic_campbell
+    from post_fixtures import synthetic_campbell
 
     res = synthetic_campbell(shuffle=True)
     rows = read_csv(write_csv(res, tmp_path / "c.csv"))
-    expect = sorted(_json_rows(res), key=lambda r: (r["wind_speed"], r["frequency_hz"]))
+    expect = sorted(json_rows(res), key=lambda r: (r["wind_speed"], r["frequency_hz"]))
     assert rows == expect
 
 

@@ -17,37 +17,17 @@ import sys
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import synthetic_campbell, synthetic_run
+from post_fixtures import assert_cf_rules, synthetic_campbell, synthetic_run
 
 from windflutter.errors import InputError
 from windflutter.post import store
 from windflutter.post.campbell_data import campbell_dataset
-
-#: every unit string the files use, each a valid UDUNITS-2 unit (checked with cf_units 3.3 when
-#: this list was written; the checker test below re-checks whatever the files carry)
-UDUNITS_OK = {"1", "m/s", "rpm", "Hz", "s", "m", "rad", "J", "W", "N", "degree", "s-1"}
-
 
 def _write_both(tmp_path):
     run = tmp_path / "results.nc"
     store.atomic_write_netcdf(synthetic_run(), run)
     camp = store.write_campbell(tmp_path, synthetic_campbell())
     return run, camp
-
-
-def assert_cf_rules(path):
-    """The CF-1.8 rules the windflutter files rely on (sections 2.2, 2.5.1, 2.6.1, 3.1, 5)."""
-    with xr.open_dataset(path, decode_cf=False) as ds:
-        assert ds.attrs["Conventions"] == "CF-1.8"
-        for name, var in ds.variables.items():
-            assert var.attrs.get("long_name"), f"{name}: no long_name"
-            assert var.dtype.kind != "i" or var.dtype.itemsize <= 4, f"{name}: {var.dtype} (CF-1.8 has no int64)"
-            units = var.attrs.get("units")
-            assert units is None or units in UDUNITS_OK, f"{name}: units {units!r}"
-            if name in ds.dims:  # a coordinate variable: numeric, strictly monotonic, no fill value
-                assert var.dtype.kind in "fiu", f"{name}: a coordinate variable of {var.dtype}"
-                assert "_FillValue" not in var.attrs, name
-                assert np.all(np.diff(var.values) > 0), f"{name}: not strictly increasing"
 
 
 def test_results_and_campbell_files_follow_the_cf_rules(tmp_path):

@@ -8,7 +8,7 @@ import itertools
 
 import numpy as np
 import pytest
-from conftest import synthetic_run
+from post_fixtures import synthetic_run
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.text import Annotation, Text
 

@@ -6,7 +6,7 @@ from __future__ import annotations
 import re
 
 import pytest
-from conftest import RATED_RPM, synthetic_run
+from post_fixtures import RATED_RPM, synthetic_run
 
 from windflutter.post import fmt
 from windflutter.post.verdict import headline, verdict
