@@ -297,7 +297,8 @@ def clean_temporaries(outdir: str | Path) -> int:
 
 
 #: what a stored point file must hold to be used again
-_POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method")
+_POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method",
+               "flutter_torsion_real")  # the CF layout: a point file of the earlier layout is computed again
 
 
 def read_point(path: str | Path) -> xr.Dataset:
