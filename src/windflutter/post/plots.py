@@ -23,6 +23,10 @@ import xarray as xr
 from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 
+from windflutter.post import figstyle as fs
+from windflutter.post.fmt import field_label
+from windflutter.post.store import flutter_shape
+
 CASE_STYLES = {("potential", "pk"): "C0", ("viscous", "pk"): "C1",
                ("potential", "thesis"): "C2", ("viscous", "thesis"): "C3"}
 COMPONENT_STYLE = {"flap": "C0", "edge": "C1", "torsion": "C3"}
@@ -71,7 +75,7 @@ def _reference_lines(ax, ds: xr.Dataset) -> None:
 
 def stability_map(ds: xr.Dataset) -> Figure:
     """Onset rotor speed (RPM) vs wind speed (m/s)."""
-    fig = Figure(figsize=(7.5, 4.8), layout="constrained")
+    fig = Figure(figsize=(9.5, 4.8), layout="constrained")
     ax = fig.add_subplot()
     for case in cases(ds):
         c = case_points(ds, case)
@@ -94,7 +98,7 @@ def stability_map(ds: xr.Dataset) -> Figure:
     ax.set_title(f"Stability map — {ds.attrs.get('turbine', '')}")
     ax.set_ylim(bottom=0)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="best")
+    fig.legend(fontsize=8, loc="outside right upper")  # outside the axes: covers no data
     return fig
 
 
@@ -106,50 +110,79 @@ def _sweep(ds: xr.Dataset, i: int):
     zeta = p["damping_ratio"].values[ok]
     labels = [str(x) for x in p["mode_label"].values] if "mode_label" in p else []
     keep = [j for j in range(freq.shape[1]) if np.any(np.isfinite(freq[:, j]))]
-    return rpm[ok], freq[:, keep], zeta[:, keep], [labels[j] if j < len(labels) else f"mode {j + 1}" for j in keep]
+    names = [field_label(labels[j]) if j < len(labels) and labels[j] else f"mode {j + 1}" for j in keep]
+    return rpm[ok], freq[:, keep], zeta[:, keep], names
+
+
+def flutter_column(ds: xr.Dataset, i: int, rpm: np.ndarray, zeta: np.ndarray) -> int | None:
+    """The column of :func:`_sweep` that flutters at point ``i``: the least damped mode at the
+    first sweep speed at or past the flutter onset (None without flutter)."""
+    fr = float(ds["flutter_rpm"].values[i])
+    if not np.isfinite(fr) or zeta.size == 0:
+        return None
+    past = np.where(rpm >= fr - 1e-9)[0]
+    row = zeta[past[0] if past.size else -1]
+    return int(np.nanargmin(row)) if np.any(np.isfinite(row)) else None
 
 
 def _point_title(ds: xr.Dataset, i: int) -> str:
-    return (f"V = {float(ds['wind_speed'].values[i]):g} m/s, {ds['aero'].values[i]}, "
+    return (f"V = {float(ds['wind_speed'].values[i]):.4g} m/s, {ds['aero'].values[i]}, "
             f"{ds['method'].values[i]}")
+
+
+#: fixed layout of the sweep figures: axes from 8 % to 72 % of the width, names to the right
+_SWEEP_FIG = (9.5, 6.2)
+_SWEEP_X = (0.085, 0.64)
 
 
 def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
     """Campbell diagram of point ``i``: frequency vs rotor speed coloured by damping ratio."""
-    fig = Figure(figsize=(7.5, 5.0), layout="constrained")
-    ax = fig.add_subplot()
+    fig = Figure(figsize=_SWEEP_FIG)
+    ax = fig.add_axes((_SWEEP_X[0], 0.2, _SWEEP_X[1], 0.72))
     rpm, freq, zeta, labels = _sweep(ds, i)
+    jf = flutter_column(ds, i, rpm, zeta)
     # colour scale: +-10 % damping at most, so that the region near zero stays readable
     zmax = float(np.nanpercentile(np.abs(zeta), 95)) if zeta.size and np.any(np.isfinite(zeta)) else 0.05
     zmax = min(max(zmax, 1e-3), 0.1)
     norm = TwoSlopeNorm(vcenter=0.0, vmin=-zmax, vmax=zmax)
     sc = None
     for j in range(freq.shape[1]):
-        ax.plot(rpm, freq[:, j], "-", color="0.7", lw=1, zorder=1)
+        bold = j == jf
+        ax.plot(rpm, freq[:, j], "-", color="k" if bold else "0.7", lw=2.2 if bold else 1, zorder=1)
         sc = ax.scatter(rpm, freq[:, j], c=np.clip(zeta[:, j], -zmax, zmax), cmap="RdBu", norm=norm, s=26, zorder=2,
                         edgecolors="k", linewidths=0.3)
-        ax.annotate(labels[j], (rpm[-1], freq[-1, j]), xytext=(4, 9 * (j % 2) - 4),
-                    textcoords="offset points", fontsize=8, va="center")
     fmax = float(np.nanmax(freq)) * 1.15 if freq.size else 1.0
     for n in harmonics:
         ax.plot(rpm, n * rpm / 60.0, "--", color="0.3", lw=0.8)
         xe = min(rpm[-1], fmax * 60.0 / n)
-        ax.annotate(f"{n}P", (xe, n * xe / 60.0), fontsize=8, color="0.3", xytext=(2, 2),
+        ax.annotate(f"{n}P", (xe, n * xe / 60.0), fontsize=8, color="0.3", xytext=(-2, 2), ha="right",
                     textcoords="offset points")
     _rpm_lines(ax, ds)
     fr = ds["flutter_rpm"].values[i]
     if np.isfinite(fr):
         ax.axvline(fr, color="r", lw=1.2, label=f"flutter {fr:.2f} RPM")
-    if sc is not None:
-        fig.colorbar(sc, ax=ax, extend="both", label="damping ratio ζ (−)  [red: unstable]")
     ax.set_ylim(0, fmax)
-    ax.set_xlim(rpm[0], rpm[-1] * 1.12 if rpm.size else 1)
+    ax.set_xlim(rpm[0], rpm[-1] if rpm.size else 1)
+    if freq.size:
+        last = np.array([f[np.isfinite(f)][-1] if np.any(np.isfinite(f)) else np.nan for f in freq.T])
+        ok = np.isfinite(last)
+        fs.label_ends(ax, rpm[-1], last[ok], [labels[j] for j in np.where(ok)[0]],
+                      ["k" if j == jf else "0.25" for j in np.where(ok)[0]], x_text=1.012)
+    if sc is not None:
+        cax = fig.add_axes((_SWEEP_X[0] + _SWEEP_X[1] + 0.2, 0.2, 0.018, 0.72))
+        fig.colorbar(sc, cax=cax, extend="both", label="damping ratio ζ (−)  [red: unstable]")
     ax.set_xlabel("rotor speed (RPM)")
     ax.set_ylabel("frequency (Hz)")
-    ax.set_title(f"Campbell diagram — {_point_title(ds, i)}")
+    ax.set_title(f"Campbell diagram — {_point_title(ds, i)}", fontsize=10)
     ax.grid(alpha=0.3)
-    ax.legend(fontsize=8, loc="upper left")
+    _legend_below(fig, ax)
     return fig
+
+
+def _legend_below(fig, ax) -> None:
+    h, lab = ax.get_legend_handles_labels()
+    if h:
+        fig.legend(h, lab, loc="lower left", bbox_to_anchor=(_SWEEP_X[0], 0.0), ncols=min(len(h), 4), fontsize=8)
 
 
 def _rpm_lines(ax, ds: xr.Dataset) -> None:
@@ -162,25 +195,42 @@ def _rpm_lines(ax, ds: xr.Dataset) -> None:
 
 
 def damping_plot(ds: xr.Dataset, i: int) -> Figure:
-    """V-g / V-f style: damping ratio (top) and frequency (bottom) of each mode vs rotor speed."""
-    fig = Figure(figsize=(7.5, 6.0), layout="constrained")
-    ax1, ax2 = fig.subplots(2, 1, sharex=True)
+    """V-g / V-f style: damping ratio (top, axis scaled to the lightly damped modes, the heavily
+    damped ones above a break) and frequency (bottom) of each mode vs rotor speed; names at the
+    line ends; the flutter mode bold."""
+    fig = Figure(figsize=(_SWEEP_FIG[0], 7.5))
     rpm, freq, zeta, labels = _sweep(ds, i)
-    for j in range(freq.shape[1]):
-        ax1.plot(rpm, zeta[:, j], "o-", ms=3, label=labels[j])
-        ax2.plot(rpm, freq[:, j], "o-", ms=3, label=labels[j])
-    ax1.axhline(0.0, color="k", lw=0.8)
-    for ax in (ax1, ax2):
+    jf = flutter_column(ds, i, rpm, zeta)
+    cols = [f"C{j % 10}" for j in range(freq.shape[1])]
+
+    def draw(ax, y):
+        for j in range(y.shape[1]):
+            ax.plot(rpm, y[:, j], "o-", ms=2.5, lw=2.6 if j == jf else 1.0, color="k" if j == jf else cols[j],
+                    zorder=3 if j == jf else 2)
+
+    lo, cut, top = fs.damping_split(zeta)
+    axz = fs.damping_panels(fig, (_SWEEP_X[0], 0.5, _SWEEP_X[1], 0.44), lo, cut, top, lambda ax: draw(ax, zeta))
+    axf = fig.add_axes((_SWEEP_X[0], 0.13, _SWEEP_X[1], 0.33))
+    draw(axf, freq)
+    fr = ds["flutter_rpm"].values[i]
+    for ax in (*axz, axf):
         _rpm_lines(ax, ds)
-        fr = ds["flutter_rpm"].values[i]
         if np.isfinite(fr):
-            ax.axvline(fr, color="r", lw=1.2)
+            ax.axvline(fr, color="r", lw=1.2, label=f"flutter {fr:.2f} RPM")
+        ax.set_xlim(rpm[0], rpm[-1] if rpm.size else 1)
         ax.grid(alpha=0.3)
-    ax1.set_ylabel("damping ratio ζ (−)")
-    ax2.set_ylabel("frequency (Hz)")
-    ax2.set_xlabel("rotor speed (RPM)")
-    ax1.set_title(f"Damping and frequency vs rotor speed — {_point_title(ds, i)}")
-    ax1.legend(fontsize=8, ncols=2)
+    colours = ["k" if j == jf else cols[j] for j in range(freq.shape[1])]
+    for ax, y, rng in ((axz[-1], zeta, (lo, cut)), (axf, freq, axf.get_ylim())) + (
+            ((axz[0], zeta, (cut, np.inf)),) if len(axz) > 1 else ()):
+        last = np.array([c[np.isfinite(c)][-1] if np.any(np.isfinite(c)) else np.nan for c in y.T])
+        sel = np.where(np.isfinite(last) & (last >= rng[0]) & (last <= rng[1]))[0]
+        fs.label_ends(ax, rpm[-1], last[sel], [labels[j] for j in sel], [colours[j] for j in sel], x_text=1.012)
+    axz[-1].set_ylabel("damping ratio ζ (−)")
+    axz[-1].tick_params(labelbottom=False)
+    axf.set_ylabel("frequency (Hz)")
+    axf.set_xlabel("rotor speed (RPM)")
+    axz[0].set_title(f"Damping and frequency vs rotor speed — {_point_title(ds, i)}", fontsize=10)
+    _legend_below(fig, axf)
     return fig
 
 
@@ -191,7 +241,7 @@ def flutter_mode(ds: xr.Dataset, i: int) -> Figure:
     p = ds.isel(point=i)
     r = p["station_radius"].values
     ok = np.isfinite(r)
-    shape = (p["flutter_shape_real"].values + 1j * p["flutter_shape_imag"].values)[ok]
+    shape = flutter_shape(ds).values[i][ok]
     r = r[ok]
     ref = shape.ravel()[np.nanargmax(np.abs(shape.ravel()))] if shape.size else 1.0
     shape = shape / (ref if abs(ref) > 0 else 1.0)
@@ -215,7 +265,7 @@ def flutter_mode(ds: xr.Dataset, i: int) -> Figure:
     for ax in (ax1, ax2):
         ax.grid(alpha=0.3)
     f = float(p["flutter_frequency"].values)
-    ax1.set_title(f"Flutter mode '{p['flutter_mode'].values}' at {float(p['flutter_rpm'].values):.2f} RPM, "
+    ax1.set_title(f"Flutter mode '{field_label(p['flutter_mode'].values)}' at {float(p['flutter_rpm'].values):.2f} RPM, "
                   f"{f:.3f} Hz — {_point_title(ds, i)}", fontsize=9)
     return fig
 
@@ -242,9 +292,15 @@ def aero_work_plot(ds: xr.Dataset, i: int) -> Figure:
     return fig
 
 
-def all_figures(ds: xr.Dataset) -> dict[str, Figure]:
-    """Every figure of a run, by name (``stability_map``, ``campbell_<aero>_<method>``, ...)."""
+def all_figures(ds: xr.Dataset, operating=None) -> dict[str, Figure]:
+    """Every figure of a run, by name (``stability_map``, ``campbell_<aero>_<method>``, ...);
+    with ``operating`` (the run's operating-point Campbell result or dataset) also
+    ``operating_campbell`` (:func:`windflutter.post.campbell_plots.campbell_figure`)."""
     figs: dict[str, Figure] = {}
+    if operating is not None:
+        from windflutter.post.campbell_plots import campbell_figure  # noqa: PLC0415
+
+        figs["operating_campbell"] = campbell_figure(operating)
     if "point" not in ds.dims or ds.sizes["point"] == 0:
         return figs
     figs["stability_map"] = stability_map(ds)
@@ -256,8 +312,8 @@ def all_figures(ds: xr.Dataset) -> dict[str, Figure]:
         if "rotor_speed" in ds and np.any(np.isfinite(ds["rotor_speed"].values[i])):
             figs[f"campbell_{tag}"] = campbell(ds, i)
             figs[f"damping_{tag}"] = damping_plot(ds, i)
-        if ("flutter_shape_real" in ds and "station_radius" in ds
-                and np.any(np.isfinite(ds["flutter_shape_real"].values[i]))):
+        if (("flutter_torsion_real" in ds or "flutter_shape_real" in ds) and "station_radius" in ds
+                and np.any(np.isfinite(flutter_shape(ds).values[i]))):
             figs[f"flutter_mode_{tag}"] = flutter_mode(ds, i)
         if "aero_work" in ds and np.any(np.isfinite(ds["aero_work"].values[i])):
             figs[f"aero_work_{tag}"] = aero_work_plot(ds, i)

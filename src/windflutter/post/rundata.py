@@ -87,8 +87,9 @@ def versions() -> dict[str, str]:
 def run_attrs(config: AnalysisConfig, info: dict[str, Any]) -> dict[str, Any]:
     attrs: dict[str, Any] = {
         "title": config.title or f"windflutter stability analysis of {info.get('turbine', '?')}",
-        "Conventions": "CF-1.8 (units and long_name on every variable)",
+        "Conventions": "CF-1.8",
         "source": "windflutter run",
+        "history": f"created by windflutter {__version__} run",
         "config_fingerprint": config.fingerprint(),
         "config_yaml": config.to_yaml(),
     }

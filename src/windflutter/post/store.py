@@ -5,6 +5,8 @@ Layout of an output folder::
     OUTDIR/analysis.yaml        the resolved analysis config of the run
     OUTDIR/points/p0003.nc      one file per finished (or failed) operating point
     OUTDIR/results.nc           all finished points combined (rewritten after every point)
+    OUTDIR/campbell.nc          the operating-point Campbell diagram, when the run has one
+                                (:mod:`windflutter.post.campbell_data`; :func:`write_campbell`)
 
 Every file is written to a temporary name in the same folder and moved into place with
 :func:`os.replace`, which is atomic on POSIX and Windows: a kill at any moment leaves either the
@@ -14,9 +16,15 @@ there; stray temporaries of a killed run are removed.
 The combined dataset has one dimension ``point`` (the operating point, ordered by its index)
 with coordinates ``wind_speed`` (m/s), ``aero`` and ``method``, and per-point sub-dimensions
 ``sweep`` (Campbell rotor speeds), ``mode`` (tracked modes), ``station`` (span stations),
-``component`` (flap, edge, torsion of the mode shape) and ``dof`` (plunge, pitch, edgewise of
-the aero-work diagnostic).  NetCDF has no complex type: complex mode shapes are stored as
-``*_real`` / ``*_imag`` pairs.  Every variable has ``units`` and ``long_name`` attributes.
+``translation`` (flap, edge translations of the mode shape) and ``dof`` (plunge, pitch, edgewise
+of the aero-work diagnostic; names in the auxiliary coordinates ``translation_name`` and
+``dof_name``).  The files follow CF-1.8: one UDUNITS unit per variable (the flutter shape is
+split into its translations, m, and its torsion, rad), ``long_name`` everywhere, 32-bit integer
+indices, numeric coordinate variables.  NetCDF has no complex type: complex values are stored as
+``*_real`` / ``*_imag`` pairs (mode shapes; the eigenvalues of the tracked modes, s-1).
+In the combined dataset the ``mode`` dimension is the mode's identity across points: a point's
+modes are placed by label (the k-th mode of a label at a point in the label's k-th slot), and
+``mode_name`` names each slot.
 """
 
 from __future__ import annotations
@@ -37,7 +45,9 @@ if TYPE_CHECKING:  # pragma: no cover
 
 POINTS_DIR = "points"
 RESULTS_FILE = "results.nc"
+CAMPBELL_FILE = "campbell.nc"
 COMPONENTS = ("flap", "edge", "torsion")
+TRANSLATIONS = ("flap", "edge")
 WORK_DOFS = ("plunge", "pitch", "edgewise")
 
 #: units and long names of the stored variables
@@ -55,8 +65,21 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "damping_ratio": ("1", "damping ratio zeta = -sigma/|lambda| of the tracked mode"),
     "mode_label": ("1", "label of the tracked mode"),
     "station_radius": ("m", "radius of the span station from the shaft axis"),
-    "flutter_shape_real": ("m or rad", "flutter mode shape at onset, real part (flap, edge m; torsion rad)"),
-    "flutter_shape_imag": ("m or rad", "flutter mode shape at onset, imaginary part"),
+    "eigenvalue_real": ("s-1", "real part of the tracked mode's eigenvalue lambda"),
+    "eigenvalue_imag": ("s-1", "imaginary part of the tracked mode's eigenvalue lambda (damped angular frequency, rad/s)"),
+    "mode_name": ("1", "label of the mode slot (the same mode at every point)"),
+    "flutter_translation_real": ("m", "flutter mode shape at onset: flap and edge translation, real part"),
+    "flutter_translation_imag": ("m", "flutter mode shape at onset: flap and edge translation, imaginary part"),
+    "flutter_torsion_real": ("rad", "flutter mode shape at onset: torsion, real part"),
+    "flutter_torsion_imag": ("rad", "flutter mode shape at onset: torsion, imaginary part"),
+    "point": ("1", "index of the operating point in the run's plan"),
+    "aero": ("1", "aerodynamic model variant of the operating point"),
+    "method": ("1", "stability search method of the operating point"),
+    "sweep": ("1", "index of the rotor speed in the sweep"),
+    "mode": ("1", "index of the tracked mode"),
+    "station": ("1", "index of the span station"),
+    "translation_name": ("1", "translation component of the mode shape"),
+    "dof_name": ("1", "section degree of freedom of the aero-work diagnostic"),
     "aero_work": ("J", "aerodynamic work per cycle on the flutter mode, per station and section DOF"),
     "aero_work_total": ("J", "total aerodynamic work per cycle on the flutter mode"),
 }
@@ -106,21 +129,49 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
            else np.full((ns, 3), nan + 0j))
     w = (np.asarray(result.aero_work, float).reshape(ns, 3) if result.aero_work is not None and ns
          else np.full((ns, 3), nan))
+    lam = _eigenvalues(result, freq, zeta)
+    data["eigenvalue_real"] = (("point", "sweep", "mode"), lam.real[None])
+    data["eigenvalue_imag"] = (("point", "sweep", "mode"), lam.imag[None])
     data["station_radius"] = (("point", "station"), r[None])
-    data["flutter_shape_real"] = (("point", "station", "component"), shp.real[None])
-    data["flutter_shape_imag"] = (("point", "station", "component"), shp.imag[None])
+    data["flutter_translation_real"] = (("point", "station", "translation"), shp.real[None, :, :2])
+    data["flutter_translation_imag"] = (("point", "station", "translation"), shp.imag[None, :, :2])
+    data["flutter_torsion_real"] = (("point", "station"), shp.real[None, :, 2])
+    data["flutter_torsion_imag"] = (("point", "station"), shp.imag[None, :, 2])
     data["aero_work"] = (("point", "station", "dof"), w[None])
     data["aero_work_total"] = (("point",), [float(np.sum(w)) if ns and np.all(np.isfinite(w)) else nan])
-    coords.update(sweep=("sweep", np.arange(nr)), mode=("mode", np.arange(nm)),
-                  station=("station", np.arange(ns)), component=("component", list(COMPONENTS)),
-                  dof=("dof", list(WORK_DOFS)))
+    i32 = np.int32
+    coords.update(sweep=("sweep", np.arange(nr, dtype=i32)), mode=("mode", np.arange(nm, dtype=i32)),
+                  station=("station", np.arange(ns, dtype=i32)),
+                  translation_name=("translation", list(TRANSLATIONS)), dof_name=("dof", list(WORK_DOFS)))
+    coords["point"] = ("point", np.array([point.index], i32))
     ds = xr.Dataset(data, coords=coords)
-    for name in list(ds.data_vars) + ["wind_speed"]:
-        ds[name].attrs.update(_attrs(name))
+    _set_attrs(ds)
+    ds.attrs.update(Conventions="CF-1.8", title=f"windflutter operating point {point.index}",
+                    history="created by windflutter run")
     for k, v in (result.info or {}).items():
         ds.attrs[f"info_{k}"] = _attr_value(v)
     ds.attrs.update({k: _attr_value(v) for k, v in (attrs or {}).items()})
     return ds
+
+
+def _set_attrs(ds: xr.Dataset) -> None:
+    """``units`` and ``long_name`` on every variable that has an entry in :data:`VARIABLES`."""
+    for name in ds.variables:
+        if name in VARIABLES:
+            ds[name].attrs.update(_attrs(name))
+
+
+def _eigenvalues(result, freq: np.ndarray, zeta: np.ndarray) -> np.ndarray:
+    """The tracked modes' eigenvalues (1/s): the result's own (``eigenvalues``) when it has them,
+    else from the damped frequency f and damping ratio zeta: ``Im = 2 pi f``,
+    ``Re = -zeta Im / sqrt(1 - zeta^2)`` (NaN for zeta >= 1, where f carries no |lambda|)."""
+    lam = getattr(result, "eigenvalues", None)
+    if lam is not None and np.shape(lam) == freq.shape:
+        return np.asarray(lam, complex)
+    wd = 2 * np.pi * freq
+    with np.errstate(invalid="ignore", divide="ignore"):
+        re = np.where(np.abs(zeta) < 1, -zeta * wd / np.sqrt(1 - zeta**2), np.nan)
+    return re + 1j * wd
 
 
 def _f(v) -> float:
@@ -246,7 +297,8 @@ def clean_temporaries(outdir: str | Path) -> int:
 
 
 #: what a stored point file must hold to be used again
-_POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method")
+_POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method",
+               "flutter_torsion_real")  # the CF layout: a point file of the earlier layout is computed again
 
 
 def read_point(path: str | Path) -> xr.Dataset:
@@ -302,15 +354,38 @@ def combine(points: dict[int, xr.Dataset] | list[xr.Dataset], attrs: dict | None
         ds = xr.Dataset(coords={"point": ("point", np.zeros(0, int))})
     else:
         items.sort(key=lambda d: int(d["point"].values[0]))
+        items, names = _mode_slots(items)
         ds = xr.concat(items, dim="point", data_vars="all", coords="different",
                        compat="equals", join="outer", combine_attrs="drop")
         for name in ds.data_vars:
             if ds[name].dtype == object:
                 ds[name] = ds[name].fillna("")
-        for name in list(ds.data_vars) + ["wind_speed"]:
-            ds[name].attrs.update(_attrs(name))
+        for dim in ("point", "sweep", "mode", "station"):
+            if dim in ds.coords:
+                ds[dim] = ds[dim].astype(np.int32)
+        ds["mode_name"] = (("mode",), np.array(names, dtype=object))
+        _set_attrs(ds)
+    ds.attrs.update({"Conventions": "CF-1.8", "history": "created by windflutter run"})
     ds.attrs.update({k: _attr_value(v) for k, v in (attrs or {}).items()})
     return ds
+
+
+def _mode_slots(items: list[xr.Dataset]) -> tuple[list[xr.Dataset], list[str]]:
+    """Each point's ``mode`` coordinate set to the slot of its label (the k-th mode of a label at
+    a point -> the label's k-th slot, slots numbered in order of first appearance), so that the
+    concatenation aligns the same mode across points; returns the points and the slot names."""
+    slots: dict[tuple[str, int], int] = {}
+    out = []
+    for d in items:
+        labels = [str(x) for x in d["mode_label"].values[0]] if "mode_label" in d and d.sizes.get("mode", 0) else []
+        seen: dict[str, int] = {}
+        idx = []
+        for lab in labels:
+            k = seen.get(lab, 0)
+            seen[lab] = k + 1
+            idx.append(slots.setdefault((lab, k), len(slots)))
+        out.append(d.assign_coords(mode=("mode", np.asarray(idx, np.int32))) if labels else d)
+    return out, [lab for lab, _ in slots]
 
 
 def open_results(path: str | Path) -> xr.Dataset:
@@ -338,5 +413,45 @@ def open_results(path: str | Path) -> xr.Dataset:
 
 
 def flutter_shape(ds: xr.Dataset) -> xr.DataArray:
-    """The complex flutter mode shape (point, station, component)."""
-    return ds["flutter_shape_real"] + 1j * ds["flutter_shape_imag"]
+    """The complex flutter mode shape (point, station, component): flap and edge (m), torsion
+    (rad).  Reads the split variables and, for files of earlier versions, ``flutter_shape_*``."""
+    if "flutter_shape_real" in ds:
+        return ds["flutter_shape_real"] + 1j * ds["flutter_shape_imag"]
+    tr = ds["flutter_translation_real"] + 1j * ds["flutter_translation_imag"]
+    to = ds["flutter_torsion_real"] + 1j * ds["flutter_torsion_imag"]
+    out = xr.concat([tr.isel(translation=0), tr.isel(translation=1), to], dim="component", coords="minimal",
+                    compat="override")
+    out = out.drop_vars([c for c in out.coords if c not in ("point", "station", "wind_speed")], errors="ignore")
+    return out.assign_coords(component=list(COMPONENTS)).transpose("point", "station", "component")
+
+
+def write_campbell(outdir: str | Path, campbell) -> Path:
+    """Store the operating-point Campbell diagram (a result or its dataset) as
+    ``OUTDIR/campbell.nc`` (atomic; CF-1.8, dimensions wind_speed x track)."""
+    from windflutter.post.campbell_data import as_campbell_dataset  # noqa: PLC0415
+
+    return atomic_write_netcdf(as_campbell_dataset(campbell), Path(outdir) / CAMPBELL_FILE)
+
+
+def open_campbell(path: str | Path) -> xr.Dataset:
+    """Open a ``campbell.nc`` (or the folder of a run) fully into memory.
+
+    Raises
+    ------
+    InputError
+        no such file, or not a readable Campbell dataset.
+    """
+    from windflutter.errors import InputError  # noqa: PLC0415
+    from windflutter.post.campbell_data import as_campbell_dataset  # noqa: PLC0415
+
+    given, path = str(path), Path(path)
+    if path.is_dir():
+        path = path / CAMPBELL_FILE
+    if not path.is_file():
+        raise InputError("campbell", given, f"a campbell.nc file or the folder of a run ({path} is missing)")
+    try:
+        with xr.open_dataset(path, engine="netcdf4") as ds:
+            ds = ds.load()
+    except Exception as exc:  # noqa: BLE001 - netCDF4/HDF5 raise OSError, ValueError, ...
+        raise InputError("campbell", given, f"a readable NetCDF file ({type(exc).__name__})") from None
+    return as_campbell_dataset(ds)

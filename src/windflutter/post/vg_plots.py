@@ -37,27 +37,30 @@ def _save(fig, p: Path) -> None:
         plt.close(fig)
 
 
-def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
-    """Write V-g (top) and V-f (bottom) curves of a :class:`~windflutter.stability.section.SectionResult`.
+def damping_curve(curves, m: int) -> np.ndarray:
+    """The damping plotted for mode ``m``, with the turbine figures' sign (positive: damped,
+    flutter where it crosses zero downwards): the damping ratio zeta for p-k / p; for the
+    k method the equivalent damping ratio ``-g / 2`` (the structural damping ``g`` a harmonic
+    motion needs is ``-2 zeta`` for small damping)."""
+    return -0.5 * np.asarray(curves.damping[m]) if curves.damping_kind == "g" else np.asarray(curves.damping[m])
 
-    Frequencies are shown in Hz; the damping is the k-method's required structural damping g
-    or the p-k / p damping ratio zeta (negative of it plotted so that flutter is an upward
-    zero crossing in both cases).  The flutter and divergence speeds are marked.
-    """
-    p = _check_out(path)
+
+def vg_figure(result, title: str | None = None):
+    """V-g (top) and V-f (bottom) curves of a :class:`~windflutter.stability.section.SectionResult`
+    (a pyplot figure; the caller closes it).  Frequencies in Hz; damping by :func:`damping_curve`;
+    the flutter and divergence speeds marked."""
     c = result.curves
     fig, (ax1, ax2) = plt.subplots(2, 1, sharex=True, figsize=(7, 7))
     n_modes = c.frequency.shape[0]
     for m in range(n_modes):
         speed = c.speed[m] if np.ndim(c.speed) == 2 else c.speed
-        damp = c.damping[m] if c.damping_kind == "g" else -c.damping[m]
-        ax1.plot(speed, damp, label=f"mode {m + 1}")
+        ax1.plot(speed, damping_curve(c, m), label=f"mode {m + 1}")
         ax2.plot(speed, c.frequency[m] / (2 * math.pi), label=f"mode {m + 1}")
     ax1.axhline(0.0, color="k", lw=0.8)
-    ax1.set_ylabel("g (required structural damping)" if c.damping_kind == "g"
-                   else "-zeta (damping ratio, >0 unstable)")
-    ax2.set_ylabel("frequency [Hz]")
-    ax2.set_xlabel("airspeed U [m/s]")
+    ax1.set_ylabel("-g/2 (k method: equivalent damping ratio, > 0 damped)" if c.damping_kind == "g"
+                   else "damping ratio ζ (> 0 damped)")
+    ax2.set_ylabel("frequency (Hz)")
+    ax2.set_xlabel("airspeed U (m/s)")
     for ax in (ax1, ax2):
         if result.flutter_speed is not None:
             ax.axvline(result.flutter_speed, color="r", ls="--", lw=1,
@@ -74,10 +77,16 @@ def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
         ax1.set_xlim(0, xmax)
         if c.damping_kind == "g":
             # k-method curves extend to huge speeds at small k: keep the y range readable
-            ax1.set_ylim(-1.0, 1.0)
+            ax1.set_ylim(-0.5, 0.5)
     fig.suptitle(title or f"Typical section, {result.method} method")
     fig.tight_layout()
-    _save(fig, p)
+    return fig
+
+
+def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
+    """Write :func:`vg_figure` of a section result as a PNG; returns the path."""
+    p = _check_out(path)
+    _save(vg_figure(result, title), p)
     return p
 
 

@@ -1,0 +1,103 @@
+"""The verdict and the terminal headline (stable, unstable in operation, unstable below
+overspeed), labels in the field's terms, formatted numbers, and the report that leads with them."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+from post_fixtures import RATED_RPM, synthetic_run
+
+from windflutter.post import fmt
+from windflutter.post.verdict import headline, verdict
+
+
+def test_headline_of_a_stable_turbine(stable_campbell):
+    ds = synthetic_run(flutter_rpm=(20.0, 19.0))
+    text = headline(ds, stable_campbell)
+    lines = text.splitlines()
+    assert lines[0] == "verdict: stable up to overspeed"
+    # first instability: the lower of the two onsets, its mode in words, RPM and margins
+    # computed here: 19/12.1 - 1 = +57.0 %, 19/14.52 - 1 = +30.9 %
+    assert lines[1].startswith("first instability: flutter of flap-edge, blade 2 at 19.00 RPM, 1.050 Hz, "
+                               "grown from edge, blade 2 (V = 20 m/s")
+    assert "+57.0 % to rated 12.10 RPM" in lines[1] and "+30.9 % to overspeed 14.52 RPM" in lines[1]
+    # least damped in operation: the synthetic edge BW at 11 m/s, zeta 0.8 %
+    assert lines[2] == "least damped mode in operation: 1st edge BW, ζ = 0.80 % at V = 11 m/s (0.880 Hz, 12.10 RPM)"
+    assert "12.100000000000001" not in text
+
+
+def test_headline_of_a_mode_unstable_in_operation(unstable_campbell):
+    ds = synthetic_run(flutter_rpm=(20.0, 19.0))
+    v = verdict(ds, unstable_campbell)
+    assert v.status == "unstable in operation" and not v.stable
+    assert v.first.kind == "negative damping" and v.first.mode == "1st edge BW"
+    assert v.first.margin_rated == pytest.approx(0.0)          # at rated speed, 11 m/s
+    text = headline(ds, unstable_campbell)
+    assert text.splitlines()[0] == "verdict: UNSTABLE IN OPERATION"
+    assert "negative damping of 1st edge BW (ζ = -0.40 %) at 12.10 RPM, 0.880 Hz" in text
+    assert "least damped mode in operation: 1st edge BW, ζ = -0.40 % at V = 11 m/s" in text
+
+
+def test_verdict_levels_from_the_overspeed_search_alone():
+    below_over = verdict(synthetic_run(flutter_rpm=(13.0, 14.0)))
+    assert below_over.status == "instability below overspeed"
+    assert below_over.first.margin_rated == pytest.approx(13.0 / RATED_RPM - 1)
+    below_rated = verdict(synthetic_run(flutter_rpm=(11.0, 14.0)))
+    assert below_rated.status == "instability below rated"
+    # an onset at or below the operating rotor speed of its wind speed is in operation
+    ds = synthetic_run(flutter_rpm=(11.0, 14.0))
+    ds["operating_rpm"] = ("operating", [8.0, 10.5])
+    ds = ds.assign_coords(operating_wind_speed=("operating", [5.0, 10.0]))
+    assert verdict(ds).status == "instability below rated"     # 11 RPM at 10 m/s, above its 10.5
+    ds["operating_rpm"] = ("operating", [8.0, 11.5])
+    assert verdict(ds).status == "unstable in operation"       # 11 RPM at 10 m/s, below its 11.5
+    none = synthetic_run(flutter_rpm=(float("nan"), float("nan")))
+    assert verdict(none).status == "no instability found"
+    assert headline(none).splitlines()[1] == "first instability: none found up to 24.00 RPM"
+
+
+@pytest.mark.parametrize("label, words", [
+    ("flap-edge b3 r/R=1.00", "flap-edge, blade 3"),
+    ("torsion b2 r/R=0.60", "torsion, blade 2, peak at r/R 0.60"),
+    ("flap-edge b3 r/R=1.00 -> flap b2 r/R=1.00", "flap, blade 2"),
+    ("1st edge BW", "1st edge BW"),                     # the field's vocabulary passes unchanged
+    ("tower", "tower"),
+])
+def test_field_label(label, words):
+    assert fmt.field_label(label) == words
+
+
+def test_flutter_label_parts_and_number_formats():
+    assert fmt.flutter_label("edge b1 r/R=1.00 -> flap b2 r/R=0.95 (above divergence)") == (
+        "flap, blade 2", "edge, blade 1", "above divergence")
+    assert fmt.sig(12.100000000000001) == "12.1" and fmt.num(float("nan")) == "—"
+    assert fmt.value(True) == "yes" and fmt.value(False) == "no" and fmt.value(0.1 + 0.2) == "0.3"
+    assert fmt.qty(12.1, "RPM") == "12.10 RPM" and fmt.pct(0.1744) == "+17.4 %"
+
+
+def test_report_opens_with_the_verdict_and_assumptions(unstable_campbell):
+    from windflutter.post import plots, report
+
+    ds = synthetic_run(flutter_rpm=(20.0, 19.0))
+    html = report.build_report(ds, {}, campbell=unstable_campbell)
+    order = [html.index(f"data-section='{s}'") for s in ("verdict", "assumptions", "campbell")]
+    assert order == sorted(order) and order[0] < html.index("Summary: margins")
+    assert "Verdict: unstable in operation" in html and "class='verdict bad'" in html
+    assert "unsteady strips" in html and "flexible" in html           # the Campbell's assumptions
+    # the margins table names the flutter mode and its frequency
+    row = re.search(r"<tr><td class='l'>potential, pk</td>.*?</tr>", html).group(0)
+    assert "flap-edge, blade 2" in row and "<td>1.050</td>" in row
+    # least damped per wind speed: one row per wind speed, negative damping in red
+    camp = html[html.index("data-section='campbell'"):]
+    camp = camp[:camp.index("</section>")]
+    assert camp.count("<tr><td>") == 3 and "<span class='warn'>-0.40</span>" in camp
+    # formatted numbers and flags: no float noise (the config's own text aside), no 1/0 for booleans
+    assert "12.100000000000001" not in re.sub(r"<pre>.*?</pre>", "", html, flags=re.S)
+    assert "<th class='l'>solver.geometric_stiffness</th><td class='l'>yes</td>" in html
+    assert "rated rotor speed</th><td class='l'>12.1 RPM" in html
+    # the operating Campbell figure goes into its section, not among the run's figures
+    figs = {"operating_campbell": plots.all_figures(ds.isel(point=[]), unstable_campbell)["operating_campbell"]}
+    html = report.build_report(ds, figs, dpi=30, campbell=unstable_campbell)
+    assert html.count("data-figure='operating_campbell'") == 1
+    assert html.index("data-figure='operating_campbell'") > html.index("data-section='campbell'")
