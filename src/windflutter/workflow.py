@@ -568,9 +568,38 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
     info = describe_run(turbine, config, _Described(analyser, reported) if reported else analyser)
     ds = assemble_dataset(done, config, info, len(points))
     ds.attrs["finished_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
+    camp = operating_campbell(turbine, config, analyser, progress)
+    if camp is not None:
+        store.write_campbell(outdir, camp)
+        for k, v in camp.assumptions.items():
+            ds.attrs[f"assumption_{k}"] = str(v)
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)
-    write_outputs(ds, config, outdir)
+    write_outputs(ds, config, outdir, campbell=camp)
     return ds
+
+
+def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = None, progress: bool = False):
+    """The operating-point Campbell of a run (``campbell.enabled`` with method p; None otherwise):
+    every mode along the operating curve at the run's wind speeds, with the model of the run's
+    first p case (its parts reused when the built-in analyser built them in this process)."""
+    if not (config.campbell.enabled and "p" in config.method and config.solver.backend == "windflutter"):
+        return None
+    if getattr(turbine, "operating_curve", None) is None:
+        return None
+    from windflutter.stability.build import operational_options  # noqa: PLC0415
+    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
+    from windflutter.system.campbell import campbell  # noqa: PLC0415
+    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
+
+    aero = next(a for a, m in config.cases if m == "p")
+    case = getattr(analyser, "_cases", {}).get((aero, "p")) if analyser is not None else None
+    model = case.model if case is not None else OperationalModel(turbine, operational_options(config, aero))
+    oc = turbine.operating_curve
+    winds = [v for v in config.wind_speeds if oc.wind_speed[0] - 1e-9 <= v <= oc.wind_speed[-1] + 1e-9]
+    if not winds:
+        return None
+    max_hz = config.campbell.max_hz or 1.25 * torsion_frequency(model, 0.0)
+    return campbell(turbine, winds, max_hz=max_hz, model=model)
 
 
 def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, config: AnalysisConfig,
@@ -595,22 +624,23 @@ def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, con
         return None
 
 
-def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path) -> dict[str, Path]:
-    """Figures and report of a finished run (``outdir/figures/*``, ``outdir/report.html``)."""
+def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path, campbell=None) -> dict[str, Path]:
+    """Figures and report of a finished run (``outdir/figures/*``, ``outdir/report.html``), with the
+    operating-point Campbell (a :class:`~windflutter.system.campbell.CampbellResult`) when given."""
     outdir = Path(outdir)
     written: dict[str, Path] = {}
     if not (config.output.plots or config.output.report):
         return written
     from windflutter.post import plots, report  # noqa: PLC0415  (matplotlib is slow to import)
 
-    figs = plots.all_figures(ds)
+    figs = plots.all_figures(ds, operating=campbell)
     try:
         png = plots.render_png(figs, config.output.dpi)
         if config.output.plots:
             written.update(plots.save_figures(figs, outdir / "figures", config.output.formats,
                                               config.output.dpi, png=png))
         if config.output.report:
-            html = report.build_report(ds, figs, dpi=config.output.dpi, png=png)
+            html = report.build_report(ds, figs, dpi=config.output.dpi, png=png, campbell=campbell)
             written["report"] = store.atomic_write_text(html, outdir / "report.html")
     finally:
         plots.close_figures(figs)

@@ -151,6 +151,7 @@ def run(args: argparse.Namespace) -> int:
             if status[i] != "ok":
                 print(f"  failed: V = {float(ds['wind_speed'][i]):g} m/s, {ds['aero'].values[i]}, "
                       f"{ds['method'].values[i]}: {ds['reason'].values[i]}")
+    _print_headline(ds, outdir)
     print(f"results: {outdir / 'results.nc'}")
     report = outdir / "report.html"
     if report.is_file():
@@ -159,3 +160,15 @@ def run(args: argparse.Namespace) -> int:
         print("windflutter run: every operating point failed (see the reasons above)", file=sys.stderr)
         return 1
     return 0
+
+
+def _print_headline(ds, outdir) -> None:
+    """The verdict: first instability (mode, RPM, margin) and least damped mode in operation."""
+    from windflutter.post import store  # noqa: PLC0415
+    from windflutter.post.verdict import headline  # noqa: PLC0415
+
+    camp = store.open_campbell(outdir) if (outdir / "campbell.nc").is_file() else None
+    try:
+        print(headline(ds, camp))
+    except Exception as exc:  # the verdict must not cost the run its exit code
+        print(f"(no verdict: {type(exc).__name__}: {exc})")
