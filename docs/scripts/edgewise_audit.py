@@ -64,15 +64,26 @@ class Point:
     blade_full: object  # BladeSystem with aero (for the eigenproblem)
 
 
-def build(V: float, n_span: int = 20, aero: UnsteadyOptions | None = None, turbine="iea15mw", **opts) -> Point:
-    """The rotor model at ``V`` (m/s) on its operating curve, with the pieces kept apart."""
+def build(V: float, n_span: int = 20, aero: UnsteadyOptions | None = None, turbine="iea15mw", aero_state=None,
+          pitch: float | None = None, **opts) -> Point:
+    """The rotor model at ``V`` (m/s) on its operating curve, with the pieces kept apart.
+
+    ``aero_state``: a steady state of another model with the same strips whose strip geometry
+    (points, chord and span directions) and BEM induction replace this model's in the
+    aerodynamics (the structure keeps its own geometry and prestress).  ``pitch`` (rad) replaces
+    the operating curve's."""
     aero = aero or UnsteadyOptions()
     tb = load_turbine(turbine) if isinstance(turbine, str) else turbine
     om = OperationalModel(tb, OperationalOptions(part="rotor", mesh={"n_span": n_span},
                                                                     aero=aero, **opts))
-    omega, pitch = om.operating_point(V)
+    omega, pitch_c = om.operating_point(V)
+    pitch = pitch_c if pitch is None else pitch
     rb = om.blade(pitch)
     st = om.steady(rb, V, omega)
+    if aero_state is not None:
+        a = aero_state.sections
+        sec = dataclasses.replace(st.sections, origin=a.origin, e_chord=a.e_chord, e_span=a.e_span, radius=a.radius)
+        st = dataclasses.replace(st, sections=sec, bem=aero_state.bem)
     ksig, klink = om._prestress(rb, st, omega)
     blocks, P = om._aero_blocks(rb, st, V, omega)
     Phi = om._blade_basis(rb, omega, ksig, klink, blocks, P)
@@ -213,7 +224,8 @@ def _unit(v):
 
 def quasi_steady_setup(p: Point):
     """Rotor-plane geometry of the deflected strips: n (downwind), t (direction of rotation),
-    span, chord, steady relative wind W0 (induced, in the ground frame seen by the strip)."""
+    span, chord (LE -> TE), the arms to the quarter and 3/4 chord, the steady relative wind W0
+    (induced, as the strip sees it)."""
     om = p.model
     sec = p.st.sections
     n = _unit(np.asarray(om.rotor.shaft_axis, float))
@@ -221,110 +233,219 @@ def quasi_steady_setup(p: Point):
     t = _unit(np.cross(n, r))
     a, ap = p.st.bem.a, p.st.bem.ap
     W0 = p.V * (1 - a)[:, None] * n[None, :] - (1 + ap)[:, None] * p.omega * np.cross(n, r)
+    b, ea = 0.5 * np.asarray(sec.chord, float), np.asarray(sec.elastic_axis, float)
     return dict(n=n, t=t, span=_unit(np.asarray(sec.e_span, float)), chord=_unit(np.asarray(sec.e_chord, float)),
-                W0=W0, c=np.asarray(sec.chord, float), polars=sec.polars, airfoil=np.asarray(sec.airfoil),
-                rho=p.oper.op.air_density, omega=p.omega)
+                W0=W0, c=2 * b, d14=b * (ea + 0.5), d34=b * (0.5 - ea), polars=sec.polars,
+                airfoil=np.asarray(sec.airfoil), rho=p.oper.op.air_density, omega=p.omega)
 
 
-def quasi_steady_force(g, dv, dth, du):
-    """Blade-element force per unit span (ns, 3), global, for a section velocity ``dv``, rotation
-    ``dth`` and displacement ``du`` (ns, 3) (transport ``Omega n x du``); returns (F, alpha)."""
+def quasi_steady_force(g, dv, du, tw, twdot):
+    """Blade-element force (ns, 3) and moment about the span (ns,) per unit span on each strip.
+
+    Inputs: velocity ``dv`` and displacement ``du`` (ns, 3) of the section point (the latter for
+    the transport velocity ``Omega n x du``), twist ``tw`` about the span and its rate ``twdot``
+    (ns,).  The wind is taken at the 3/4-chord point, lift normal to it and drag along it, both
+    at the quarter chord; ``alpha = phi - beta`` with the inflow angle ``phi`` from the rotor
+    plane and the chord angle ``beta`` (+ towards feather).  Returns (F, M, alpha, phi).
+    """
     n, t, s = g["n"], g["t"], g["span"]
-    W = g["W0"] - dv - g["omega"] * np.cross(n[None, :], du)
+    c0 = g["chord"]
+    ch = c0 * np.cos(tw)[:, None] + np.cross(s, c0) * np.sin(tw)[:, None]  # turned about the span
+    ch = _unit(ch - np.sum(ch * s, axis=1, keepdims=True) * s)
+    r34, r14 = g["d34"][:, None] * ch, -g["d14"][:, None] * ch
+    v34 = dv + twdot[:, None] * np.cross(s, r34)
+    W = g["W0"] - v34 - g["omega"] * np.cross(n[None, :], du)
     W = W - np.sum(W * s, axis=1, keepdims=True) * s
-    ch = g["chord"] + np.cross(dth, g["chord"])
-    ch = ch - np.sum(ch * s, axis=1, keepdims=True) * s
-    # section-plane axes: x backwards (-t), y downwind (n), both normal to the span
+    # section-plane axes: x backwards (-t), y downwind (n), both normal to the span; x cross y = -s,
+    # so a turn about +s lowers beta: +s is the nose-up axis
     x = _unit(-t + np.sum(t * s, axis=1, keepdims=True) * s)
     y = _unit(np.cross(s, x))
     y = np.where((y @ n < 0)[:, None], -y, y)
     phi = np.arctan2(np.sum(W * y, 1), np.sum(W * x, 1))  # inflow angle from the rotor plane
-    beta = np.arctan2(np.sum(ch * y, 1), np.sum(ch * x, 1))  # chord (LE->TE) angle, + to feather
+    beta = np.arctan2(np.sum(ch * y, 1), np.sum(ch * x, 1))  # chord angle, + to feather
     alpha = phi - beta
-    cl = np.empty_like(alpha)
-    cd = np.empty_like(alpha)
+    cl, cd, cm = (np.empty_like(alpha) for _ in range(3))
     for kk in np.unique(g["airfoil"]):
         sel = g["airfoil"] == kk
         pol = g["polars"][int(kk)]
-        cl[sel] = np.interp(alpha[sel], pol.alpha, pol.cl)
-        cd[sel] = np.interp(alpha[sel], pol.alpha, pol.cd)
-    qd = 0.5 * g["rho"] * np.sum(W * W, 1) * g["c"]
-    Wh = _unit(W)
+        for out, tab in ((cl, pol.cl), (cd, pol.cd), (cm, pol.cm)):
+            out[sel] = np.interp(alpha[sel], pol.alpha, tab)
+    qc = 0.5 * g["rho"] * np.sum(W * W, 1) * g["c"]
     lift = np.cos(phi)[:, None] * y - np.sin(phi)[:, None] * x  # normal to W, downwind / forward
-    return qd[:, None] * (cl[:, None] * lift + cd[:, None] * Wh), alpha, phi
+    F = qc[:, None] * (cl[:, None] * lift + cd[:, None] * _unit(W))
+    M = np.sum(np.cross(r14, F) * s, 1) + qc * g["c"] * cm  # about +s (nose-up)
+    return F, M, alpha, phi
 
 
 def quasi_steady_jacobians(g, h=1e-4):
-    """Central-difference Jacobians (ns, 3, 3) of the force w.r.t. dv (per m/s), dth (per rad),
-    du (per m)."""
+    """Central-difference Jacobians of (F, M) w.r.t. dv, du (per m/s, per m; (ns, 4, 3)) and tw,
+    twdot (per rad, per rad/s; (ns, 4)); rows (F_x, F_y, F_z, M)."""
     ns = g["W0"].shape[0]
-    out = []
-    for which, step in (("v", h), ("th", h * 1e-2), ("u", h)):
-        J = np.zeros((ns, 3, 3))
+    z3, z1 = np.zeros((ns, 3)), np.zeros(ns)
+
+    def fm(dv=z3, du=z3, tw=z1, twdot=z1):
+        F, M, _, _ = quasi_steady_force(g, dv, du, tw, twdot)
+        return np.column_stack([F, M])
+
+    J = {}
+    for name in ("dv", "du"):
+        Jn = np.zeros((ns, 4, 3))
         for c in range(3):
             e = np.zeros((ns, 3))
-            e[:, c] = step
-            args_p = [np.zeros((ns, 3))] * 3
-            args_m = [np.zeros((ns, 3))] * 3
-            i = ("v", "th", "u").index(which)
-            args_p[i], args_m[i] = e, -e
-            J[:, :, c] = (quasi_steady_force(g, *args_p)[0] - quasi_steady_force(g, *args_m)[0]) / (2 * step)
-        out.append(J)
-    return out
+            e[:, c] = h
+            Jn[:, :, c] = (fm(**{name: e}) - fm(**{name: -e})) / (2 * h)
+        J[name] = Jn
+    for name, step in (("tw", 1e-6), ("twdot", h)):
+        e = np.full(ns, step)
+        J[name] = (fm(**{name: e}) - fm(**{name: -e})) / (2 * step)
+    return J
 
 
 def quasi_steady_audit(p: Point, lam: complex, Q: np.ndarray, rotations: bool = True):
-    """sigma shares of the independent quasi-steady force: (in-plane, out-of-plane) blocks of
-    the velocity Jacobian, rotation and transport terms, per strip (translational work only)."""
+    """sigma shares (1/s) of the independent blade-element force on the mode ``(lam, Q)``, by
+    work term: forces on the in-plane (t), out-of-plane (n) and radial (r) translations from each
+    velocity component, from the twist and its rate, from the transport velocity; the moment's
+    work on the twist ("moment").  ``rotations=False``: the mode's twist left out."""
     g = quasi_steady_setup(p)
-    Jv, Jth, Ju = quasi_steady_jacobians(g)
+    J = quasi_steady_jacobians(g)
     sec = p.st.sections
     ns = sec.n_sections
     width = np.asarray(sec.width, float)
     m = np.real(np.vdot(Q, p.Ms @ Q))
     k = np.real(np.vdot(Q, p.Ks @ Q))
     den = abs(lam) ** 2 * m + k
-    n, t = g["n"], g["t"]
+    n, t, s = g["n"], g["t"], g["span"]
     out = {}
     for Y in blade_vectors(p, Q):
         w = np.asarray(sec.motion_map @ (p.B @ Y)).reshape(ns, 6)
-        u, th = w[:, :3], (w[:, 3:] if rotations else np.zeros((ns, 3)))
-        # rotor-plane components of the translation: out of plane (n), in plane (t)
+        u = w[:, :3]
+        tw = np.sum(w[:, 3:] * s, 1) if rotations else np.zeros(ns)
         comps = {"n": np.outer(u @ n, n), "t": np.sum(u * t, 1)[:, None] * t}
         comps["r"] = u - comps["n"] - comps["t"]
+        sources = {**{f"v:{b_}": np.einsum("jab,jb->ja", J["dv"], lam * ub) for b_, ub in comps.items()},
+                   "twist": J["tw"] * tw[:, None] + J["twdot"] * (lam * tw)[:, None],
+                   "transport": np.einsum("jab,jb->ja", J["du"], u)}
         terms = {}
-        for a_, ua in comps.items():
-            for b_, ub in comps.items():
-                F = np.einsum("jab,jb->ja", Jv, lam * ub)
-                terms[f"v:{a_}<-{b_}"] = np.sum(np.conj(ua) * F, 1)
-            terms[f"twist:{a_}"] = np.sum(np.conj(ua) * np.einsum("jab,jb->ja", Jth, th), 1)
-            terms[f"transport:{a_}"] = np.sum(np.conj(ua) * np.einsum("jab,jb->ja", Ju, u), 1)
+        for src, f in sources.items():
+            for a_, ua in comps.items():
+                terms[f"{src}->{a_}"] = np.sum(np.conj(ua) * f[:, :3], 1)
+            terms[f"{src}->moment"] = np.conj(tw) * f[:, 3]
         for key, A_j in terms.items():
             out[key] = out.get(key, 0.0) - np.real(np.conj(lam) * A_j * width) / den
     return out, g
 
 
-def summarize(res, label):
-    per = res["per"]
-    print(f"  {label}: lambda = {res['lambda']:.4f}  f = {abs(res['lambda'])/2/np.pi:.4f} Hz  "
-          f"sigma = {res['sigma']:.5f} 1/s  (structural {res['structural']:.5f}, aero {res['aero']:.5f}, "
-          f"identity residual {res['check']:.1e})")
-    rows = {}
-    for (name, part, kind), v in per.items():
-        rows.setdefault(name, {})[(part, kind)] = v.sum()
-    print(f"    {'piece':14s} {'rel inst':>9s} {'rel lag':>9s} {'tr inst':>9s} {'tr lag':>9s} {'total':>9s}")
-    for name, r in rows.items():
-        vals = [r[("relative", "inst")], r[("relative", "lag")], r[("transport", "inst")], r[("transport", "lag")]]
-        print(f"    {name:14s} " + " ".join(f"{x:9.5f}" for x in vals) + f" {sum(vals):9.5f}")
+PIECE_NAMES = {"cl": "Cl0", "cd": "Cd0", "cm": "Cm0", "dcl": "dCl/da", "dcd": "dCd/da", "dcm": "dCm/da",
+               "apparent mass": "apparent mass"}
+
+
+def piece_table(res) -> list[str]:
+    """Markdown rows: sigma share (1/s) of each piece, instantaneous / lag, relative / transport."""
+    rows = ["| piece | relative, instantaneous | relative, lag states | transport, instantaneous | "
+            "transport, lag states | total |", "|---|---|---|---|---|---|"]
+    for name, label in PIECE_NAMES.items():
+        v = [res["per"][(name, part, kind)].sum() for part in ("relative", "transport") for kind in ("inst", "lag")]
+        rows.append(f"| {label} | " + " | ".join(f"{x:+.4f}" for x in v) + f" | {sum(v):+.4f} |")
+    rows.append(f"| **aerodynamic** | | | | | **{res['aero']:+.4f}** |")
+    rows.append(f"| structural (file damping) | | | | | {res['structural']:+.4f} |")
+    rows.append(f"| sum = sigma = -Re(lambda) | | | | | {res['structural'] + res['aero']:.4f} "
+                f"(eigenvalue {res['sigma']:.4f}) |")
+    return rows
+
+
+def span_table(p: Point, res, edges=(0.0, 0.2, 0.4, 0.6, 0.8, 1.0)) -> list[str]:
+    """Markdown rows: the aerodynamic sigma by span station (fraction of the tip radius)."""
+    r = np.asarray(p.st.sections.radius, float)
+    x = r / r.max()
+    tot = sum(v for v in res["per"].values())
+    by = {n: sum(res["per"][(n, a, b)] for a in ("relative", "transport") for b in ("inst", "lag"))
+          for n in PIECE_NAMES}
+    rows = ["| r/R | all pieces | Cl0 | Cd0 | dCl/da | other |", "|---|---|---|---|---|---|"]
+    for lo, hi in zip(edges[:-1], edges[1:]):
+        sel = (x > lo) & (x <= hi)
+        main = [by[k][sel].sum() for k in ("cl", "cd", "dcl")]
+        rows.append(f"| {lo:.1f}-{hi:.1f} | {tot[sel].sum():+.4f} | " + " | ".join(f"{v:+.4f}" for v in main)
+                    + f" | {tot[sel].sum() - sum(main):+.4f} |")
+    return rows
+
+
+def blade_element_table(p: Point, lam, Q) -> list[str]:
+    """Markdown rows: the independent blade-element evaluation against the operator's
+    quasi-steady law on the same mode, translations only and with the section rotations."""
+    qs_law = dataclasses.replace(p.oper.options, circulation="quasi_steady", apparent_mass=0.0)
+    rows = ["| motion used | operator, quasi-steady law | blade element (independent) | difference |",
+            "|---|---|---|---|"]
+    for rot in (False, True):
+        a = audit(p, lam, Q, options=qs_law, rotations=rot)["aero"]
+        b = sum(v.sum() for v in quasi_steady_audit(p, lam, Q, rotations=rot)[0].values())
+        rows.append(f"| {'translations and rotations' if rot else 'translations only'} | {a:+.5f} | {b:+.5f} | "
+                    f"{b - a:+.1e} |")
+    return rows
+
+
+def blade_element_terms(p: Point, lam, Q) -> list[str]:
+    """Markdown rows: the blade-element sigma shares by work term."""
+    qs = quasi_steady_audit(p, lam, Q)[0]
+    groups = {"in-plane force from in-plane velocity": ["v:t->t"],
+              "flap force from flap velocity": ["v:n->n"],
+              "cross terms: in-plane force from flap velocity": ["v:n->t"],
+              "cross terms: flap force from in-plane velocity": ["v:t->n"],
+              "forces from the twist and its rate (on translations)": ["twist->n", "twist->t", "twist->r"],
+              "moment on the twist (all sources)": [k for k in qs if k.endswith("->moment")],
+              "transport velocity (on translations)": ["transport->n", "transport->t", "transport->r"],
+              "radial components": ["v:r->n", "v:r->t", "v:r->r", "v:n->r", "v:t->r"]}
+    rows = ["| blade-element work term | sigma share (1/s) |", "|---|---|"]
+    for label, keys in groups.items():
+        rows.append(f"| {label} | {sum(qs[k].sum() for k in keys):+.4f} |")
+    rows.append(f"| total | {sum(v.sum() for v in qs.values()):+.4f} |")
+    return rows
+
+
+def mode_content(p: Point, Q) -> tuple[complex, complex]:
+    """Tip flap / tip edge (m/m) and tip torsion / tip edge (rad/m) of blade 0, blade-root frame."""
+    sec = p.st.sections
+    ns = sec.n_sections
+    Y = blade_vectors(p, Q)[0]
+    w = np.asarray(sec.motion_map @ (p.B @ Y)).reshape(ns, 6)
+    F = p.st.frames[0]
+    u, th = w[:, :3] @ F, w[:, 3:] @ F
+    return u[-1, 0] / u[-1, 1], th[-1, 2] / u[-1, 1]
+
+
+def edge_pair(p: Point):
+    """(cyclic, collective) 1st edge eigenpairs of the rotor on a fixed nacelle."""
+    modes = [m for m in rotating_modes(p) if abs(m[0]) > 2 * np.pi * 0.3]
+    col = [m for m in modes if 1.2 < abs(m[0]) / 2 / np.pi < 1.7 and -m[0].real < 0.1 * abs(m[0])][0]
+    return modes[0], col
 
 
 def main(speeds):
     for V in speeds:
         p = build(V)
-        modes = rotating_modes(p)
-        print(f"V = {V} m/s, Omega = {p.omega * 30 / np.pi:.3f} rpm")
-        for lam, Q in modes:
-            print(f"   mode {abs(lam)/2/np.pi:.4f} Hz zeta {-lam.real/abs(lam):.4f}")
+        (lc, Qc), (lk, Qk) = edge_pair(p)
+        for label, lam, Q in (("cyclic (BW/FW) 1st edge", lc, Qc), ("collective 1st edge", lk, Qk)):
+            res = audit(p, lam, Q)
+            fl, to = mode_content(p, Q)
+            print(f"\n### V = {V} m/s, {label}: {abs(lam) / 2 / np.pi:.4f} Hz (rotating frame), "
+                  f"zeta {-lam.real / abs(lam):.4f}; tip flap/edge {abs(fl):.3f} at {np.degrees(np.angle(fl)):.0f} deg, "
+                  f"torsion/edge {abs(to):.4f} rad/m at {np.degrees(np.angle(to)):.0f} deg\n")
+            print("\n".join(piece_table(res)))
+            if Q is Qc:
+                print()
+                print("\n".join(span_table(p, res)))
+            print()
+            print("\n".join(blade_element_table(p, lam, Q)))
+            print()
+            print("\n".join(blade_element_terms(p, lam, Q)))
+        pm = build(V, aero=dataclasses.replace(p.oper.options, mean_loads=False))
+        (lm, Qm), _ = edge_pair(pm)
+        res = audit(pm, lm, Qm)
+        fl, to = mode_content(pm, Qm)
+        print(f"\n### V = {V} m/s, cyclic 1st edge WITHOUT mean loads: {abs(lm) / 2 / np.pi:.4f} Hz, "
+              f"sigma {-lm.real:.4f}; tip flap/edge {abs(fl):.3f} at {np.degrees(np.angle(fl)):.0f} deg\n")
+        print("\n".join(piece_table(res)))
+        print()
+        print("\n".join(blade_element_terms(pm, lm, Qm)))
 
 
 if __name__ == "__main__":
