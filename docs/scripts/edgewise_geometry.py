@@ -130,17 +130,19 @@ def experiment(V: float, factors=FACTORS, pitch: float | None = None, turbine: b
 
 
 def main(speeds):
+    print("| V (m/s) | model | rotor: cyclic Hz / sigma | rotor: collective Hz / sigma | turbine BW Hz / zeta % | "
+          "turbine FW Hz / zeta % | turbine collective Hz / zeta % | mean BW, FW sigma |")
+    print("|---|---|---|---|---|---|---|---|")
     for V in speeds:
         h = hawcstab2(V)
-        print(f"V = {V} m/s   HAWCStab2: " + "  ".join(
-            f"{k} {v[0]:.3f} Hz {100 * v[1]:.2f} % sigma {v[2]:.4f}" for k, v in h.items())
-            + f"  mean BW/FW sigma {(h['BW'][2] + h['FW'][2]) / 2:.4f}")
+        print(f"| {V:g} | HAWCStab2 | | | {h['BW'][0]:.3f} / {100 * h['BW'][1]:.2f} | {h['FW'][0]:.3f} / "
+              f"{100 * h['FW'][1]:.2f} | {h['collective'][0]:.3f} / {100 * h['collective'][1]:.2f} | "
+              f"{(h['BW'][2] + h['FW'][2]) / 2:.4f} |")
         for f, r in experiment(V).items():
             c, k, t = r["rotor cyclic"], r["rotor collective"], r["turbine"]
-            print(f"  f = {f}: rotor cyclic {abs(c) / 2 / np.pi:.3f} Hz sigma {-c.real:.4f}, collective "
-                  f"{abs(k) / 2 / np.pi:.3f} Hz sigma {-k.real:.4f} | turbine " + "  ".join(
-                      f"{w} {v[0]:.3f} Hz {100 * v[1]:.2f} %" for w, v in t.items())
-                  + f"  mean BW/FW sigma {(t['BW'][2] + t['FW'][2]) / 2:.4f}")
+            cells = [f"{t[w][0]:.3f} / {100 * t[w][1]:.2f}" for w in ("BW", "FW", "collective")]
+            print(f"| | f = {f:g} | {abs(c) / 2 / np.pi:.3f} / {-c.real:.4f} | {abs(k) / 2 / np.pi:.3f} / "
+                  f"{-k.real:.4f} | " + " | ".join(cells) + f" | {(t['BW'][2] + t['FW'][2]) / 2:.4f} |")
 
 
 if __name__ == "__main__":

@@ -33,8 +33,9 @@ def reference(code: str, V: float):
         cases = yaml.safe_load(f)["cases"]
     c = min(cases, key=lambda c: abs(c["configuration"]["wind_speed"] - V))
     d = c["outputs"]["distributed"]
-    return c["configuration"], {k: (np.asarray(d[k]["grid"], float), np.asarray(d[k]["values"], float))
-                                for k in ("aero_force_axial", "aero_force_tangential")}
+    # the references' tangential force is positive against the rotation: turned to ours (driving +)
+    return c["configuration"], {k: (np.asarray(d[k]["grid"], float), sgn * np.asarray(d[k]["values"], float))
+                                for k, sgn in (("aero_force_axial", 1.0), ("aero_force_tangential", -1.0))}
 
 
 def ours(turbine, V, rpm, pitch_deg, n_span=30):
@@ -59,8 +60,9 @@ def main(speeds):
         cfg, ref = reference("hawc2", V)
         cfo, refo = reference("openfast", V)
         s, x, fa, ft = ours(turbine, V, cfg["rotor_speed"], cfg["pitch"])
-        print(f"V = {V} m/s (HAWC2 {cfg['rotor_speed']:.3f} rpm, pitch {cfg['pitch']:.3f} deg)")
-        print("  span   fa ours  HAWC2  OpenFAST |  ft ours  HAWC2  OpenFAST  (N/m)")
+        print(f"V = {V} m/s (HAWC2 {cfg['rotor_speed']:.3f} rpm, pitch {cfg['pitch']:.3f} deg; OpenFAST "
+              f"{cfo['rotor_speed']:.3f} rpm, {cfo['pitch']:.3f} deg; ours at HAWC2's)")
+        print("  span   fa ours  HAWC2  OpenFAST |  ft ours  HAWC2  OpenFAST  (N/m, ft + driving)")
         for xi in (0.3, 0.5, 0.7, 0.8, 0.9, 0.95):
             row = [np.interp(xi, x, fa), np.interp(xi, *ref["aero_force_axial"]), np.interp(xi, *refo["aero_force_axial"]),
                    np.interp(xi, x, ft), np.interp(xi, *ref["aero_force_tangential"]),
