@@ -16,7 +16,11 @@ the damping matrix ``F = -C x'`` is, with ``k = rho c W / 2`` and the polar slop
     C_nt = -k [Cl (1 + cos^2) + (Cd - Cl') sin cos - Cd' sin^2]     (out-of-plane force per in-plane velocity)
     C_tn = k [Cl (1 + sin^2) + (Cl' - Cd) sin cos - Cd' cos^2]      (in-plane force per out-of-plane velocity)
 
-(``sin``, ``cos`` of ``phi``).  ``C_tt`` is the in-plane damping formula of Hansen (2007, Wind
+(``sin``, ``cos`` of ``phi``).  The transport velocity of the rotating frame, ``Omega n x u`` for a
+displacement ``u`` of the section, is ``Omega u_r t`` for a radial displacement (nothing for ``u``
+along ``n``; a spanwise velocity for ``u`` along ``t``), so it adds the stiffness
+``F = -Omega C[:, t] u_r`` to the strips (the operating-point model's
+:func:`~windflutter.system.blade_aero.project_blade_aero`).  ``C_tt`` is the in-plane damping formula of Hansen (2007, Wind
 Energy 10:551, "Aeroelastic instability problems for wind turbines") and of the edgewise-damping
 audit (docs/edgewise_damping.md).  Without the mean-load terms the operator keeps only the slope
 terms (``Cl = Cd = 0`` in the formula).
@@ -33,6 +37,9 @@ for it, so the tolerance is round-off (1e-10 of each matrix's largest entry).
 import numpy as np
 import pytest
 import scipy.sparse as sp
+
+from windflutter.system.blade import axis_skew_translations
+from windflutter.system.blade_aero import StripBlocks, project_blade_aero
 
 from windflutter.aero.flow import OperatingPoint
 from windflutter.aero.operators import StateSpaceAero
@@ -153,3 +160,28 @@ def test_in_plane_damping_of_an_outer_strip_is_cut_by_the_mean_lift():
     expected = 0.5 * RHO * CHORD[j] * W * (cd[j] * (1 + np.cos(phi[j]) ** 2) - cl[j] * np.sin(phi[j]) * np.cos(phi[j]))
     assert expected < 0
     assert with_ml[j, 1, 1] - without[j, 1, 1] == pytest.approx(expected, rel=1e-10)
+
+
+def test_transport_velocity_is_omega_times_the_tangential_damping_of_a_radial_displacement():
+    # the rotating-frame transport term of the turbine assembly (system.blade_aero), on these
+    # strips with their own 6 DOFs as the coordinates (blade along +z: radial = z)
+    sec, op, phi = _strips()
+    C, oper = operator_damping(sec, op)
+    ss = oper.state_space()
+    ns = sec.n_sections
+    R = oper.P.toarray()
+    Rt = (oper.P @ axis_skew_translations(ns, np.array([1.0, 0.0, 0.0]))).toarray()
+    blocks = StripBlocks(Ma=ss.Ma, Da=ss.Da, Ka=ss.Ka)
+    _, _, Ka, *_ = project_blade_aero(blocks, R, Rt, OMEGA)
+    _, _, Ka0, *_ = project_blade_aero(blocks, R, Rt, 0.0)
+    K_tr = Ka - Ka0  # the aerodynamic force (added to the structure's right-hand side) per displacement
+    n_hat, t_hat = np.array([1.0, 0.0, 0.0]), np.array([0.0, -1.0, 0.0])
+    for j in range(ns):
+        rows = slice(6 * j, 6 * j + 3)
+        f_r = K_tr[rows, 6 * j + 2]  # unit radial (z) displacement of strip j
+        scale = OMEGA * np.abs(C[j]).max()
+        assert f_r @ n_hat == pytest.approx(-OMEGA * C[j, 0, 1], abs=1e-10 * scale)
+        assert f_r @ t_hat == pytest.approx(-OMEGA * C[j, 1, 1], abs=1e-10 * scale)
+        # a displacement along the shaft or the direction of rotation adds no aerodynamic force
+        np.testing.assert_allclose(K_tr[rows, 6 * j: 6 * j + 2], 0.0, atol=1e-10 * scale)
+    assert np.abs(K_tr[:, 3::6]).max() == 0.0  # rotations carry no transport term
