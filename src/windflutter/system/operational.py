@@ -40,6 +40,11 @@ RPM = math.pi / 30.0
 #: (beams: ~200); above (shells: ~8000 per blade) sparse shift-invert Lanczos
 DENSE_BASIS_LIMIT = 1500
 
+#: supports with more free DOFs than this (shell towers) are reduced to SUPPORT_AUTO_MODES modes
+#: plus the six hub-load corrections unless ``support_modes`` says otherwise
+SUPPORT_FULL_ORDER_LIMIT = 400
+SUPPORT_AUTO_MODES = 30
+
 #: relative change of the steady state's strip motions and loads at which its iteration stops: the
 #: linearization needs the state to a few digits (1e-5 moves the NREL 5 MW onsets by < 1e-4 RPM)
 STEADY_TOL = 1e-5
@@ -62,7 +67,8 @@ class OperationalOptions:
     corrections : add static corrections (modal truncation augmentation) of the aerodynamic loads
         of the retained modes to the blade basis; ``correction_tol`` is their relative cut-off.
     support_modes : support modes (+ 6 hub-load corrections); ``None``: its full constrained
-        coordinates (beam towers).
+        coordinates up to :data:`SUPPORT_FULL_ORDER_LIMIT` DOFs (beam towers), 30 modes above
+        (shell towers).
     drivetrain : ``"flexible"`` (shaft spring, generator inertia), ``"rigid"`` or ``"locked"``.
     aero : the strip operator's options (:class:`~windflutter.aero.unsteady.UnsteadyOptions` for
         the state-space model; :class:`~windflutter.aero.strip.AeroOptions` for the thesis's
@@ -195,8 +201,11 @@ class OperationalModel:
             fe, _ = build_model(self.turbine, self._mesh("support"))
             st = assemble(fe)
             basis = None
-            if self.options.support_modes is not None:
-                basis = _support_basis(st, self.options.support_modes)
+            n_sup = self.options.support_modes
+            if n_sup is None and st.nq > SUPPORT_FULL_ORDER_LIMIT:
+                n_sup = SUPPORT_AUTO_MODES  # shell towers: a modal basis, beam towers stay at full order
+            if n_sup is not None:
+                basis = _support_basis(st, n_sup)
             sm = support_model(fe, st, basis=basis)
             if self.options.damping == "file":
                 sm.D = self._support_damping(sm)
@@ -410,6 +419,8 @@ def _support_basis(st, n_modes: int) -> np.ndarray:
     hub = int(st.fe.node_groups["hub"][0])
     H = np.asarray(st.T[6 * hub: 6 * hub + 6].todense()).T
     X = spla.splu(K).solve(H)
+    X -= V @ (V.T @ (M @ X))  # the part the modes miss, at unit mass-norm
+    X /= np.sqrt(np.maximum(np.einsum("ij,ij->j", X, M @ X), 1e-300))
     B = np.hstack([V, X])
     G = B.T @ (M @ B)
     w, U = np.linalg.eigh(0.5 * (G + G.T))
