@@ -61,7 +61,7 @@ def windflutter_points():
     for v in WINDS:
         rpm, pitch = operating_point(v)
         ps = om.at(v, rpm=rpm, pitch=np.radians(pitch))
-        out[v] = [m for m in point_modes(ps, max_hz=2.3) if not m.rigid]
+        out[v] = [m for m in point_modes(ps, max_hz=2.3) if not m.rigid]  # (the tests below use < 2.2 Hz)
     return out
 
 
@@ -112,3 +112,58 @@ def test_iea15mw_modes_match_hawcstab2(windflutter_points):
         lines.append(f"{v:4.0f} m/s: {n}/{f_ref.size} HAWCStab2 modes matched")
     print("\n".join(lines))
     assert hit >= 0.85 * total, "\n".join(lines)
+
+
+# ---------------------------------------------------------------------------- family by family
+def hawcstab2_labelled(wind: float, min_hz: float = 0.3):
+    """HAWCStab2's modes at ``wind`` named by their largest blade amplitude in its own .amp file
+    (tests/data/iea15mw_hawcstab2/modes.csv, docs/scripts/extract_hawcstab2_modes.py): the n-th mode
+    labelled e.g. "BW edge" above ``min_hz`` (the 1st tower modes, whose blade tip moves more than the
+    tower top, carry blade labels too) and below 99 % damping is ``("BW edge", n)``."""
+    import csv
+
+    rows = [r for r in csv.DictReader(open(DATA / "modes.csv")) if float(r["wind_speed"]) == wind
+            and min_hz < float(r["frequency_hz"]) < 6.0 and float(r["damping_pct"]) < 99.0]
+    rows.sort(key=lambda r: float(r["frequency_hz"]))
+    out: dict = {}
+    for r in rows:
+        n = sum(1 for k in out if k[0] == r["blade_label"]) + 1
+        out[(r["blade_label"], n)] = (float(r["frequency_hz"]), float(r["damping_pct"]) / 100.0)
+    return out
+
+
+FAMILY_PAIRS = {("BW edge", 1): "1st edge BW", ("FW edge", 1): "1st edge FW", ("Sym edge", 1): "1st edge collective",
+                ("BW flap", 1): "1st flap BW", ("FW flap", 1): "1st flap FW", ("Sym flap", 1): "1st flap collective"}
+
+#: pairs that miss the criterion today (docs/campbell.md sec. 4): the 1st edge BW at rated wind (its
+#: decay rate 2.2 x HAWCStab2's: the edge-torsion coupling of the deflected blade, docs/edgewise_damping.md)
+#: and the 1st flap collective at 25 m/s (zeta 25.0 % against 34.0 %: -26 %, the band is 25 %)
+KNOWN_MISSES = {("1st edge BW", 10.0), ("1st flap collective", 25.0)}
+
+
+def test_iea15mw_damping_family_by_family_against_hawcstab2(windflutter_points):
+    """Issue 14's criterion, mode by mode: the decay rate sigma = -Re(lambda) of the 1st edge modes
+    within 35 % of HAWCStab2's or the damping ratio within 1 point; the 1st flap modes' damping ratio
+    within 25 % (where it is below 0.6).  HAWCStab2's modes named by their own amplitudes.  Every pair
+    passes except KNOWN_MISSES, which must still miss (so the list cannot go stale)."""
+    fails, lines = set(), []
+    for v, modes in windflutter_points.items():
+        ours = {m.name: m for m in modes}
+        ref = hawcstab2_labelled(v)
+        for key, name in FAMILY_PAIRS.items():
+            f, z = ref[key]
+            m = ours[name]
+            # the same mode: 10 % in frequency; 20 % for the flap modes, whose |lambda| at 30-50 %
+            # damping moves with the aerodynamic lag (measured up to 15 % at 5 m/s)
+            assert abs(m.frequency_hz - f) <= (0.10 if "edge" in name else 0.20) * f, (v, name, m.frequency_hz, f)
+            if "edge" in name:
+                s_ref = z * 2 * np.pi * f / np.sqrt(1 - z**2)
+                ok = abs(-m.eigenvalue.real / s_ref - 1) <= 0.35 or abs(m.damping_ratio - z) <= 0.01
+            else:
+                ok = z >= 0.6 or abs(m.damping_ratio / z - 1) <= 0.25
+            lines.append(f"{v:4.0f} m/s {name:20s} ours {100 * m.damping_ratio:6.2f} %  HAWCStab2 {100 * z:6.2f} %  "
+                         f"{'ok' if ok else 'MISS'}")
+            if not ok:
+                fails.add((name, v))
+    print("\n".join(lines))
+    assert fails == KNOWN_MISSES, "\n".join(lines)
