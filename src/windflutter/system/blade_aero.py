@@ -15,38 +15,16 @@ virtual work (``R^T``), the blade's equations get ``-R^T Ma R`` (mass), ``-R^T D
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 import scipy.sparse as sp
 
+from windflutter.aero.statespace import StripStateSpace
 from windflutter.system.multiblade import BladeSystem
 
 
-@dataclass
-class StripBlocks:
-    """Per-strip aerodynamic blocks (real, SI; forces already times the strip width).
-
-    Ma, Da, Ka : (ns, 3, 3).  Cz : (ns, 3, nz); Az : (ns, nz, nz); Bq, Bv : (ns, nz, 3); ``nz = 0``
-    for operators without aerodynamic states.
-    """
-
-    Ma: np.ndarray
-    Da: np.ndarray
-    Ka: np.ndarray
-    Cz: np.ndarray | None = None
-    Az: np.ndarray | None = None
-    Bq: np.ndarray | None = None
-    Bv: np.ndarray | None = None
-
-    @property
-    def n_sections(self) -> int:
-        return int(self.Ma.shape[0])
-
-    @property
-    def n_states(self) -> int:
-        """Aerodynamic states per strip."""
-        return 0 if self.Az is None else int(self.Az.shape[1])
+#: the per-strip pieces are the operator's :class:`~windflutter.aero.statespace.StripStateSpace`
+#: (forces times the strip widths; ``nz = 0`` for operators without states)
+StripBlocks = StripStateSpace
 
 
 def _dense(A) -> np.ndarray:
@@ -98,6 +76,9 @@ def quasi_steady_blocks(strip) -> StripBlocks:
     """Provisional operator: today's Theodorsen strips (:class:`~windflutter.aero.strip.StripAero`)
     with ``C = 1`` (quasi-steady, no states), mean-load terms as the strip was configured."""
     pt = strip.parts()
-    Ma, Da, Ka = pt.matrices(np.ones(strip.sections.n_sections))
+    ns = strip.sections.n_sections
+    Ma, Da, Ka = pt.matrices(np.ones(ns))
     w = strip.width[:, None, None]
-    return StripBlocks(Ma=np.real(Ma) * w, Da=np.real(Da) * w, Ka=np.real(Ka) * w)
+    z0 = np.zeros((ns, 3, 0))
+    return StripStateSpace(Ma=np.real(Ma) * w, Da=np.real(Da) * w, Ka=np.real(Ka) * w, Cz=z0,
+                           Az=np.zeros((ns, 0, 0)), Bq=np.zeros((ns, 0, 3)), Bv=np.zeros((ns, 0, 3)))

@@ -212,23 +212,16 @@ def _transform(nF: int, m: int, n_blades: int, psi: float, omega: float):
 
 
 @dataclass
-class MultiBladeSystem:
+class MultiBladeSystem(PeriodicSystem):
     """The time-invariant system in multi-blade coordinates (ground-fixed frame).
 
     ``M q'' + C q' + K q = F z``, ``z' = A z + Bq q + Bv q'`` over ``q_B = [x_F, eta_B]`` with
     ``eta_B`` ordered coordinate-major: ``[eta_0 (m), eta_1c (m), eta_1s (m), ...]``.
     """
 
-    M: np.ndarray
-    C: np.ndarray
-    K: np.ndarray
-    F: np.ndarray
-    A: np.ndarray
-    Bq: np.ndarray
-    Bv: np.ndarray
-    n_fixed: int
-    n_eta: int
-    n_blades: int
+    n_fixed: int = 0
+    n_eta: int = 0
+    n_blades: int = 0
 
     def state_matrix(self) -> np.ndarray:
         """First-order ``x' = S x`` with ``x = [q, q', z]``."""

@@ -30,7 +30,7 @@ import scipy.linalg as sla
 from windflutter.aero.sections import RotorGeometry
 from windflutter.errors import InputError
 from windflutter.system.blade import RotorBlade
-from windflutter.system.blade_aero import StripBlocks, blade_system, project_blade_aero
+from windflutter.system.blade_aero import blade_system, project_blade_aero
 from windflutter.system.multiblade import MultiBladeSystem, multiblade_system
 from windflutter.system.support import Drivetrain, fixed_frame, rigid_body_mass, support_model
 
@@ -362,8 +362,7 @@ class OperationalModel:
             from windflutter.system.blade_aero import quasi_steady_blocks
 
             return quasi_steady_blocks(oper), oper.P
-        ss = oper.state_space()
-        return StripBlocks(Ma=ss.Ma, Da=ss.Da, Ka=ss.Ka, Cz=ss.Cz, Az=ss.Az, Bq=ss.Bq, Bv=ss.Bv), oper.P
+        return oper.state_space(), oper.P
 
     def _linearized_strips(self, rb: RotorBlade, st):
         """The strips the linear aerodynamics act on: the deflected ones when the structure is linearized
