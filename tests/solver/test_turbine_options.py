@@ -25,7 +25,7 @@ def test_bad_combinations_name_the_field():
 
 
 def test_skin_distribution_builds_the_seed_sub_strips():
-    from windflutter.aero.skin import SkinAeroelasticModel, skin_aeroelastic_model
+    from windflutter.solve.skin_model import SkinAeroelasticModel, skin_aeroelastic_model
     from windflutter.model import load_turbine
 
     mesh = {"part": "rotor", "n_chord": 8, "n_span": 4}
