@@ -120,22 +120,33 @@ def test_rigid_rotor_drivetrain_frequency_and_zero_mode():
 # ------------------------------------------------------------------------------- Floquet
 def _periodic_rhs(blade: BladeSystem, fixed, n_blades, omega, axis):
     """x' = A(t) x of the periodic system in physical coordinates [x_F, eta_0 .. eta_N-1], built
-    here from scratch: y_b = J_b(t) q with the blade rotation R = cos I + sin [n] + (1 - cos) n n^T,
-    J' and J'' by central differences in time (step 1e-4 s: error ~1e-9 relative)."""
+    here from scratch: y_b = J_b(t) q with the blade rotation R = cos I + sin [n] + (1 - cos) n n^T
+    of the azimuth a = Omega t + 2 pi b / N, and J', J'' from the exact derivatives of R
+    (dR/da = -sin I + cos [n] + sin n n^T, d2R/da2 = -cos I - sin [n] + cos n n^T). Exact
+    derivatives keep A(t) smooth: finite differences put round-off noise (~eps/h^2) into A(t)
+    that made the adaptive integrator take tens of thousands of steps per percent of a period."""
     nF, m = fixed.M.shape[0], blade.M.shape[0] - 6
     nq = nF + n_blades * m
     nx = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
+    nn = np.outer(axis, axis)
 
     def J(t, b):
+        """J_b and its first two time derivatives."""
         a = omega * t + 2 * np.pi * b / n_blades
-        R = np.cos(a) * np.eye(3) + np.sin(a) * nx + (1 - np.cos(a)) * np.outer(axis, axis)
-        out = np.zeros((6 + m, nq))
-        out[:3, :nF] = R.T @ fixed.L[:3]
-        out[3:6, :nF] = R.T @ fixed.L[3:]
-        out[6:, nF + b * m: nF + (b + 1) * m] = np.eye(m)
+        c, s = np.cos(a), np.sin(a)
+        rots = (c * np.eye(3) + s * nx + (1 - c) * nn,
+                omega * (-s * np.eye(3) + c * nx + s * nn),
+                omega**2 * (-c * np.eye(3) - s * nx + c * nn))
+        out = []
+        for k, R in enumerate(rots):
+            j = np.zeros((6 + m, nq))
+            j[:3, :nF] = R.T @ fixed.L[:3]
+            j[3:6, :nF] = R.T @ fixed.L[3:]
+            if k == 0:
+                j[6:, nF + b * m: nF + (b + 1) * m] = np.eye(m)
+            out.append(j)
         return out
 
-    h = 1e-4
     base = [np.zeros((nq, nq)) for _ in range(3)]
     for X, Y in zip(base, (fixed.M, fixed.C, fixed.K)):
         X[:nF, :nF] = Y
@@ -143,8 +154,7 @@ def _periodic_rhs(blade: BladeSystem, fixed, n_blades, omega, axis):
     def A(t):
         M, C, K = (X.copy() for X in base)
         for b in range(n_blades):
-            j0, jp, jm = J(t, b), J(t + h, b), J(t - h, b)
-            j1, j2 = (jp - jm) / (2 * h), (jp - 2 * j0 + jm) / h**2
+            j0, j1, j2 = J(t, b)
             M += j0.T @ blade.M @ j0
             C += j0.T @ (2 * blade.M @ j1 + blade.C @ j0)
             K += j0.T @ (blade.M @ j2 + blade.C @ j1 + blade.K @ j0)
