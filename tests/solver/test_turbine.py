@@ -1,13 +1,12 @@
 """Whole-rotor checks on the bundled NREL 5 MW (beam model; reduced sizes, full-size runs slow)."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 import scipy.linalg as sla
 
+from windflutter.cli import main
 from windflutter.model.windio import load_turbine
 from windflutter.stability.turbine import TurbineOptions, TurbineStability
 
@@ -49,16 +48,17 @@ def test_reduced_rotor_flutter_above_rated(nrel5mw):
     assert p.flutter_frequency_hz > 0.5
 
 
-def test_stability_cli_json():
-    out = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--part", "rotor",
-                          "--n-span", "6", "--rpm", "16", "28", "4", "--json"], capture_output=True, text=True,
-                         check=True)
-    d = json.loads(out.stdout)
+def test_stability_cli_json(capsys):
+    # in-process (the console entry point as a real process: tests/test_cli_section.py,
+    # tests/cli/test_subprocess.py)
+    assert main(["stability", "nrel5mw", "--part", "rotor", "--n-span", "6", "--rpm", "16", "28", "4",
+                 "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
     (pt,) = d["points"]
     assert set(pt) >= {"wind_speed", "flutter_rpm", "flutter_frequency_hz", "flutter_mode", "divergence_rpm"}
-    bad = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--wind-speeds", "-3"],
-                         capture_output=True, text=True)
-    assert bad.returncode == 2 and "wind-speeds" in bad.stderr
+    assert main(["stability", "nrel5mw", "--wind-speeds", "-3"]) == 2
+    err = capsys.readouterr().err
+    assert "wind-speeds" in err and len(err.strip().splitlines()) == 1
 
 
 @pytest.mark.slow
