@@ -52,6 +52,7 @@ from windflutter.post.progress import RunProgress
 from windflutter.post.rundata import MODEL_SIZE_KEYS, assemble_dataset, check_operating, describe_run  # noqa: F401
 from windflutter.post.runfolder import RUN_FILE  # noqa: F401  (re-exported: the run's record)
 from windflutter.results import OperatingPoint, PointResult  # noqa: F401  (the per-point types; importable here)
+from windflutter.units import RPM
 
 
 # --------------------------------------------------------------------------------------------
