@@ -11,9 +11,15 @@ thread variables the policy sets.
 from __future__ import annotations
 
 import os
+from pathlib import Path
+
+import pytest
 
 from windflutter import threads
 from windflutter.errors import InputError
+
+#: test folders whose modules the spawned Dask workers must import (the toy analyser plug-in)
+WORKER_PATH = (Path(__file__).parent / "workflow",)
 
 
 def pytest_report_header(config):
@@ -25,3 +31,24 @@ def pytest_report_header(config):
     setting = "unset" if not os.environ.get(threads.ENV_VAR) else repr(os.environ[threads.ENV_VAR])
     return (f"windflutter BLAS threads: {'library default' if n is None else n} per process "
             f"({threads.ENV_VAR} {setting}; loaded BLAS libraries now at {counts or 'none loaded yet'})")
+
+
+@pytest.fixture(scope="session")
+def dask_cluster():
+    """One Dask ``LocalCluster`` (2 worker processes, 1 thread each) for the whole session:
+    starting one costs several seconds, and the parallel tests of ``tests/perf`` and
+    ``tests/workflow`` need the same kind. Its workers are spawned with :data:`WORKER_PATH` on
+    ``PYTHONPATH``, so they can import the test plug-ins."""
+    distributed = pytest.importorskip("distributed")
+    old = os.environ.get("PYTHONPATH")
+    os.environ["PYTHONPATH"] = os.pathsep.join([str(p) for p in WORKER_PATH] + ([old] if old else []))
+    try:  # the workers are spawned now: the variable is put back at once
+        cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                                           dashboard_address=None)
+    finally:
+        if old is None:
+            os.environ.pop("PYTHONPATH", None)
+        else:
+            os.environ["PYTHONPATH"] = old
+    with cluster:
+        yield cluster

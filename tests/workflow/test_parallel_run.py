@@ -10,7 +10,6 @@ via ``helpers.assert_same_results``), apart from the wall-clock times.
 from __future__ import annotations
 
 import io
-import os
 
 import numpy as np
 import pytest
@@ -23,23 +22,11 @@ from windflutter.post import store
 from windflutter.workflow import RunInterrupted, run
 
 
-@pytest.fixture(scope="module")
-def cluster():
-    distributed = pytest.importorskip("distributed")
-    # the toy analyser lives in this test folder: the (spawned) Dask workers find it through
-    # PYTHONPATH, as a user's plug-in module would be installed on the cluster
-    here = os.path.dirname(os.path.abspath(toy_analyser.__file__))
-    old = os.environ.get("PYTHONPATH")
-    os.environ["PYTHONPATH"] = os.pathsep.join([here] + ([old] if old else []))
-    try:
-        with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                      dashboard_address=None) as c:
-            yield c
-    finally:
-        if old is None:
-            os.environ.pop("PYTHONPATH", None)
-        else:
-            os.environ["PYTHONPATH"] = old
+@pytest.fixture
+def cluster(dask_cluster):
+    # one for the whole session (tests/conftest.py); its spawned workers find the toy analyser of
+    # this folder through PYTHONPATH, as a user's plug-in module would be installed on a cluster
+    return dask_cluster
 
 
 @pytest.fixture
