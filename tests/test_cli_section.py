@@ -126,7 +126,16 @@ def test_simple_command_json(capsys):
     assert t["thesis_reported_rpm"] == [24.5, 28.5]
 
 
-def test_simple_command_plot(tmp_path, capsys):
+def test_simple_command_plot(tmp_path, capsys, monkeypatch):
+    # the plot path of the command, on three wind speeds instead of 22 (the simple model's
+    # numbers are checked in test_simple_model.py and by test_simple_command_json)
+    import numpy as np
+
+    from windflutter.stability import simple_model
+
+    full = simple_model.run_simple_model
+    monkeypatch.setattr(simple_model, "run_simple_model",
+                        lambda rs, **kw: full(rs, np.array([5.0, 15.0, 25.0]), **kw))
     png = tmp_path / "simple.png"
     assert main(["simple", "--turbine", "nrel5mw", "--plot", str(png)]) == 0
     assert "NREL 5 MW" in capsys.readouterr().out
