@@ -34,6 +34,15 @@ def pytest_report_header(config):
 
 
 @pytest.fixture(scope="session")
+def nrel5mw():
+    """The bundled NREL 5 MW, read and validated once per session (about 0.5 s a read). The
+    turbine dataclasses are frozen; tests that change one make a copy (``dataclasses.replace``)."""
+    from windflutter.model import load_turbine
+
+    return load_turbine("nrel5mw")
+
+
+@pytest.fixture(scope="session")
 def dask_cluster():
     """One Dask ``LocalCluster`` (2 worker processes, 1 thread each) for the whole session:
     starting one costs several seconds, and the parallel tests of ``tests/perf`` and

@@ -7,15 +7,9 @@ import pytest
 import scipy.linalg as sla
 
 from windflutter.cli import main
-from windflutter.model.windio import load_turbine
 from windflutter.stability.turbine import TurbineOptions, TurbineStability
 
 RPM = np.pi / 30
-
-
-@pytest.fixture(scope="module")
-def nrel5mw():
-    return load_turbine("nrel5mw")
 
 
 def test_prestress_raises_flap_frequency(nrel5mw):

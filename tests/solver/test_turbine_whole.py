@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 import windflutter.mesh.turbine as mesh_turbine
-from windflutter.model.windio import load_turbine
 from windflutter.stability.search import pk_search
 from windflutter.stability.turbine import TurbineOptions, TurbineStability
 from windflutter.structure.fem import BeamSection
@@ -51,11 +50,6 @@ def test_pk_onset_analytic_and_neutral_mode_ignored():
 # ------------------------------------------------------------------ NREL 5 MW whole turbine
 N_SPAN = 8  # blade beam elements / strips per blade (reduced; the slow test uses 10)
 GRID = dict(rpm_min=16.0, rpm_max=32.0, rpm_step=2.0)
-
-
-@pytest.fixture(scope="module")
-def nrel5mw():
-    return load_turbine("nrel5mw")
 
 
 def _analyse(turbine, part, monkeypatch=None, edit=None, n_span=N_SPAN, **opts):
