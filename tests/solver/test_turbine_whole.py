@@ -85,18 +85,16 @@ def _stiffen_tower(factor):
 
 
 @pytest.fixture(scope="module")
-def rotor_alone(nrel5mw):
-    return _analyse(nrel5mw, "rotor")
-
-
-@pytest.fixture(scope="module")
 def whole(nrel5mw):
     return _analyse(nrel5mw, "turbine")
 
 
 def test_rotor_alone_reference(rotor_alone):
-    # the reference itself: 1st-torsion -> flap-torsion flutter at ~3.5 Hz below divergence
+    # the reference itself (tests/solver/conftest.py, the same mesh and grid as _analyse here):
+    # 1st-torsion -> flap-torsion flutter at ~3.5 Hz below divergence
     p = rotor_alone
+    grid = np.arange(GRID["rpm_min"], GRID["rpm_max"] + 1e-9, GRID["rpm_step"])
+    np.testing.assert_array_equal(p.sweep_rpm, grid[: p.sweep_rpm.size])  # the sweep stops at the onset
     assert p.flutter_rpm is not None and p.divergence_rpm is not None
     assert p.flutter_rpm < p.divergence_rpm and p.first_instability == "flutter"
     assert 3.0 < p.flutter_frequency_hz < 4.0

@@ -93,16 +93,16 @@ def test_interrupt_keeps_points_and_resume_equals_uninterrupted(toy_config, tmp_
 
 
 def test_resume_refuses_a_different_config(toy_config, tmp_path):
-    run(None, toy_config(wind_speeds=[4, 10]), tmp_path, progress=False)
+    run(None, toy_config(wind_speeds=[4, 10], aero=["potential"]), tmp_path, progress=False)
     with pytest.raises(InputError, match="--resume"):
-        run(None, toy_config(wind_speeds=[4, 12]), tmp_path, resume=True, progress=False)
+        run(None, toy_config(wind_speeds=[4, 12], aero=["potential"]), tmp_path, resume=True, progress=False)
 
 
 def test_fresh_run_discards_old_points(toy_config, tmp_path):
-    run(None, toy_config(wind_speeds=[4, 10, 16]), tmp_path, progress=False)
-    ds = run(None, toy_config(wind_speeds=[4]), tmp_path, progress=False)
-    assert ds.sizes["point"] == 2
-    assert len(list((tmp_path / "points").glob("p*.nc"))) == 2
+    run(None, toy_config(wind_speeds=[4, 10, 16], aero=["potential"]), tmp_path, progress=False)
+    ds = run(None, toy_config(wind_speeds=[4], aero=["potential"]), tmp_path, progress=False)
+    assert ds.sizes["point"] == 1
+    assert len(list((tmp_path / "points").glob("p*.nc"))) == 1
 
 
 def test_bad_analyser_return_is_a_failed_point(toy_config, tmp_path):
