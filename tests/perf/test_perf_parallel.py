@@ -25,7 +25,7 @@ def serial():
 
 @pytest.fixture
 def cluster(dask_cluster):
-    return dask_cluster  # one for the whole session (tests/conftest.py): start-up is the slow part
+    return dask_cluster  # tests/conftest.py
 
 
 def test_serial_results_in_order(serial):

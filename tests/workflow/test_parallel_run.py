@@ -24,8 +24,8 @@ from windflutter.workflow import RunInterrupted, run
 
 @pytest.fixture
 def cluster(dask_cluster):
-    # one for the whole session (tests/conftest.py); its spawned workers find the toy analyser of
-    # this folder through PYTHONPATH, as a user's plug-in module would be installed on a cluster
+    # tests/conftest.py: its spawned workers find the toy analyser of this folder through
+    # PYTHONPATH, as a user's plug-in module would be installed on a cluster
     return dask_cluster
 
 
