@@ -63,6 +63,18 @@ def _module_name(path: Path, src: Path = SRC) -> str:
     return ".".join(parts)
 
 
+def _statements(body):
+    """Every statement in ``body`` and in the statement blocks nested in it (function and class
+    bodies, if/else, try/except/finally, with, loops, match cases): where imports can stand.
+    Expressions are not visited (they are most of the tree and hold no imports)."""
+    for node in body:
+        yield node
+        for name in ("body", "orelse", "finalbody", "handlers", "cases"):
+            block = getattr(node, name, None)
+            if isinstance(block, list):
+                yield from _statements(block)
+
+
 def _imports(path: Path, src: Path = SRC) -> list[tuple[str, int]]:
     """Every windflutter module imported by the file at ``path`` of the package at ``src``:
     ``[(module, line)]``.
@@ -73,7 +85,7 @@ def _imports(path: Path, src: Path = SRC) -> list[tuple[str, int]]:
     name = _module_name(path, src)
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found: list[tuple[str, int]] = []
-    for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"), filename=str(path))):
+    for node in _statements(ast.parse(path.read_text(encoding="utf-8"), filename=str(path)).body):
         if isinstance(node, ast.Import):
             found += [(a.name, node.lineno) for a in node.names if a.name.split(".")[0] == "windflutter"]
         elif isinstance(node, ast.ImportFrom):
@@ -109,7 +121,7 @@ def upward_imports() -> dict[tuple[str, str], list[int]]:
         for target, line in targets:
             if layer[_unit(target)] > layer[_unit(importer)]:
                 out.setdefault((importer, target), []).append(line)
-    return out
+    return {k: sorted(set(v)) for k, v in out.items()}
 
 
 def test_every_module_has_a_layer():
@@ -144,15 +156,19 @@ def test_the_checker_sees_every_kind_of_import(tmp_path):
     (pkg / "__init__.py").write_text("")
     (pkg / "workflow.py").write_text("")
     (pkg / "mesh" / "__init__.py").write_text("")
+    (pkg / "system").mkdir()
+    (pkg / "system" / "__init__.py").write_text("")  # a sub-package named in a from-import
     (pkg / "mesh" / "a.py").write_text(
         "from typing import TYPE_CHECKING\n"
         "import windflutter.errors\n"
         "if TYPE_CHECKING:\n    from windflutter.post import store\n"
         "def f():\n    from .. import workflow\n    from ..stability.turbine import X\n"
-        "    import numpy\n")
+        "    import numpy\n"
+        "class C:\n    try:\n        import windflutter.cli\n    except ImportError:\n"
+        "        from windflutter import system\n")
     got = sorted(_imports(pkg / "mesh" / "a.py", pkg))
-    assert got == [("windflutter.errors", 2), ("windflutter.post", 4), ("windflutter.stability.turbine", 7),
-                   ("windflutter.workflow", 6)]
+    assert got == [("windflutter.cli", 11), ("windflutter.errors", 2), ("windflutter.post", 4),
+                   ("windflutter.stability.turbine", 7), ("windflutter.system", 13), ("windflutter.workflow", 6)]
 
 
 @pytest.mark.parametrize("importer, target, upward", [
