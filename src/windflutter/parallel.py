@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Iterator, Sequence
 
 from windflutter.errors import InputError
+from windflutter.threads import blas_limit, set_process_threads
 
 try:  # cloudpickle ships with dask; fall back to pickle (module-level functions only)
     import cloudpickle as _cp
@@ -208,13 +209,8 @@ def _die_with_parent() -> None:
 def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
     global _WORKER_FN
     _die_with_parent()
-    if blas_threads is not None:
-        try:  # for the life of the worker process; see windflutter.solve.linsolve on why
-            from threadpoolctl import threadpool_limits
-
-            threadpool_limits(limits=int(blas_threads), user_api="blas")
-        except ImportError:  # pragma: no cover - optional
-            pass
+    # for the life of the worker process, also for BLAS libraries it loads later (windflutter.threads)
+    set_process_threads(blas_threads)
     _WORKER_FN = _cp.loads(fn_bytes)
 
 
@@ -299,8 +295,6 @@ def _terminate_workers(ex: ProcessPoolExecutor) -> None:
 
 # --- Dask ---------------------------------------------------------------------------------
 def _dask_execute(fn: Callable, index: int, task: Any, blas_threads: int | None) -> TaskResult:
-    from windflutter.solve.linsolve import blas_limit
-
     try:
         from distributed import get_worker
 
@@ -362,8 +356,6 @@ def iter_tasks(
         return
     workers = check_workers(workers)
     if workers == 1 or len(tasks) <= 1:
-        from windflutter.solve.linsolve import blas_limit
-
         for i, t in enumerate(tasks):
             with blas_limit(blas_threads):  # same BLAS threading as the workers: same rounding
                 res = _execute(fn, i, t, "local")

@@ -7,13 +7,6 @@ sys.path.insert(0, str(Path(__file__).parent))
 
 
 @pytest.fixture(scope="session")
-def nrel5mw():
-    from windflutter.model.windio import load_turbine
-
-    return load_turbine("nrel5mw")
-
-
-@pytest.fixture(scope="session")
 def nrel5mw_fixed(nrel5mw):
     """NREL 5 MW with a valid nacelle inertia (yaw only, Jonkman 2009 NacYIner = 2,607,890 kg m^2)
     -- the reader currently returns a non-symmetric tensor for the windIO v2 file."""

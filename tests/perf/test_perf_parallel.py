@@ -23,13 +23,9 @@ def serial():
     return run_tasks(demo_point, TASKS, workers=1)
 
 
-@pytest.fixture(scope="module")
-def cluster():
-    distributed = pytest.importorskip("distributed")
-    # one cluster for the whole module: start-up is the slow part (~2-5 s)
-    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
-                                  dashboard_address=None) as c:
-        yield c
+@pytest.fixture
+def cluster(dask_cluster):
+    return dask_cluster  # tests/conftest.py
 
 
 def test_serial_results_in_order(serial):

@@ -2,7 +2,7 @@
 dense companion solve, plus reproducibility and symbolic reuse.
 
 Reference: ``solve_qep_dense`` (LAPACK on the 2n companion form, no factorization, no Krylov
-space) of a 480-DOF clamped tube with Rayleigh damping, gyroscopic and complex element-local
+space) of a 288-DOF clamped tube with Rayleigh damping, gyroscopic and complex element-local
 coupling (``windflutter.solve.testproblems.tube_qep``). Tolerance 1e-9 relative: both are
 backward-stable on a well-conditioned problem; only round-off (~1e-13 here) separates them, while
 a wrong operator or a wrong shift handling would give O(1) errors.
@@ -25,7 +25,7 @@ N_EIG = 12
 
 @pytest.fixture(scope="module")
 def problem():
-    p = tube_qep(8, 10, coupling=0.02, gyro=0.05, seed=3)
+    p = tube_qep(8, 6, coupling=0.02, gyro=0.05, seed=3)
     ref = qep.solve_qep_dense(p.M, p.D, p.K, shift=SHIFT, n_eig=N_EIG)
     return p, ref
 

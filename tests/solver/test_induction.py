@@ -21,7 +21,6 @@ from windflutter.aero.sections import Polar, RotorGeometry
 from windflutter.aero.strip import OperatingPoint, StripAero, section_flow
 from windflutter.errors import InputError
 from windflutter.model.bundled import DATA_DIR
-from windflutter.model.windio import load_turbine
 from windflutter.solve.aeroelastic import AeroelasticModel
 from windflutter.stability.turbine import TurbineOptions, TurbineStability
 
@@ -159,11 +158,6 @@ def test_bem_special_and_bad_inputs():
 # ---------------------------------------------------------------------------------------------
 # (ii) NREL 5 MW reference operating points
 # ---------------------------------------------------------------------------------------------
-
-
-@pytest.fixture(scope="module")
-def nrel5mw():
-    return load_turbine("nrel5mw")
 
 
 @pytest.fixture(scope="module")

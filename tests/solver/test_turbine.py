@@ -1,22 +1,15 @@
 """Whole-rotor checks on the bundled NREL 5 MW (beam model; reduced sizes, full-size runs slow)."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
 import scipy.linalg as sla
 
-from windflutter.model.windio import load_turbine
+from windflutter.cli import main
 from windflutter.stability.turbine import TurbineOptions, TurbineStability
 
 RPM = np.pi / 30
-
-
-@pytest.fixture(scope="module")
-def nrel5mw():
-    return load_turbine("nrel5mw")
 
 
 def test_prestress_raises_flap_frequency(nrel5mw):
@@ -35,30 +28,30 @@ def test_prestress_raises_flap_frequency(nrel5mw):
     assert abs(f["thesis"] - 1.0) < 0.01
 
 
-def test_reduced_rotor_flutter_above_rated(nrel5mw):
+def test_reduced_rotor_flutter_above_rated(rotor_alone):
     # Reduced NREL 5 MW rotor (hub clamped, 8 beam elements/strips per blade), 10 m/s, potential
-    # flow.  Seed: flutter near 19 RPM (shell model, no K_sigma), published 19.1 RPM; divergence
-    # slightly above flutter.  Checks: onset above rated 12.1 RPM and within 15-30 RPM, divergence
-    # above flutter -- not the exact value (model differs; see docs/stability.md).
-    ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", rpm_min=14, rpm_max=30, rpm_step=4,
-                                                  mesh={"n_span": 8, "part": "rotor"}))
-    p = ts.analyse_operating_point(10.0)
+    # flow, 16-32 RPM (tests/solver/conftest.py).  Seed: flutter near 19 RPM (shell model, no
+    # K_sigma), published 19.1 RPM; divergence slightly above flutter.  Checks: onset above rated
+    # 12.1 RPM and within 15-30 RPM, divergence above flutter -- not the exact value (model
+    # differs; see docs/stability.md).
+    p = rotor_alone
     assert p.flutter_rpm is not None and 15.0 < p.flutter_rpm < 30.0
     assert p.divergence_rpm is None or p.divergence_rpm > p.flutter_rpm
     # at the onset the tracked mode has zero damping (root-finding to 0.01 RPM)
     assert p.flutter_frequency_hz > 0.5
 
 
-def test_stability_cli_json():
-    out = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--part", "rotor",
-                          "--n-span", "6", "--rpm", "16", "28", "4", "--json"], capture_output=True, text=True,
-                         check=True)
-    d = json.loads(out.stdout)
+def test_stability_cli_json(capsys):
+    # in-process (the console entry point as a real process: tests/test_cli_section.py,
+    # tests/cli/test_subprocess.py)
+    assert main(["stability", "nrel5mw", "--part", "rotor", "--n-span", "6", "--rpm", "16", "28", "4",
+                 "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
     (pt,) = d["points"]
     assert set(pt) >= {"wind_speed", "flutter_rpm", "flutter_frequency_hz", "flutter_mode", "divergence_rpm"}
-    bad = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--wind-speeds", "-3"],
-                         capture_output=True, text=True)
-    assert bad.returncode == 2 and "wind-speeds" in bad.stderr
+    assert main(["stability", "nrel5mw", "--wind-speeds", "-3"]) == 2
+    err = capsys.readouterr().err
+    assert "wind-speeds" in err and len(err.strip().splitlines()) == 1
 
 
 @pytest.mark.slow

@@ -4,9 +4,6 @@ The physics of each option is verified where it is implemented (aero/skin.py:
 tests/solver/test_skin_aero.py; reduction: tests/perf/); here: the wiring.
 """
 
-import subprocess
-import sys
-
 import numpy as np
 import pytest
 
@@ -25,7 +22,7 @@ def test_bad_combinations_name_the_field():
 
 
 def test_skin_distribution_builds_the_seed_sub_strips():
-    from windflutter.aero.skin import SkinAeroelasticModel, skin_aeroelastic_model
+    from windflutter.solve.skin_model import SkinAeroelasticModel, skin_aeroelastic_model
     from windflutter.model import load_turbine
 
     mesh = {"part": "rotor", "n_chord": 8, "n_span": 4}
@@ -51,10 +48,12 @@ def test_skin_distribution_builds_the_seed_sub_strips():
     assert np.allclose(lam[0], lam[1], rtol=1e-8)
 
 
-def test_stability_cli_rejects_skin_on_beams():
-    bad = subprocess.run([sys.executable, "-m", "windflutter", "stability", "nrel5mw", "--aero-distribution",
-                          "skin"], capture_output=True, text=True)
-    assert bad.returncode == 2 and "aero_distribution" in bad.stderr and "Traceback" not in bad.stderr
+def test_stability_cli_rejects_skin_on_beams(capsys):
+    from windflutter.cli import main
+
+    assert main(["stability", "nrel5mw", "--aero-distribution", "skin"]) == 2
+    err = capsys.readouterr().err
+    assert "aero_distribution" in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
 
 
 def test_config_reaches_the_turbine_options():

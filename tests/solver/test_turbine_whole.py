@@ -14,7 +14,6 @@ import numpy as np
 import pytest
 
 import windflutter.mesh.turbine as mesh_turbine
-from windflutter.model.windio import load_turbine
 from windflutter.stability.search import pk_search
 from windflutter.stability.turbine import TurbineOptions, TurbineStability
 from windflutter.structure.fem import BeamSection
@@ -61,11 +60,6 @@ N_SPAN = 8  # blade beam elements / strips per blade (reduced; the slow test use
 GRID = dict(rpm_min=16.0, rpm_max=32.0, rpm_step=2.0)
 
 
-@pytest.fixture(scope="module")
-def nrel5mw():
-    return load_turbine("nrel5mw")
-
-
 def _analyse(turbine, part, monkeypatch=None, edit=None, n_span=N_SPAN, **opts):
     """Onsets at 10 m/s; ``edit(fe) -> fe`` changes the FE model before assembly."""
     if edit is not None:
@@ -99,18 +93,16 @@ def _stiffen_tower(factor):
 
 
 @pytest.fixture(scope="module")
-def rotor_alone(nrel5mw):
-    return _analyse(nrel5mw, "rotor")
-
-
-@pytest.fixture(scope="module")
 def whole(nrel5mw):
     return _analyse(nrel5mw, "turbine")
 
 
 def test_rotor_alone_reference(rotor_alone):
-    # the reference itself: 1st-torsion -> flap-torsion flutter at ~3.5 Hz below divergence
+    # the reference itself (tests/solver/conftest.py, the same mesh and grid as _analyse here):
+    # 1st-torsion -> flap-torsion flutter at ~3.5 Hz below divergence
     p = rotor_alone
+    grid = np.arange(GRID["rpm_min"], GRID["rpm_max"] + 1e-9, GRID["rpm_step"])
+    np.testing.assert_array_equal(p.sweep_rpm, grid[: p.sweep_rpm.size])  # the sweep stops at the onset
     assert p.flutter_rpm is not None and p.divergence_rpm is not None
     assert p.flutter_rpm < p.divergence_rpm and p.first_instability == "flutter"
     assert 3.0 < p.flutter_frequency_hz < 4.0

@@ -1,8 +1,6 @@
 """Fixed-wing mode: analytic divergence and modes, mesh convergence, Goland wing."""
 
 import json
-import subprocess
-import sys
 
 import numpy as np
 import pytest
@@ -73,15 +71,17 @@ def test_bad_config_names_field():
         WingConfig.from_dict({**GOLAND, "colour": "red"})
 
 
-def test_cli_json(tmp_path):
+def test_cli_json(tmp_path, capsys):
+    from windflutter.cli import main
+
     p = tmp_path / "w.yaml"
     p.write_text("\n".join(f"{k}: {v}" for k, v in {**GOLAND, "n_elements": 8, "speed_min": 100.0,
                                                     "speed_max": 300.0}.items()))
-    out = subprocess.run([sys.executable, "-m", "windflutter", "wing", str(p), "--json"], capture_output=True,
-                         text=True, check=True)
-    d = json.loads(out.stdout)
+    assert main(["wing", str(p), "--json"]) == 0
+    d = json.loads(capsys.readouterr().out)
     assert set(d) == {"flutter_speed", "flutter_frequency", "divergence_speed"}
     assert 130 < d["flutter_speed"] < 160
     p.write_text("\n".join(f"{k}: {v}" for k, v in {**GOLAND, "chord": "oops"}.items()))
-    bad = subprocess.run([sys.executable, "-m", "windflutter", "wing", str(p)], capture_output=True, text=True)
-    assert bad.returncode == 2 and "chord" in bad.stderr
+    assert main(["wing", str(p)]) == 2
+    err = capsys.readouterr().err
+    assert "chord" in err and len(err.strip().splitlines()) == 1

@@ -3,15 +3,14 @@ import pytest
 
 from windflutter.mesh.settings import MeshSettings
 from windflutter.mesh.turbine import build_model, rotor_geometry
-from windflutter.model.windio import load_turbine
 from windflutter.structure.assembly import assemble
 from windflutter.system.blade import RotorBlade
 from windflutter.system.support import support_model
 
 
 @pytest.fixture(scope="session")
-def nrel5mw_turbine():
-    return load_turbine("nrel5mw")
+def nrel5mw_turbine(nrel5mw):
+    return nrel5mw  # tests/conftest.py: one load per session
 
 
 @pytest.fixture(scope="session")

@@ -2,9 +2,6 @@
 
 from __future__ import annotations
 
-import subprocess
-import sys
-
 import pytest
 import yaml
 
@@ -106,11 +103,9 @@ def test_cli_missing_config_file(tmp_path, capsys):
     assert "config" in capsys.readouterr().err
 
 
-def test_print_default_config():
-    out = subprocess.run([sys.executable, "-m", "windflutter", "run", "x", "--print-default-config"],
-                         capture_output=True, text=True, timeout=60)
-    assert out.returncode == 0
-    assert config_from_dict(yaml.safe_load(out.stdout)) == AnalysisConfig()
+def test_print_default_config(capsys):
+    assert main(["run", "x", "--print-default-config"]) == 0
+    assert config_from_dict(yaml.safe_load(capsys.readouterr().out)) == AnalysisConfig()
 
 
 def _dotted(d, prefix=""):

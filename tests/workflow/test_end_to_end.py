@@ -32,6 +32,7 @@ wind_speeds: [10]
 aero: [potential]
 rotor_speed: {min_rpm: 4, max_rpm: 32, n_points: 8}
 model: {type: beam, n_aero_sections: 16}
+output: {dpi: 40}
 """)
     ds = xr.open_dataset(out / "results.nc")
     assert ds.sizes["point"] == 1

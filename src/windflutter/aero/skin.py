@@ -406,13 +406,3 @@ class SkinStripAero(StripAero):
 
 __all__ = ["SkinOptions", "SkinDistribution", "skin_distribution", "skin_quad_sections", "skin_elements",
            "assign_to_strips", "shape_functions", "gauss_points_2x2", "SkinStripAero"]
-
-
-def __getattr__(name: str):
-    """Compatibility: the solver-level model with the skin distribution lives in
-    :mod:`windflutter.solve.skin_model` (the aero layer does not import the solver)."""
-    if name in ("SkinAeroelasticModel", "skin_aeroelastic_model"):
-        from windflutter.solve import skin_model
-
-        return getattr(skin_model, name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -1,8 +1,13 @@
 """Command-line interface: ``windflutter COMMAND ...``.
 
 Each sub-command lives in its own module of this package, exposing
-``add_parser(subparsers)`` and ``run(args) -> int``.  This module only dispatches and turns
-:class:`~windflutter.errors.InputError` into one clear line and a non-zero exit code.
+``add_parser(subparsers)`` and ``run(args) -> int``.  This module only dispatches, runs every
+command under the BLAS-thread policy (:mod:`windflutter.threads`: one thread unless
+``WINDFLUTTER_BLAS_THREADS`` says otherwise) and turns :class:`~windflutter.errors.InputError`
+into one clear line and a non-zero exit code.
+
+Nothing here imports NumPy before :func:`main` has applied the policy (the sub-command modules
+are imported by :func:`build_parser`), so BLAS libraries start with the policy's thread count.
 """
 
 from __future__ import annotations
@@ -13,7 +18,7 @@ import importlib
 import os
 import sys
 
-from windflutter import __version__
+from windflutter import __version__, threads
 from windflutter.errors import InputError, ModelError, WindflutterError
 
 #: Sub-command modules, in the order shown by ``--help``.
@@ -49,7 +54,16 @@ def main(argv: list[str] | None = None) -> int:
     cannot be written (2), a model that cannot be analysed (3), another windflutter error (4),
     Ctrl-C (130); an unexpected exception is one line too (exit 70), with the traceback only
     when the environment variable ``WINDFLUTTER_TRACEBACK`` is set.
+
+    The command runs with ``WINDFLUTTER_BLAS_THREADS`` BLAS threads (default 1; ``auto``: the
+    BLAS library's default), undone afterwards for an in-process call
+    (:func:`windflutter.threads.policy_scope`).
     """
+    with threads.policy_scope():
+        return _main(argv)
+
+
+def _main(argv: list[str] | None) -> int:
     parser = build_parser()
     try:
         args = parser.parse_args(argv)

@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 import scipy.sparse as sp
 
-from windflutter.aero.sections import Polar
+from windflutter.aero_types import Polar
 from windflutter.linalg_tools import skew
 from windflutter.mesh.loft import stack_weights
 

@@ -9,6 +9,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.mesh.settings import MeshSettings
 from windflutter.mesh.turbine import build_model, rotor_geometry
+from windflutter.units import RPM
 
 
 @dataclass
@@ -54,7 +55,7 @@ def turbine_modes(turbine, settings: MeshSettings | None = None, n_modes: int = 
         raise InputError("part", st.part, "blade, rotor or turbine when --rpm > 0 (the tower-only model has no rotor)")
     fe, sec = build_model(turbine, st)
     struct = assemble(fe)
-    K_extra = rotating_stiffness(fe, struct, turbine, rpm * 2 * np.pi / 60.0) if rpm > 0 else None
+    K_extra = rotating_stiffness(fe, struct, turbine, rpm * RPM) if rpm > 0 else None
     md = modes(struct, n_modes, K_extra=K_extra)
     labels = label_modes(fe, struct.M, md.shapes, sec)
     return ModesResult(np.asarray(md.freq), labels, fe, sec, md, struct)

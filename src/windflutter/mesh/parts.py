@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-from windflutter.aero.sections import AeroSections
+from windflutter.aero_types import AeroSections
 from windflutter.mesh import aero_map as am
 from windflutter.mesh.beam_model import blade_beam_mesh, blade_beam_properties
 from windflutter.mesh.blade_shell import blade_shell_mesh

@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from windflutter.aero.sections import AeroSections, RotorGeometry
+from windflutter.aero_types import AeroSections, RotorGeometry
 from windflutter.errors import InputError
 from windflutter.mesh import aero_map as am
 from windflutter.mesh.beam_model import blade_beam_mesh, blade_beam_properties

@@ -14,7 +14,7 @@ from windflutter.model import plausibility as pl
 from windflutter.model.airfoil_geom import orient_contour, thickness_ratio
 from windflutter.model.fastfile import FastFile
 from windflutter.model.turbine import Airfoil, Polar
-from windflutter.model.units import DEG
+from windflutter.units import DEG
 
 
 @dataclass(frozen=True)

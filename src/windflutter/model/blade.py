@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import trapezoid  # numpy < 2 (pyNastran env) has no np.trapezoid
 
-from windflutter.aero.sections import Polar
+from windflutter.aero_types import Polar
 
 #: BeamDyn/windIO order (F1 shear flap, F2 shear edge, F3 axial, M1 edgewise bending, M2 flapwise
 #: bending, M3 torsion) -> BeamSection order (axial, shear y, shear z, torsion, bending about y,

@@ -18,7 +18,7 @@ import numpy as np
 from windflutter.model import plausibility as pl
 from windflutter.model.fastfile import FastFile
 from windflutter.model.turbine import BeamProperties, BladeDamping, TowerDamping
-from windflutter.model.units import DEG, PERCENT
+from windflutter.units import DEG, PERCENT
 
 
 @dataclass(frozen=True)

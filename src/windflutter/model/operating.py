@@ -21,9 +21,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.model.turbine import ControlSettings, OperatingCurve
-
-RPM = np.pi / 30.0
-DEG = np.pi / 180.0
+from windflutter.units import DEG, RPM
 
 
 def _check_curve(v, w, p, source: str) -> None:

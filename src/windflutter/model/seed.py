@@ -23,6 +23,7 @@ from windflutter.model.airfoil_geom import arc_at_chord_x
 from windflutter.model.bundled import DATA_DIR
 from windflutter.model.airfoil_geom import orient_contour as _orient_contour
 from windflutter.model.yamlio import load_yaml_file
+from windflutter.units import RPM
 
 # ============================================================================ 20 MW (thesis ch. 5)
 # Table 5.4 / 5.5: radial position from the blade root (m)
@@ -275,7 +276,7 @@ def seed20mw_dict() -> dict:
     d["materials"] = [_orth(k, *v) for k, v in MAT20.items()] + [dict(TOWER_STEEL)]
     rpm_max = 6.31
     d["control"] = {"supervisory": {"Vin": 4.0, "Vout": 25.0,
-                                    "maxTS": round(rpm_max * np.pi / 30 * (hub_d / 2 + L), 3)},
+                                    "maxTS": round(rpm_max * RPM * (hub_d / 2 + L), 3)},
                     "pitch": {"min_pitch": 0.0, "max_pitch": 90.0, "max_pitch_rate": 8.0},
                     "torque": {"tsr": 7.0, "VS_minspd": round(6.9 * rpm_max / 12.1, 4), "VS_maxspd": rpm_max}}
     v, w, p = _nrel_curve()
@@ -298,7 +299,7 @@ def _nrel_curve() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
 
     c = read_openfast_steady_csv(DATA_DIR / "nrel5mw" / "NREL5MW_Oper_Onshore_Flexible_Discon.csv")
     v = np.unique(np.concatenate([np.arange(3.0, 25.01, 1.0), [11.4]]))
-    w = np.round(c.rotor_speed_at(v) * 30 / np.pi, 4)
+    w = np.round(c.rotor_speed_at(v) / RPM, 4)
     p = np.round(np.degrees(c.pitch_at(v)), 4)
     return v, w, p
 

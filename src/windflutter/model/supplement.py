@@ -56,9 +56,9 @@ from windflutter.model.operating import (
     read_openfast_steady_csv,
 )
 from windflutter.model.turbine import BeamProperties, BladeDamping, TowerDamping, Turbine
-from windflutter.model.units import DEG, PERCENT, RPM
 from windflutter.model.windio_common import inertia6
 from windflutter.model.yamlio import load_yaml_file
+from windflutter.units import DEG, PERCENT, RPM
 
 
 def find_supplement(data: dict | None, path: Path) -> tuple[dict | None, str | None]:

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from windflutter.aero.sections import Polar
+from windflutter.aero_types import Polar
 from windflutter.model.blade import (
     Airfoil,
     BeamProperties,

@@ -1,12 +1,10 @@
-"""Unit factors of the turbine readers (SI and radians inside; degrees and rpm only in files).
+"""Unit factors of the turbine readers: kept importable here; they live in :mod:`windflutter.units`.
 
 Multiply a value in the file's unit by the factor to get SI: ``twist_rad = twist_deg * DEG``.
 """
 
 from __future__ import annotations
 
-import math
+from windflutter.units import DEG, PERCENT, RPM
 
-DEG = math.pi / 180.0  #: degrees -> radians
-RPM = math.pi / 30.0  #: revolutions per minute -> rad/s
-PERCENT = 0.01  #: percent -> fraction
+__all__ = ["DEG", "PERCENT", "RPM"]

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 
 from windflutter.model.checks import Reader, join
-from windflutter.model.units import DEG, RPM
+from windflutter.units import DEG, RPM
 
 
 class Keys:

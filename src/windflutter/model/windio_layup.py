@@ -14,8 +14,8 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.model.checks import Reader, join
 from windflutter.model.turbine import Layer, Layup, Web
-from windflutter.model.units import DEG
 from windflutter.model.windio_common import explicit
+from windflutter.units import DEG
 
 
 # ----------------------------------------------------------------------------- layup, v2 anchors

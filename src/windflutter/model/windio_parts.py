@@ -10,8 +10,8 @@ from windflutter.errors import InputError
 from windflutter.model import plausibility as pl
 from windflutter.model.checks import Reader, join
 from windflutter.model.turbine import ControlSettings, Hub, IsotropicMaterial, Nacelle, OrthotropicMaterial, Tower, TowerLayer
-from windflutter.model.units import DEG, RPM
 from windflutter.model.windio_common import Keys, inertia6, ref_axis, shape_and_axis
+from windflutter.units import DEG, RPM
 
 
 # ------------------------------------------------------------------------------------ materials

@@ -20,6 +20,7 @@ from windflutter import __version__
 from windflutter.config import AnalysisConfig
 from windflutter.errors import InputError
 from windflutter.post import store
+from windflutter.units import RPM
 
 
 def describe_run(turbine: Any, config: AnalysisConfig, analyser: Any) -> dict[str, Any]:
@@ -33,11 +34,11 @@ def describe_run(turbine: Any, config: AnalysisConfig, analyser: Any) -> dict[st
     curve = getattr(turbine, "operating_curve", None)
     if curve is not None:
         info["operating_wind_speed"] = np.asarray(curve.wind_speed, float)
-        info["operating_rpm"] = np.asarray(curve.rotor_speed, float) * 30.0 / math.pi
+        info["operating_rpm"] = np.asarray(curve.rotor_speed, float) / RPM
         info["operating_pitch_deg"] = np.degrees(np.asarray(curve.pitch, float))
     rated = getattr(turbine, "rated_rotor_speed", None)
     if rated is not None and np.isfinite(rated) and rated > 0:
-        info["rated_rpm"] = float(rated) * 30.0 / math.pi
+        info["rated_rpm"] = float(rated) / RPM
     for attr in ("rotor_diameter", "hub_height", "n_blades", "source"):
         val = getattr(turbine, attr, None)
         if val is not None:
@@ -64,7 +65,7 @@ def check_operating(turbine: Any, config: AnalysisConfig) -> None:
     rated = o.rated_rpm
     r = getattr(turbine, "rated_rotor_speed", None)
     if rated is None and isinstance(r, (int, float)) and math.isfinite(r) and r > 0:
-        rated = float(r) * 30.0 / math.pi
+        rated = float(r) / RPM
     if rated is not None and o.overspeed_rpm is not None and o.overspeed_rpm < rated:
         raise InputError("operating.overspeed_rpm", o.overspeed_rpm,
                          f"an overspeed at least the rated rotor speed {rated:.4g} RPM")

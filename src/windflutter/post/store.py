@@ -41,7 +41,7 @@ import numpy as np
 import xarray as xr
 
 if TYPE_CHECKING:  # pragma: no cover
-    from windflutter.workflow import OperatingPoint, PointResult
+    from windflutter.results import OperatingPoint, PointResult
 
 POINTS_DIR = "points"
 RESULTS_FILE = "results.nc"

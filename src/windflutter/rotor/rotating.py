@@ -24,7 +24,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 
-from windflutter.aero.sections import RotorGeometry
+from windflutter.aero_types import RotorGeometry
 from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import skew
 from windflutter.structure.fem import FEModel

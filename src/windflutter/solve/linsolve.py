@@ -47,8 +47,6 @@ True
 
 from __future__ import annotations
 
-import contextlib
-import functools
 import os
 from dataclasses import dataclass, field
 from typing import Any
@@ -58,6 +56,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError, ModelError
+from windflutter.threads import blas_limit  # noqa: F401  (re-exported: used here and by callers)
 
 __all__ = [
     "BACKENDS",
@@ -114,27 +113,6 @@ def default_backend() -> str:
     if forced and forced != "auto":
         return _check_backend(forced, field_name=_ENV_VAR)
     return available_backends()[0]
-
-
-@functools.lru_cache(maxsize=1)
-def _thread_controller():
-    """One ``threadpoolctl`` controller per process (building one scans the loaded libraries,
-    ~3 ms; reusing it makes a limit ~20 us, cheap enough around every solve)."""
-    try:
-        from threadpoolctl import ThreadpoolController
-    except ImportError:  # pragma: no cover - optional
-        return None
-    return ThreadpoolController()
-
-
-def blas_limit(n_threads: int | None):
-    """Context manager limiting BLAS threads (no-op without ``threadpoolctl`` or for ``None``)."""
-    if n_threads is None:
-        return contextlib.nullcontext()
-    ctl = _thread_controller()
-    if ctl is None:  # pragma: no cover - optional
-        return contextlib.nullcontext()
-    return ctl.limit(limits=int(n_threads), user_api="blas")
 
 
 def is_structurally_symmetric(A: sp.csc_matrix) -> bool:

@@ -35,6 +35,7 @@ from windflutter.stability.section import (
     locate_pk_onset,
     natural_frequencies,
 )
+from windflutter.units import RPM
 
 __all__ = [
     "RotorSection",
@@ -46,8 +47,6 @@ __all__ = [
     "first_unstable",
     "run_simple_model",
 ]
-
-RPM = 2.0 * math.pi / 60.0  # rad/s per RPM
 
 
 @dataclass(frozen=True)

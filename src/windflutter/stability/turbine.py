@@ -30,8 +30,7 @@ from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.stability.search import Onset, pk_search, structural_eig, thesis_search
 from windflutter.stability.tracking import label_mode
-
-RPM = math.pi / 30.0  # rad/s per RPM
+from windflutter.units import RPM
 
 
 @dataclass(frozen=True)

@@ -10,6 +10,7 @@ import scipy.sparse.linalg as spla
 
 from windflutter.errors import ConvergenceError, InputError
 from windflutter.structure.assembly import Structural
+from windflutter.threads import blas_limit
 
 
 @dataclass
@@ -45,14 +46,8 @@ class Modes:
 
 
 def _single_thread_blas():
-    """Context manager limiting BLAS to one thread (no-op without threadpoolctl)."""
-    try:
-        from threadpoolctl import threadpool_limits
-    except ImportError:  # pragma: no cover
-        import contextlib
-
-        return contextlib.nullcontext()
-    return threadpool_limits(limits=1, user_api="blas")
+    """Context manager limiting BLAS to one thread (:func:`windflutter.threads.blas_limit`)."""
+    return blas_limit(1)
 
 
 def _default_shift(Kr: sp.spmatrix, Mr: sp.spmatrix) -> float:

@@ -20,8 +20,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.system.modes import ModeRecord, point_modes
-
-RPM = math.pi / 30.0
+from windflutter.units import RPM
 
 
 @dataclass

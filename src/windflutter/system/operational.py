@@ -21,7 +21,6 @@ along the shaft: no tilt, shear, yaw or gravity in the steady state), linearized
 
 from __future__ import annotations
 
-import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -33,8 +32,7 @@ from windflutter.system.blade import RotorBlade
 from windflutter.system.blade_aero import blade_system, project_blade_aero
 from windflutter.system.multiblade import MultiBladeSystem, multiblade_system
 from windflutter.system.support import Drivetrain, fixed_frame, rigid_body_mass, support_model
-
-RPM = math.pi / 30.0
+from windflutter.units import RPM
 
 #: blade models up to this many free DOFs get their fixed-interface basis from a dense eigen-solve
 #: (beams: ~200); above (shells: ~8000 per blade) sparse shift-invert Lanczos

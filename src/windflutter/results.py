@@ -1,0 +1,97 @@
+"""Result types of an analysis (bottom layer: imports only NumPy and :mod:`windflutter.units`).
+
+The per-point interface of ``windflutter run`` (``docs/workflow.md``): an analyser is handed an
+:class:`OperatingPoint` and returns a :class:`PointResult`; the workflow stores it
+(:mod:`windflutter.post.store`), plots it and reports it. The types live here, below every layer
+that makes or reads them, so the store does not import the workflow. They stay importable from
+:mod:`windflutter.workflow`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from windflutter.units import RPM
+
+__all__ = ["OperatingPoint", "PointResult"]
+
+
+@dataclass(frozen=True)
+class OperatingPoint:
+    """One operating point of a run (user units at this edge: m/s, RPM).
+
+    Attributes
+    ----------
+    index : position in the run (0-based), stable across resumes.
+    wind_speed : free wind speed (m/s).
+    aero : ``potential`` or ``viscous``.
+    method : ``pk`` or ``thesis``.
+    rpm_min, rpm_max : rotor-speed search range (RPM).
+    tolerance_rpm : onset tolerance (RPM).
+    sweep_rpm : rotor speeds of the Campbell / damping sweep (RPM).
+    """
+
+    index: int
+    wind_speed: float
+    aero: str
+    method: str
+    rpm_min: float
+    rpm_max: float
+    tolerance_rpm: float
+    sweep_rpm: tuple[float, ...]
+
+    @property
+    def label(self) -> str:
+        return f"V = {self.wind_speed:g} m/s, {self.aero}, {self.method}"
+
+    @property
+    def omega_range(self) -> tuple[float, float]:
+        """Search range in rad/s."""
+        return self.rpm_min * RPM, self.rpm_max * RPM
+
+
+@dataclass
+class PointResult:
+    """What an analyser returns for one operating point (NaN / None = not found / not given).
+
+    Attributes
+    ----------
+    flutter_rpm : lowest rotor speed with a flutter mode (RPM); NaN if stable in the range.
+    flutter_frequency_hz : frequency of the flutter mode at onset (Hz).
+    flutter_mode : label of the flutter mode (e.g. ``"1st edge"``).
+    divergence_rpm : lowest rotor speed with static divergence (RPM); NaN if none.
+    sweep_rpm : (nr,) rotor speeds of the sweep (RPM).
+    frequency_hz, damping_ratio : (nr, nm) tracked modes over the sweep (Hz, -).
+    mode_labels : (nm,) labels of the tracked modes.
+    station_radius : (ns,) radii of the span stations (m).
+    flutter_shape : (ns, 3) complex flap, edge (m) and torsion (rad) of the flutter mode at onset
+        at each station, any common normalisation.
+    aero_work : (ns, 3) aerodynamic work per cycle on the flutter mode at each station, split
+        into plunge, pitch and edgewise (J, same normalisation as ``flutter_shape``); see
+        :mod:`windflutter.post.aerowork`.
+    info : extra scalars stored as attributes of the point (e.g. iterations, pitch).
+    flutter_dof_vector : (n_dof,) complex flutter mode in the FE model's DOF numbering, for the
+        VTK animation (not stored in the dataset); needs ``analyser.fe_model(point)``.
+    status, reason : ``ok`` / ``failed`` and why (set by the workflow on an exception).
+    elapsed : wall-clock time (s), set by the workflow.
+    """
+
+    flutter_rpm: float = float("nan")
+    flutter_frequency_hz: float = float("nan")
+    flutter_mode: str = ""
+    divergence_rpm: float = float("nan")
+    sweep_rpm: np.ndarray | None = None
+    frequency_hz: np.ndarray | None = None
+    damping_ratio: np.ndarray | None = None
+    mode_labels: list[str] | None = None
+    station_radius: np.ndarray | None = None
+    flutter_shape: np.ndarray | None = None
+    aero_work: np.ndarray | None = None
+    info: dict[str, Any] = field(default_factory=dict)
+    flutter_dof_vector: np.ndarray | None = None
+    status: str = "ok"
+    reason: str = ""
+    elapsed: float = float("nan")

@@ -1,0 +1,183 @@
+"""The package's import layers (docs/architecture.md, "Layers"): no module imports a higher layer.
+
+Every ``import windflutter...`` and ``from windflutter... import`` in ``src/windflutter`` is read
+with :mod:`ast` -- module-level, inside functions, under ``if TYPE_CHECKING:`` and relative ones
+alike -- and checked against :data:`LAYERS`. The check is static (nothing is imported), takes a
+few tenths of a second and is an independent reading of the source: it shares no code with the
+package.
+
+An upward import that is known and not fixed yet is listed in :data:`ALLOWED` with the reason;
+each entry is a debt to remove deliberately -- the test fails when an entry is no longer needed,
+so the list can only shrink.
+"""
+
+from __future__ import annotations
+
+import ast
+import functools
+from pathlib import Path
+
+import pytest
+
+SRC = Path(__file__).resolve().parents[1] / "src" / "windflutter"
+
+#: Top-level modules and sub-packages of windflutter, lowest layer first. A module may import
+#: its own layer and the layers below. ``windflutter`` is the package ``__init__`` (``__version__``
+#: and the BLAS policy).
+LAYERS: tuple[tuple[str, ...], ...] = (
+    ("errors",),
+    ("units", "linalg_tools", "files", "schema", "threads", "aero_types"),
+    ("windflutter", "results", "backends", "parallel"),
+    ("config",),
+    ("structure",),
+    ("rotor",),
+    ("model",),
+    ("mesh",),
+    ("aero",),
+    ("solve",),
+    ("steady",),
+    ("system",),
+    ("stability",),
+    ("post",),
+    ("workflow",),
+    ("cli", "__main__"),
+)
+
+#: Known upward imports: (importing module, imported module) -> why it is still there. Remove an
+#: entry together with the import it excuses.
+ALLOWED: dict[tuple[str, str], str] = {
+}
+
+
+def _unit(module: str) -> str:
+    """Layer unit of a dotted module name: ``windflutter.mesh.turbine`` -> ``mesh``."""
+    parts = module.split(".")
+    return parts[1] if len(parts) > 1 else parts[0]
+
+
+def _module_name(path: Path, src: Path = SRC) -> str:
+    rel = path.relative_to(src.parent).with_suffix("")
+    parts = list(rel.parts)
+    if parts[-1] == "__init__":
+        parts.pop()
+    return ".".join(parts)
+
+
+def _statements(body):
+    """Every statement in ``body`` and in the statement blocks nested in it (function and class
+    bodies, if/else, try/except/finally, with, loops, match cases): where imports can stand.
+    Expressions are not visited (they are most of the tree and hold no imports)."""
+    for node in body:
+        yield node
+        for name in ("body", "orelse", "finalbody", "handlers", "cases"):
+            block = getattr(node, name, None)
+            if isinstance(block, list):
+                yield from _statements(block)
+
+
+def _imports(path: Path, src: Path = SRC) -> list[tuple[str, int]]:
+    """Every windflutter module imported by the file at ``path`` of the package at ``src``:
+    ``[(module, line)]``.
+
+    ``from windflutter.x import y`` counts as an import of ``windflutter.x.y`` when ``y`` is a
+    sub-module file, else of ``windflutter.x``.
+    """
+    name = _module_name(path, src)
+    package = name if path.name == "__init__.py" else name.rpartition(".")[0]
+    found: list[tuple[str, int]] = []
+    for node in _statements(ast.parse(path.read_text(encoding="utf-8"), filename=str(path)).body):
+        if isinstance(node, ast.Import):
+            found += [(a.name, node.lineno) for a in node.names if a.name.split(".")[0] == "windflutter"]
+        elif isinstance(node, ast.ImportFrom):
+            if node.level:
+                base = package.split(".")[: len(package.split(".")) - node.level + 1]
+                target = ".".join(base + ([node.module] if node.module else []))
+            else:
+                target = node.module or ""
+            if target.split(".")[0] != "windflutter":
+                continue
+            for alias in node.names:
+                sub = f"{target}.{alias.name}"
+                where = src.parent.joinpath(*sub.split("."))
+                is_module = where.with_suffix(".py").exists() or (where / "__init__.py").exists()
+                found.append((sub if is_module else target, node.lineno))
+    return found
+
+
+def _layer_of() -> dict[str, int]:
+    return {unit: i for i, units in enumerate(LAYERS) for unit in units}
+
+
+@functools.lru_cache(maxsize=1)
+def _graph() -> dict[str, list[tuple[str, int]]]:
+    return {_module_name(p): _imports(p) for p in sorted(SRC.rglob("*.py"))}
+
+
+def upward_imports() -> dict[tuple[str, str], list[int]]:
+    """Every import of a higher layer: ``{(importer, imported): [lines]}``."""
+    layer = _layer_of()
+    out: dict[tuple[str, str], list[int]] = {}
+    for importer, targets in _graph().items():
+        for target, line in targets:
+            if layer[_unit(target)] > layer[_unit(importer)]:
+                out.setdefault((importer, target), []).append(line)
+    return {k: sorted(set(v)) for k, v in out.items()}
+
+
+def test_every_module_has_a_layer():
+    """A new top-level module or sub-package must be placed in LAYERS deliberately."""
+    layer = _layer_of()
+    units = {_unit(m) for m in _graph()} | {_unit(t) for ts in _graph().values() for t, _ in ts}
+    missing = sorted(u for u in units if u not in layer)
+    assert not missing, f"place these in tests/test_layers.py LAYERS (and docs/architecture.md): {missing}"
+    stale = sorted(u for u in layer if u not in units)
+    assert not stale, f"LAYERS names modules that do not exist: {stale}"
+
+
+def test_no_upward_imports():
+    found = upward_imports()
+    new = {k: v for k, v in found.items() if k not in ALLOWED}
+    lines = [f"{a} (line {', '.join(map(str, v))}) imports {b}" for (a, b), v in sorted(new.items())]
+    assert not new, "upward imports (see docs/architecture.md, Layers):\n  " + "\n  ".join(lines)
+
+
+def test_allow_list_only_shrinks():
+    """An ALLOWED entry whose import is gone must be deleted (the list is a debt, not a licence)."""
+    found = upward_imports()
+    stale = sorted(k for k in ALLOWED if k not in found)
+    assert not stale, f"remove these fixed entries from ALLOWED: {stale}"
+
+
+def test_the_checker_sees_every_kind_of_import(tmp_path):
+    """The parser finds module-level, function-level, TYPE_CHECKING and relative imports (a
+    check that cannot see an import cannot fail on it)."""
+    pkg = tmp_path / "windflutter"
+    (pkg / "mesh").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    (pkg / "workflow.py").write_text("")
+    (pkg / "mesh" / "__init__.py").write_text("")
+    (pkg / "system").mkdir()
+    (pkg / "system" / "__init__.py").write_text("")  # a sub-package named in a from-import
+    (pkg / "mesh" / "a.py").write_text(
+        "from typing import TYPE_CHECKING\n"
+        "import windflutter.errors\n"
+        "if TYPE_CHECKING:\n    from windflutter.post import store\n"
+        "def f():\n    from .. import workflow\n    from ..stability.turbine import X\n"
+        "    import numpy\n"
+        "class C:\n    try:\n        import windflutter.cli\n    except ImportError:\n"
+        "        from windflutter import system\n")
+    got = sorted(_imports(pkg / "mesh" / "a.py", pkg))
+    assert got == [("windflutter.cli", 11), ("windflutter.errors", 2), ("windflutter.post", 4),
+                   ("windflutter.stability.turbine", 7), ("windflutter.system", 13), ("windflutter.workflow", 6)]
+
+
+@pytest.mark.parametrize("importer, target, upward", [
+    ("windflutter.post.store", "windflutter.workflow", True),
+    ("windflutter.mesh.turbine", "windflutter.structure.fem", False),
+    ("windflutter.mesh.turbine", "windflutter.mesh.parts", False),
+    ("windflutter.results", "windflutter.units", False),
+    ("windflutter.units", "windflutter.results", True),
+])
+def test_layer_order_examples(importer, target, upward):
+    layer = _layer_of()
+    assert (layer[_unit(target)] > layer[_unit(importer)]) is upward
