@@ -3,29 +3,38 @@ PYTHON ?= python3
 VENV   ?= .venv
 PY      = $(VENV)/bin/python
 PIP     = $(VENV)/bin/pip
-STAMP   = $(VENV)/.installed
 OUT    ?= out
+# what each target installs: `run` the package alone (its dependencies: NumPy, SciPy, matplotlib, xarray,
+# netCDF4, pyfe3d, windIO, ...); `test` also the test, fast-solver and Dask extras, so that no test is skipped
+STAMP_RUN  = $(VENV)/.installed-run
+STAMP_TEST = $(VENV)/.installed-test
 
-.PHONY: run test test-fast test-slow test-nastran bench clean venv
+.PHONY: run test test-slow test-nastran bench clean venv
 
-$(STAMP): pyproject.toml
-	test -x $(PY) || $(PYTHON) -m venv $(VENV)
+$(PY):
+	$(PYTHON) -m venv $(VENV)
 	$(PIP) install --quiet --upgrade pip
+
+$(STAMP_RUN): pyproject.toml | $(PY)
+	$(PIP) install --quiet -e .
+	touch $@
+
+$(STAMP_TEST): pyproject.toml | $(PY)
 	$(PIP) install --quiet -e '.[test,fast,dist]'
-	touch $(STAMP)
+	touch $@ $(STAMP_RUN)
 
-venv: $(STAMP)
+venv: $(STAMP_RUN)
 
-## make run: set up and run the main analysis on the bundled NREL 5 MW turbine
-run: $(STAMP)
+## make run: set up (the package only) and run the main analysis on the bundled NREL 5 MW turbine
+run: $(STAMP_RUN)
 	$(VENV)/bin/windflutter run nrel5mw -o $(OUT)/nrel5mw
 
-## make test: set up and run the test suite (slow end-to-end runs use reduced models)
-test: $(STAMP)
+## make test: set up with the test extras and run the test suite (slow end-to-end runs use reduced models)
+test: $(STAMP_TEST)
 	$(PY) -m pytest -q -m "not slow and not nastran" $(PYTEST_ARGS)
 
 ## the long end-to-end runs at full model size
-test-slow: $(STAMP)
+test-slow: $(STAMP_TEST)
 	$(PY) -m pytest -q -m slow $(PYTEST_ARGS)
 
 ## NASTRAN BDF tests in a separate environment (pyNastran 1.4.1 pins numpy < 2)
@@ -42,7 +51,7 @@ $(STAMP_NASTRAN): pyproject.toml
 test-nastran: $(STAMP_NASTRAN)
 	WINDFLUTTER_REQUIRE_NASTRAN=1 $(VENV_NASTRAN)/bin/python -m pytest -q -m nastran $(PYTEST_ARGS)
 
-bench: $(STAMP)
+bench: $(STAMP_TEST)
 	$(PY) benchmarks/run_all.py
 
 clean:

@@ -6,10 +6,61 @@ model -> mesh -> structure -> rotor -> aero -> solve -> stability -> post
 
 Importing windflutter applies its BLAS-thread policy to the process (one thread unless the
 environment variable ``WINDFLUTTER_BLAS_THREADS`` says otherwise; see :mod:`windflutter.threads`).
+
+The Python API (:mod:`windflutter.api`, loaded on first use so that ``import windflutter`` stays
+light) ::
+
+    import windflutter
+
+    turbine = windflutter.load_turbine("nrel5mw")        # windIO, OpenFAST .fst, HAWC2 .htc, bundled name
+    windflutter.modes(turbine, part="blade", n=4)         # natural frequencies (beam model)
+    windflutter.campbell(turbine, [6.0, 11.0, 18.0])      # frequency and damping of every mode
+    windflutter.stability(turbine, [11.0])                # flutter / divergence onset per wind speed
+    windflutter.run(turbine, "analysis.yaml")             # the whole analysis -> out/nrel5mw/
+    windflutter.analysis_config(aero="potential")         # a validated analysis config
+
+``windflutter.stability`` is also the package :mod:`windflutter.stability` (the solvers): calling
+it runs :func:`windflutter.api.stability`.
 """
+
+import types as _types
 
 __version__ = "0.1.0"
 
 from windflutter import threads as _threads  # noqa: E402  (after __version__: cheap, no NumPy)
 
 _threads.apply_policy()
+
+#: the API functions re-exported here (from :mod:`windflutter.api`)
+_API = ("load_turbine", "modes", "campbell", "run", "analysis_config")
+
+
+def __getattr__(name: str):
+    if name in _API:
+        from windflutter import api  # noqa: PLC0415
+
+        return getattr(api, name)
+    raise AttributeError(f"module 'windflutter' has no attribute {name!r}")
+
+
+def __dir__():
+    return sorted(set(globals()) | set(_API))
+
+
+class _CallablePackage(_types.ModuleType):
+    """The package :mod:`windflutter.stability`, callable as :func:`windflutter.api.stability`."""
+
+    def __call__(self, turbine, wind_speeds, **options):
+        """Flutter and divergence onset per wind speed: :func:`windflutter.api.stability`."""
+        from windflutter.api import stability  # noqa: PLC0415
+
+        return stability(turbine, wind_speeds, **options)
+
+
+# the package's __init__ is empty: importing it costs nothing, and it becomes callable before any
+# sub-module import can bind ``windflutter.stability`` to the plain package
+from windflutter import stability as _stability  # noqa: E402
+
+_stability.__class__ = _CallablePackage
+
+__all__ = ["__version__", "stability", *_API]

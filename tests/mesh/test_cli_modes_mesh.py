@@ -29,7 +29,7 @@ def test_modes_bad_input_exit_2(capsys):
 
 def test_mesh_exports(tmp_path, capsys):
     vtu, bdf = tmp_path / "m.vtu", tmp_path / "m.bdf"
-    rc = main(["mesh", "nrel5mw", "--part", "blade", "--n-chord", "16", "--n-span", "6", "--vtk", str(vtu), "--bdf", str(bdf)])
+    rc = main(["mesh", "nrel5mw", "--part", "blade", "--model", "shell", "--n-chord", "16", "--n-span", "6", "--vtk", str(vtu), "--bdf", str(bdf)])
     assert rc == 0
     assert vtu.stat().st_size > 1000 and bdf.stat().st_size > 1000
     assert "CQUAD4" in bdf.read_text()

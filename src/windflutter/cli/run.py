@@ -39,7 +39,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("-c", "--config", metavar="ANALYSIS.yaml",
                    help="analysis config (defaults: see docs/config_reference.md)")
     p.add_argument("-o", "--outdir", metavar="OUTDIR", default=None,
-                   help="output folder (default: out/<turbine name>)")
+                   help="output folder (default: out/<turbine file name without suffix>, or out/<bundled name>)")
     p.add_argument("--resume", action="store_true",
                    help="continue an interrupted run in OUTDIR, keeping its finished points (same config, "
                         "turbine and windflutter version)")
@@ -112,7 +112,7 @@ def run(args: argparse.Namespace) -> int:
         return 0
     workers = parse_workers(args.workers)  # None: the usable cores (workflow.run resolves it)
     config = read_config(args)
-    field = "-o" if args.outdir is not None else "OUTDIR (default out/<turbine name>)"
+    field = "-o" if args.outdir is not None else "OUTDIR (default out/<turbine file name>)"
     if args.outdir is not None:  # checked before the turbine is read
         _check_outdir(args.outdir, field, args.resume)
     if args.scheduler is not None:
@@ -125,8 +125,9 @@ def run(args: argparse.Namespace) -> int:
     if args.outdir is not None:
         outdir = Path(args.outdir)
     else:
-        name = Path(str(getattr(turbine, "name", args.turbine))).stem.replace(" ", "_") or "turbine"
-        outdir = Path("out") / name
+        from windflutter.api import run_folder_name  # noqa: PLC0415
+
+        outdir = Path("out") / run_folder_name(args.turbine)  # the file's stem or the bundled name
         _check_outdir(outdir, field, args.resume)
     try:
         ds = run_workflow(turbine, config, outdir, resume=args.resume, progress=not args.quiet,

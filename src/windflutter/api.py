@@ -1,0 +1,349 @@
+"""windflutter's Python API: the commands of the CLI as functions.
+
+The functions are re-exported by the package (``import windflutter``; the import stays light: this
+module is loaded on first use) ::
+
+    import windflutter
+
+    turbine = windflutter.load_turbine("nrel5mw")             # or a windIO / .fst / .htc file
+    f = windflutter.modes(turbine, part="blade", n=4)           # natural frequencies (Hz)
+    res = windflutter.campbell(turbine, [6.0, 11.0, 18.0])      # -> CampbellResult
+    pts = windflutter.stability(turbine, [11.0], model="beam")  # -> one PointSummary per wind speed
+    ds = windflutter.run(turbine, "analysis.yaml", outdir="out/nrel5mw")   # results.nc, report.html
+
+Every entry point validates its input as the CLI does and raises
+:class:`~windflutter.errors.InputError` naming the keyword (or config field), the value and what
+was expected:
+
+* ``modes`` checks each keyword with the :class:`~windflutter.schema.Spec` the ``windflutter
+  modes`` flag of the same name uses (:data:`MODES_OPTIONS`, :data:`MESH_OPTIONS`);
+* ``stability``, ``campbell`` and ``run`` take **analysis-config overrides** as keywords -- the
+  top-level keys of the analysis YAML (``aero="potential"``, ``air_density=1.1``,
+  ``solver={"reduction": "modal"}``), dotted field names (``**{"solver.basis_modes": 20}``) and,
+  as on the command line, ``model="shell"`` for ``model.type`` -- merged over the defaults (or a
+  ``config=``) by :func:`windflutter.config.config_from_dict`, the validator of a config file.
+
+Units as at the CLI: wind speed m/s, rotor speed RPM, angles in degrees, frequencies Hz.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from typing import Any
+
+from windflutter.config import MAX_MODES, MAX_RPM, field_spec
+from windflutter.errors import InputError
+from windflutter.schema import Spec
+
+MESH_MODELS = ("beam", "shell")
+MESH_PARTS = ("turbine", "blade", "tower", "rotor")
+#: the model every command builds unless told otherwise
+DEFAULT_MODEL = "beam"
+#: the options that only the shell model has
+SHELL_ONLY = ("n_chord", "tower_model")
+
+#: options of :func:`modes` and ``windflutter mesh`` (keyword -> check); the CLI flag of each is the
+#: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
+MESH_OPTIONS: dict[str, Spec] = {
+    "part": Spec("choice", choices=MESH_PARTS, doc="which part: turbine, blade (root clamped), tower "
+                 "(rotor-nacelle lumped) or rotor (hub clamped)"),
+    "model": Spec("choice", choices=MESH_MODELS, doc=f"beam (Timoshenko beams, the default of every command) "
+                  "or shell (composite shells)"),
+    "pitch": Spec("float", lower=-180.0, upper=180.0, unit="deg", doc="blade pitch"),
+    "azimuth": Spec("float", lower=-360.0, upper=360.0, unit="deg", doc="rotor azimuth of blade 0 (0 = up)"),
+    "n_chord": Spec("int", lower=8, upper=400, nullable=True, doc="shell model: elements around a blade section"),
+    "n_span": field_spec("model.n_aero_sections"),
+    "tower_model": Spec("choice", choices=MESH_MODELS, nullable=True, doc="shell model: the tower as shell "
+                        "(default) or beam"),
+}
+MESH_DEFAULTS: dict[str, Any] = {"part": "turbine", "model": DEFAULT_MODEL, "pitch": 0.0, "azimuth": 0.0,
+                                 "n_chord": None, "n_span": None, "tower_model": None}
+
+#: the options of :func:`modes` besides the mesh
+MODES_OPTIONS: dict[str, Spec] = {
+    "rpm": Spec("float", lower=0.0, upper=MAX_RPM, unit="RPM", doc="rotor speed; > 0 adds centrifugal "
+                "stiffening and spin softening"),
+    "n": Spec("int", lower=1, upper=MAX_MODES, doc="number of modes"),
+}
+
+
+# --------------------------------------------------------------------------------------------
+# turbines and configs
+# --------------------------------------------------------------------------------------------
+def load_turbine(path_or_name: str | Path, validate: bool = True):
+    """A turbine from a file or a bundled name.
+
+    Parameters
+    ----------
+    path_or_name : a windIO (v1/v2) YAML file, an OpenFAST ``.fst`` deck, a HAWC2 ``.htc`` model, a
+        seed-thesis file, or a bundled name (``"nrel5mw"``, ``"iea15mw"``, ... ;
+        :func:`windflutter.model.bundled_turbines`).
+    validate : schema validation where the format has one (windIO v2).
+
+    Returns
+    -------
+    windflutter.model.Turbine
+
+    Raises
+    ------
+    InputError
+        missing or unreadable file, schema error, implausible data (naming file, field, station).
+    """
+    from windflutter.model import load_turbine as _load  # noqa: PLC0415
+
+    if not isinstance(path_or_name, (str, Path)):
+        raise InputError("turbine", type(path_or_name).__name__, "a turbine file path or a bundled name")
+    return _load(path_or_name, validate=validate)
+
+
+def as_turbine(turbine: Any, backend: str = "windflutter"):
+    """``turbine`` itself if it is a :class:`~windflutter.model.Turbine`, else read with
+    :func:`load_turbine`; for a plug-in back-end (``solver.backend``) a path or name is passed on
+    unread, as ``windflutter run`` does."""
+    from windflutter.model.turbine import Turbine  # noqa: PLC0415
+
+    if isinstance(turbine, Turbine):
+        return turbine
+    if not isinstance(turbine, (str, Path)):
+        raise InputError("turbine", type(turbine).__name__, "a Turbine (windflutter.load_turbine), a turbine "
+                         "file path or a bundled name")
+    return str(turbine) if backend != "windflutter" else load_turbine(turbine)
+
+
+def _nest(options: dict[str, Any]) -> dict[str, Any]:
+    """Keyword overrides -> the nested dict of a config file (dotted keys split, ``model="shell"``
+    read as ``model.type``)."""
+    out: dict[str, Any] = {}
+    for key, value in options.items():
+        if key == "model" and isinstance(value, str):
+            key = "model.type"
+        *head, last = str(key).split(".")
+        d = out
+        for k in head:
+            if not isinstance(d.setdefault(k, {}), dict):
+                raise InputError(key, value, f"no {key!r} together with a non-section {k!r}")
+            d = d[k]
+        if isinstance(value, dict) and isinstance(d.get(last), dict):
+            d[last] = {**d[last], **value}
+        else:
+            d[last] = value
+    return out
+
+
+def analysis_config(config: Any = None, **options):
+    """An analysis config: ``config`` (``None``: the defaults; a YAML file path; a dict as in a
+    file; an :class:`~windflutter.config.AnalysisConfig`) with the keyword overrides ``options``
+    (module docstring) merged over it, validated as a config file is
+    (:func:`windflutter.config.config_from_dict`).
+
+    Raises
+    ------
+    InputError
+        an unknown key or a bad value, naming the dotted field.
+    """
+    return _config(config, options, "keyword arguments")
+
+
+def _config(config: Any, options: dict[str, Any], source: str):
+    import copy  # noqa: PLC0415
+
+    from windflutter.config import AnalysisConfig, check_config, config_from_dict, load_config  # noqa: PLC0415
+
+    overrides = _nest(options)
+    if config is None or isinstance(config, (str, Path)):
+        return load_config(config, overrides, overrides_source=source)
+    if isinstance(config, AnalysisConfig):
+        base = check_config(config)
+    elif isinstance(config, dict):
+        base = config_from_dict(copy.deepcopy(config), "config dict", base=load_config(None))
+    else:
+        raise InputError("config", type(config).__name__, "None, an analysis YAML file, a dict or an AnalysisConfig")
+    return config_from_dict(copy.deepcopy(overrides), source, base=base) if overrides else base
+
+
+def _one(config, field: str, what: str) -> str:
+    values = getattr(config, field)
+    if len(values) != 1:
+        raise InputError(field, list(values), f"one {what} (run() analyses several)")
+    return values[0]
+
+
+# --------------------------------------------------------------------------------------------
+# structure
+# --------------------------------------------------------------------------------------------
+def mesh_settings(values: dict[str, Any], name=lambda key: key):
+    """:class:`~windflutter.mesh.settings.MeshSettings` from checked :data:`MESH_OPTIONS` values
+    (angles in degrees); the shell-only options are refused with the beam model (``name(key)``:
+    how an error names an option, e.g. its CLI flag)."""
+    import math  # noqa: PLC0415
+
+    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
+
+    v = {**MESH_DEFAULTS, **{k: x for k, x in values.items() if x is not None}}
+    if v["model"] != "shell":
+        for key in SHELL_ONLY:
+            if v[key] is not None:
+                raise InputError(name(key), v[key], f"no value with the {v['model']} model ({name(key)} is a "
+                                 f"shell-model option and the default model is {DEFAULT_MODEL}: add {name('model')} "
+                                 "shell)")
+    kw = dict(model=v["model"], part=v["part"], pitch=math.radians(v["pitch"]), azimuth=math.radians(v["azimuth"]),
+              tower_model=v["tower_model"] or "shell")
+    kw.update({k: v[k] for k in ("n_chord", "n_span") if v[k] is not None})
+    return MeshSettings(**kw)
+
+
+def modes(turbine, *, rpm: float = 0.0, n: int = 10, part: str = "turbine", model: str = DEFAULT_MODEL,
+          pitch: float = 0.0, azimuth: float = 0.0, n_chord: int | None = None, n_span: int | None = None,
+          tower_model: str | None = None):
+    """Natural frequencies and labelled modes: ``windflutter modes``.
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name.
+    rpm : rotor speed (RPM); > 0 adds centrifugal stiffening and spin softening.
+    n : number of modes.
+    part : ``"turbine"``, ``"blade"`` (root clamped), ``"tower"`` (rotor-nacelle lumped) or
+        ``"rotor"`` (hub clamped).
+    model : ``"beam"`` (the default) or ``"shell"``.
+    pitch, azimuth : blade pitch and rotor azimuth of blade 0 (deg).
+    n_chord, tower_model : shell model only: elements around a section, the tower as shell or beam.
+    n_span : blade elements along the span.
+
+    Returns
+    -------
+    windflutter.mesh.analysis.ModesResult
+        ``.frequencies_hz`` (ascending), ``.labels``, and the model they come from.
+    """
+    from windflutter.mesh.analysis import turbine_modes  # noqa: PLC0415
+
+    given = dict(rpm=rpm, n=n, part=part, model=model, pitch=pitch, azimuth=azimuth, n_chord=n_chord, n_span=n_span,
+                 tower_model=tower_model)
+    specs = {**MODES_OPTIONS, **MESH_OPTIONS}
+    values = {k: (None if v is None else specs[k].check(v, k)) for k, v in given.items()}
+    settings = mesh_settings(values)  # every option checked before the turbine is read
+    return turbine_modes(as_turbine(turbine), settings, n_modes=values["n"], rpm=values["rpm"])
+
+
+# --------------------------------------------------------------------------------------------
+# aeroelastic analyses
+# --------------------------------------------------------------------------------------------
+def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
+    """Flutter and divergence onset above the operating point at each wind speed: ``windflutter
+    stability``.
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name.
+    wind_speeds : m/s, one or a list (the config's ``wind_speeds`` field).
+    config : base analysis config (see :func:`analysis_config`); one ``aero`` and one ``method``.
+    **options : analysis-config overrides (module docstring), e.g. ``model="shell"``,
+        ``rotor_speed={"max_rpm": 30}``, ``method="pk"``.
+
+    Returns
+    -------
+    list of windflutter.stability.turbine.PointSummary
+        per wind speed: ``flutter_rpm``, ``flutter_frequency_hz``, ``flutter_mode``,
+        ``divergence_rpm``, ``pitch_deg``, the sweep; ``.as_dict()`` is the CLI's ``--json`` point.
+    """
+    from windflutter.stability.build import operational_options, stability_analysis, turbine_options  # noqa: PLC0415
+
+    cfg = _config(config, {**options, "wind_speeds": wind_speeds}, "windflutter.stability() keywords")
+    aero, method = _one(cfg, "aero", "aerodynamic variant"), _one(cfg, "method", "search method")
+    if method == "p":  # the solver's options checked before the turbine is read
+        operational_options(cfg, aero)
+    else:
+        turbine_options(cfg, aero, method)
+    solver = stability_analysis(as_turbine(turbine), cfg, aero, method)
+    return [solver.analyse_operating_point(v) for v in cfg.wind_speeds]
+
+
+def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: Any = None, progress=None,
+             **options):
+    """The operating-point Campbell diagram: ``windflutter campbell``.
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name.
+    wind_speeds : m/s; default the operating curve's within 3-25 m/s (a ``config``'s wind speeds
+        are not used).
+    max_hz : modes up to this frequency (Hz; the config's ``campbell.max_hz``); default 1.25 x the
+        first blade torsion frequency.
+    config : base analysis config (see :func:`analysis_config`); one ``aero``.
+    progress : optional ``progress(fraction, text)``.
+    **options : analysis-config overrides (module docstring), e.g. ``model="shell"``,
+        ``aero="potential"``, ``model={"part": "rotor"}``.
+
+    Returns
+    -------
+    windflutter.system.campbell.CampbellResult
+        ``.points`` (per wind speed: rotor speed, pitch, modes with frequency and damping),
+        ``.least_damped()``, ``.unstable()``, ``.as_dict()`` (the CLI's ``--json``).
+    """
+    from windflutter.stability.build import operational_options  # noqa: PLC0415
+    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
+    from windflutter.system.campbell import campbell as _campbell  # noqa: PLC0415
+    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
+
+    extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
+    if max_hz is not None:
+        extra["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
+    opts = operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))
+    model = OperationalModel(as_turbine(turbine), opts)
+    limit = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else 1.25 * torsion_frequency(model, 0.0)
+    winds = cfg.wind_speeds if wind_speeds is not None else None
+    return _campbell(model.turbine, winds, max_hz=limit, model=model, progress=progress)
+
+
+# --------------------------------------------------------------------------------------------
+# the whole analysis
+# --------------------------------------------------------------------------------------------
+def run_folder_name(turbine: Any) -> str:
+    """The default output folder name of a run (``out/<this>``): a bundled name as given in its
+    canonical spelling (``"nrel5mw"``), else the turbine file's name without its suffix; for a
+    :class:`~windflutter.model.Turbine`, of the file it was read from."""
+    from windflutter.model.bundled import bundled_turbines, resolve_turbine_path  # noqa: PLC0415
+
+    src = turbine if isinstance(turbine, (str, Path)) else (getattr(turbine, "source", "") or "")
+    bundled = {path: name for name, path in bundled_turbines().items()}
+    if isinstance(src, str) and src and not Path(src).exists():
+        try:
+            src = resolve_turbine_path(src)
+        except InputError:
+            pass
+    stem = bundled.get(Path(src), Path(str(src)).stem) if str(src) else ""
+    if not stem and not isinstance(turbine, (str, Path)):
+        stem = str(getattr(turbine, "name", ""))
+    safe = re.sub(r"[^A-Za-z0-9._+-]+", "_", stem).strip("._")
+    return safe or "turbine"
+
+
+def run(turbine, config: Any = None, outdir: str | Path | None = None, *, resume: bool = False,
+        progress: bool = True, workers: int | None = 1, scheduler: Any = None, **options):
+    """The whole analysis: ``windflutter run`` (results.nc, figures, report.html in ``outdir``).
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name.
+    config : the analysis (see :func:`analysis_config`: ``None`` for the defaults, a YAML file...).
+    outdir : output folder; default ``out/<name>`` (:func:`run_folder_name`), as ``windflutter run``.
+    resume, progress, workers, scheduler : as :func:`windflutter.workflow.run` (``workers=1``:
+        serial, in this process).
+    **options : analysis-config overrides (module docstring), e.g. ``wind_speeds=[8, 12]``.
+
+    Returns
+    -------
+    xarray.Dataset
+        the results, also in ``outdir/results.nc``.
+    """
+    from windflutter.workflow import run as run_workflow  # noqa: PLC0415
+
+    cfg = _config(config, options, "windflutter.run() keywords")
+    folder = Path(outdir) if outdir is not None else Path("out") / run_folder_name(turbine)
+    tb = as_turbine(turbine, cfg.solver.backend)
+    return run_workflow(tb, cfg, folder, resume=resume, progress=progress, workers=workers, scheduler=scheduler)
+
+
+__all__ = ["load_turbine", "analysis_config", "modes", "stability", "campbell", "run", "run_folder_name",
+           "mesh_settings", "as_turbine", "MESH_OPTIONS", "MODES_OPTIONS", "DEFAULT_MODEL"]

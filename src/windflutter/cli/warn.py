@@ -1,0 +1,27 @@
+"""Warnings at the command line: one line each, ``windflutter COMMAND: warning: ...``.
+
+Python's default shows a warning as two lines with the file and source line of the code that
+raised it, which means nothing to the user of a command.  :func:`one_line_warnings` replaces that
+for the duration of a command (used by ``modes`` and ``mesh``; the entry point could wrap every
+command the same way).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import sys
+import warnings
+
+
+@contextlib.contextmanager
+def one_line_warnings(prog: str, stream=None):
+    """Within the block, every shown warning is printed as ``PROG: warning: MESSAGE`` (whitespace
+    folded to one line) on ``stream`` (default stderr); the filters are unchanged."""
+
+    def show(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001
+        text = " ".join(str(message).split())
+        print(f"{prog}: warning: {text}", file=stream or file or sys.stderr)
+
+    with warnings.catch_warnings():
+        warnings.showwarning = show
+        yield
