@@ -97,28 +97,28 @@ class Chain:
         m = W[13:].reshape(4, len(pairs), n)
         for p, (i, j) in enumerate(pairs):
             H6[:, i, j] = H6[:, j, i] = (m[0, p] - m[1, p] - m[2, p] + m[3, p]) / (4 * step**2)
-        g = np.zeros(3 * n)
-        H = np.zeros((3 * n, 3 * n))
-        for j in range(n):  # joint j couples link j-1 (not for the clamp) and link j
-            b = slice(3 * j, 3 * j + 3)
-            g[b] += g6[3:, j]
-            H[b, b] += H6[j, 3:, 3:]
-            if j > 0:
-                a = slice(3 * j - 3, 3 * j)
-                g[a] += g6[:3, j]
-                H[a, a] += H6[j, :3, :3]
-                H[a, b] += H6[j, :3, 3:]
-                H[b, a] += H6[j, 3:, :3]
-        return g, H
+        # joint j couples link j-1 (not for the clamp, j = 0) and link j
+        g = g6[3:].T.reshape(-1).copy()
+        g[:-3] += g6[:3, 1:].T.reshape(-1)
+        H4 = np.zeros((n, 3, n, 3))
+        j = np.arange(n)
+        H4[j, :, j, :] = H6[:, 3:, 3:]
+        H4[j[:-1], :, j[:-1], :] += H6[1:, :3, :3]
+        H4[j[:-1], :, j[1:], :] = H6[1:, :3, 3:]
+        H4[j[1:], :, j[:-1], :] = H6[1:, 3:, :3]
+        return g, H4.reshape(3 * n, 3 * n)
 
     def _load(self, P):
         """Gradient and Hessian of the dead-load potential ``-P . tip``."""
         n = self.n
         t = self.tangents()
         g = -np.cross(self.h * t, P).reshape(-1)
-        H = np.zeros((3 * n, 3 * n))
-        for k in range(n):
-            H[3 * k:3 * k + 3, 3 * k:3 * k + 3] = -_dead_load_hessian(P, self.h * t[k])
+        r = self.h * t
+        blocks = 0.5 * (P[None, :, None] * r[:, None, :] + r[:, :, None] * P[None, None, :]) \
+            - (r @ P)[:, None, None] * np.eye(3)
+        H4 = np.zeros((n, 3, n, 3))
+        H4[np.arange(n), :, np.arange(n), :] = -blocks
+        H = H4.reshape(3 * n, 3 * n)
         b = self.Q[-1] @ self.arm
         g[-3:] += -np.cross(b, P)
         H[-3:, -3:] += -_dead_load_hessian(P, b)
@@ -154,18 +154,17 @@ class Chain:
         return self
 
     def mass(self):
+        """Mass matrix in the links' spins: link centres ``c_k = sum_(j<k) h t_j + h t_k / 2`` move by
+        ``sum_j w_kj theta_j x h t_j`` (``w`` 1 below the diagonal, 1/2 on it), plus rotary inertia."""
         n, h = self.n, self.h
-        t = self.tangents()
-        Jc = np.zeros((3 * n, 3 * n))
-        for k in range(n):
-            for j in range(k):
-                Jc[3 * k:3 * k + 3, 3 * j:3 * j + 3] = -_S(h * t[j])
-            Jc[3 * k:3 * k + 3, 3 * k:3 * k + 3] = -_S(0.5 * h * t[k])
-        M = self.m * h * Jc.T @ Jc
+        S = _S(h * self.tangents())
+        W = np.tril(np.ones((n, n)), -1) + 0.5 * np.eye(n)
+        M = self.m * h * np.einsum("jl,jba,lbc->jalc", W.T @ W, S, S).reshape(3 * n, 3 * n)
         FD = self.Q @ self.D
         Jr = np.einsum("kab,b,kcb->kac", FD, self.J, FD) * h
-        for k in range(n):
-            M[3 * k:3 * k + 3, 3 * k:3 * k + 3] += Jr[k]
+        idx = np.arange(n)
+        M4 = M.reshape(n, 3, n, 3)
+        M4[idx, :, idx, :] += Jr
         return M
 
     def frequencies(self, k=8):

@@ -58,7 +58,8 @@ from windflutter.linalg_tools import skew
 from windflutter.structure.beam import beam_frames, beam_local_matrices, element_dofs
 from windflutter.structure.fem import FEModel
 
-__all__ = ["BeamConfiguration", "BeamTangent", "reference_configuration", "linear_configuration", "displaced",
+__all__ = ["BeamConfiguration", "BeamTangent", "reference_configuration", "linear_configuration",
+           "chained_configuration", "displaced",
            "deformed_model", "beam_tangent", "linear_resultants", "solve_equilibrium", "Equilibrium"]
 
 #: central-difference steps: rotations (rad) and translations (fraction of the element length)
@@ -124,6 +125,31 @@ def linear_configuration(fe: FEModel, u: np.ndarray) -> BeamConfiguration:
     """The configuration of a linear displacement field ``u`` (full numbering): ``x + u_t``, ``expm(theta)``."""
     un = _check_u(fe, u)
     return BeamConfiguration(x=np.asarray(fe.nodes, float) + un[:, :3], R=_expm(un[:, 3:]))
+
+
+def chained_configuration(fe: FEModel, u: np.ndarray, base: BeamConfiguration | None = None) -> BeamConfiguration:
+    """``base`` (default: the reference) moved by the displacement ``u`` keeping the beams' lengths:
+    node rotations ``expm(theta) R``; each element's chord ``c`` plus its linear strain
+    ``du - theta_mid x c`` turned by ``expm(theta_mid)`` and laid from its first node (elements in
+    ``beam_conn`` order, each starting where an earlier one ends or at a node it does not share).
+    To first order it is :func:`displaced`; it has no spurious stretch ``~theta^2 / 2`` under large
+    rotations (a start, and the update, of :func:`solve_equilibrium`)."""
+    un = _check_u(fe, u)
+    base = base or reference_configuration(fe)
+    x = base.x + un[:, :3]
+    conn = np.asarray(fe.beam_conn, dtype=np.int64)
+    c = base.x[conn[:, 1]] - base.x[conn[:, 0]]
+    th = 0.5 * (un[conn[:, 0], 3:] + un[conn[:, 1], 3:])
+    piece = np.einsum("eij,ej->ei", _expm(th), c + (un[conn[:, 1], :3] - un[conn[:, 0], :3]) - np.cross(th, c))
+    for e, (a, b) in enumerate(conn):  # sequential along the chain: one 3-vector per element
+        x[b] = x[a] + piece[e]
+    return BeamConfiguration(x=x, R=_expm(un[:, 3:]) @ base.R)
+
+
+def _is_chain(fe: FEModel) -> bool:
+    """The beams form one chain in ``beam_conn`` order (each element starts where the last ended)."""
+    conn = np.asarray(fe.beam_conn, dtype=np.int64)
+    return len(conn) > 0 and bool(np.all(conn[1:, 0] == conn[:-1, 1])) and len(np.unique(conn[:, 1])) == len(conn)
 
 
 def displaced(config: BeamConfiguration, du: np.ndarray) -> BeamConfiguration:
@@ -344,6 +370,7 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     _check_config(fe, config)
     size = max(float(np.ptp(np.asarray(fe.nodes, float), axis=0).max()), 1.0)
     K_spring = _spring_stiffness(fe)
+    chain = _is_chain(fe)
     X = np.asarray(fe.nodes, float)
     total = 0
     for step in range(1, load_steps + 1):
@@ -363,7 +390,7 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
             r = T.T @ (np.asarray(f_ext, float) - f_int)
             dq = spla.spsolve(sp.csc_matrix(A), r) if sp.issparse(A) else np.linalg.solve(A, r)
             du = np.asarray(T @ dq).reshape(-1, 6)
-            config = displaced(config, du)
+            config = chained_configuration(fe, du.reshape(-1), config) if chain else displaced(config, du)
             inc = max(float(np.abs(du[:, :3]).max(initial=0.0)) / size, float(np.abs(du[:, 3:]).max(initial=0.0)))
             total += 1
             if not np.isfinite(inc):
