@@ -21,7 +21,7 @@ import sys
 import numpy as np
 import scipy.linalg as sla
 
-from edgewise_geometry import hawcstab2
+from edgewise_geometry import edge_modes, hawcstab2
 from windflutter.model import load_turbine
 from windflutter.system.modes import point_modes
 from windflutter.system.operational import OperationalModel, OperationalOptions
@@ -73,33 +73,36 @@ def rotor_edge(om, V):
     return cyc, col[0].eigenvalue if col else complex("nan")
 
 
-def turbine_edge(om, V):
-    out = {}
-    for m in point_modes(om.at(V), max_hz=1.7):
-        if m.family == "edge" and m.order == 1:
-            out[m.whirl] = (m.frequency_hz, m.damping_ratio, -m.eigenvalue.real)
-    return out
+def _hawcstab2_cells(h) -> list[str]:
+    bw, fw, col = h["BW"], h["FW"], h["collective"]
+    return ["HAWCStab2 (BW / FW)", "", f"{bw[3]:.3f} / {fw[3]:.3f}, {bw[4]:.4f} / {fw[4]:.4f}", ""] \
+        + [f"{m[0]:.3f} / {100 * m[1]:.2f}" for m in (bw, fw, col)] + [f"{(bw[2] + fw[2]) / 2:.4f}"]
+
+
+def _model_cells(s, rotor, turbine) -> list[str]:
+    (lam, (fe_ratio, te_ratio, _)), col = rotor
+    return [s, f"{abs(lam) / 2 / np.pi:.3f} / {-lam.real:.4f}", f"{abs(fe_ratio):.3f}, {abs(te_ratio):.4f}",
+            f"{abs(col) / 2 / np.pi:.3f} / {-col.real:.4f}"] \
+        + [f"{turbine[w][0]:.3f} / {100 * turbine[w][1]:.2f}" for w in ("BW", "FW", "collective")] \
+        + [f"{(turbine['BW'][2] + turbine['FW'][2]) / 2:.4f}"]
+
+
+COLUMNS = ("V", "model", "rotor cyclic Hz / sigma", "tip flap/edge, torsion/edge", "rotor collective Hz / sigma",
+           "turbine BW Hz / zeta %", "FW Hz / zeta %", "collective Hz / zeta %", "mean BW, FW sigma")
 
 
 def main(speeds):
     tb = load_turbine("iea15mw")
     models = {(s, part): OperationalModel(tb, OperationalOptions(part=part, mesh={"n_span": 20}, structure=s))
               for s in STRUCTURES for part in ("rotor", "turbine")}
-    print("| V | model | rotor cyclic Hz / sigma | tip flap/edge, torsion/edge | rotor collective Hz / sigma | "
-          "turbine BW Hz / zeta % | FW Hz / zeta % | collective Hz / zeta % | mean BW, FW sigma |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("| " + " | ".join(COLUMNS) + " |")
+    print("|" + "---|" * len(COLUMNS))
     for V in speeds:
-        h = hawcstab2(V)
-        print(f"| {V:g} | HAWCStab2 (BW / FW) | | {h['BW'][3]:.3f} / {h['FW'][3]:.3f}, {h['BW'][4]:.4f} / {h['FW'][4]:.4f} | | "
-              f"{h['BW'][0]:.3f} / {100 * h['BW'][1]:.2f} | {h['FW'][0]:.3f} / {100 * h['FW'][1]:.2f} | "
-              f"{h['collective'][0]:.3f} / {100 * h['collective'][1]:.2f} | {(h['BW'][2] + h['FW'][2]) / 2:.4f} |")
-        for s in STRUCTURES:
-            (lam, (fe_ratio, te_ratio, _)), col = rotor_edge(models[(s, "rotor")], V)
-            t = turbine_edge(models[(s, "turbine")], V)
-            cells = [f"{t[w][0]:.3f} / {100 * t[w][1]:.2f}" for w in ("BW", "FW", "collective")]
-            print(f"| | {s} | {abs(lam) / 2 / np.pi:.3f} / {-lam.real:.4f} | {abs(fe_ratio):.3f}, {abs(te_ratio):.4f} | "
-                  f"{abs(col) / 2 / np.pi:.3f} / {-col.real:.4f} | " + " | ".join(cells)
-                  + f" | {(t['BW'][2] + t['FW'][2]) / 2:.4f} |", flush=True)
+        rows = [[f"{V:g}"] + _hawcstab2_cells(hawcstab2(V))]
+        rows += [[""] + _model_cells(s, rotor_edge(models[(s, "rotor")], V), edge_modes(models[(s, "turbine")], V))
+                 for s in STRUCTURES]
+        for r in rows:
+            print("| " + " | ".join(r) + " |", flush=True)
 
 
 if __name__ == "__main__":
