@@ -4,7 +4,11 @@ The geometric (stress) stiffness ``K_sigma`` of a prestressed state is built fro
 field ``u0`` (typically ``static_solve(struct, F)``):
 
 * beams: ``N int (v'^2 + w'^2) dx`` on the transverse translations (section frame), N the
-  element's axial force (Hermite fields, see :mod:`windflutter.structure.beam`);
+  element's axial force (Hermite fields, see :mod:`windflutter.structure.beam`); with
+  ``moments=True`` the initial-stress matrix of ALL the element's stress resultants -- axial and
+  shear forces, torsion and bending moments -- the geometric part of the co-rotational tangent
+  (:mod:`windflutter.structure.corotational`) at the undeformed configuration with the linear
+  element forces of ``u0`` (its axial-force part is the Hermite matrix above);
 * shells: the FULL membrane geometric stiffness ``int N_ab dS/dx_a dS/dx_b dA (x) I3`` acting on
   all three translations (a, b in-plane), with the membrane resultants N_ab from the laminate
   ``A`` and ``B`` matrices at the element centroid, see :mod:`windflutter.structure.shell`.
@@ -52,13 +56,15 @@ def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None 
     return struct.expand(q)
 
 
-def geometric_stiffness(fe: FEModel, u0: np.ndarray) -> sp.csr_matrix:
+def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> sp.csr_matrix:
     """Geometric stiffness (full numbering, CSR, symmetric) of the prestressed state ``u0``.
 
     Parameters
     ----------
     fe : the model.
     u0 : (n_dof,) static displacement field (m, rad) in the full numbering.
+    moments : beams: the terms of every stress resultant (shear, torsion, bending moments), not
+        the axial force's alone (module docstring).
     """
     u0 = np.asarray(u0, dtype=float)
     if u0.shape != (fe.n_dof,) or not np.all(np.isfinite(u0)):
@@ -66,14 +72,22 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray) -> sp.csr_matrix:
     n = fe.n_dof
     rows, cols, vals = [], [], []
     if len(fe.beam_conn):
-        from windflutter.structure.beam import beam_axial_force, beam_geometric_matrices
+        if moments:
+            from windflutter.structure.corotational import beam_tangent, linear_resultants, reference_configuration
 
-        N = beam_axial_force(fe, u0)
-        KG, d = beam_geometric_matrices(fe, N)
-        k = d.shape[1]
-        rows.append(np.repeat(d, k, axis=1).ravel())
-        cols.append(np.tile(d, (1, k)).ravel())
-        vals.append(KG.ravel())
+            KG = beam_tangent(fe, reference_configuration(fe), linear_resultants(fe, u0)).K_geo.tocoo()
+            rows.append(KG.row)
+            cols.append(KG.col)
+            vals.append(KG.data)
+        else:
+            from windflutter.structure.beam import beam_axial_force, beam_geometric_matrices
+
+            N = beam_axial_force(fe, u0)
+            KG, d = beam_geometric_matrices(fe, N)
+            k = d.shape[1]
+            rows.append(np.repeat(d, k, axis=1).ravel())
+            cols.append(np.tile(d, (1, k)).ravel())
+            vals.append(KG.ravel())
     if len(fe.shell_conn):
         from windflutter.structure.shell import shell_membrane_kg
 

@@ -72,6 +72,10 @@ class OperationalOptions:
         the state-space model; :class:`~windflutter.aero.strip.AeroOptions` for the thesis's
         quasi-steady strips), ``None`` for no aerodynamics.
     deflection : linearize about the deflected steady state (False: the undeformed blade).
+    structure : ``"undeformed"`` (the beam on its undeformed axis with the axial-force geometric
+        stiffness of the steady stress) or ``"deflected"`` (beam blades: the co-rotational beam
+        re-equilibrated and linearized about the deflected shape, with the initial-stress matrix of
+        all its stress resultants, :mod:`windflutter.system.deflected`).
     induction : steady BEM induction in the inflow.
     damping : ``"file"`` (the turbine files' structural damping) or ``"none"``.
     tower_damping : modal damping ratio (-) of every tower mode in place of the files' ratios
@@ -89,6 +93,7 @@ class OperationalOptions:
     drivetrain: str = "flexible"
     aero: object = "default"
     deflection: bool = True
+    structure: str = "undeformed"
     induction: bool = True
     damping: str = "file"
     tower_damping: float | None = None
@@ -101,6 +106,10 @@ class OperationalOptions:
         check_choice("part", self.part, PARTS)
         check_choice("drivetrain", self.drivetrain, DRIVETRAINS)
         check_choice("damping", self.damping, ("file", "none"))
+        check_choice("structure", self.structure, ("undeformed", "deflected"))
+        if self.structure == "deflected" and (self.model != "beam" or not self.deflection):
+            raise InputError("structure", self.structure, "'undeformed' unless the blades are beams (model: beam) "
+                                                          "linearized about the deflected steady state (deflection on)")
         if self.aero == "default":
             from windflutter.aero.unsteady import UnsteadyOptions
 
@@ -274,6 +283,8 @@ class OperationalModel:
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
                 "steady_state": "deflected (BEM, centrifugal + aero loads)" if o.deflection else "undeformed",
+                "structure": ("linearized about the deflected shape (co-rotational beam, all stress resultants)"
+                              if o.structure == "deflected" else "undeformed axis, axial-force geometric stiffness"),
                 "induction": "steady BEM" if o.induction else "none",
                 "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
                 "tower_damping": ("modal: fore-aft " + ", ".join(f"{100 * x:.2g} %" for x in fa) + "; side-side "
@@ -315,7 +326,14 @@ class OperationalModel:
         pitch = pi_c if pitch is None else float(pitch)
         rb = self.blade(pitch)
         st = self.steady(rb, wind_speed, omega)
-        ksig, klink = self._prestress(rb, st, omega)
+        if self.options.structure == "deflected":  # the blade rebuilt and linearized about its deflected shape
+            from windflutter.system.damping import blade_mu
+            from windflutter.system.deflected import deflected_blade
+
+            d = deflected_blade(rb, st, omega, mu=blade_mu(self.turbine) if self.options.damping == "file" else None)
+            rb, st, ksig, klink = d.blade, d.steady, d.ksigma, d.klink
+        else:
+            ksig, klink = self._prestress(rb, st, omega)
         blocks, strip_P = self._aero_blocks(rb, st, wind_speed, omega)
         Phi = self._blade_basis(rb, omega, ksig, klink, blocks, strip_P)
         bm = rb.matrices(Phi, ksigma_full=ksig, klink=klink)
