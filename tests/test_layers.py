@@ -26,8 +26,8 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "windflutter"
 #: and the BLAS policy).
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
-    ("units", "linalg_tools", "files", "schema", "threads", "aero_types"),
-    ("windflutter", "results", "backends", "parallel"),
+    ("units", "linalg_tools", "files", "schema", "threads", "aero_types", "version"),
+    ("results", "backends", "parallel"),
     ("config",),
     ("structure",),
     ("rotor",),
@@ -39,8 +39,10 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("system",),
     ("stability",),
     ("post",),
+    ("analysers",),
     ("workflow",),
-    ("cli", "__main__"),
+    ("api",),
+    ("cli", "__main__", "windflutter"),
 )
 
 #: Known upward imports: (importing module, imported module) -> why it is still there. Remove an

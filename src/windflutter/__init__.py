@@ -25,7 +25,7 @@ it runs :func:`windflutter.api.stability`.
 
 import types as _types
 
-__version__ = "0.1.0"
+from windflutter.version import __version__  # noqa: E402
 
 from windflutter import threads as _threads  # noqa: E402  (after __version__: cheap, no NumPy)
 

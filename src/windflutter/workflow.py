@@ -28,10 +28,8 @@ have a ``describe() -> dict`` method giving model size and the operating curve; 
 from __future__ import annotations
 
 import contextlib
-import dataclasses
 import datetime as _dt
 import inspect
-import math
 import shutil
 import signal
 import sys
@@ -40,31 +38,20 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any, Protocol
+from typing import Any
 
 import numpy as np
 import xarray as xr
 
 from windflutter.config import AnalysisConfig
-from windflutter.errors import InputError, ModelError
 from windflutter.post import runfolder, store
 from windflutter.post.progress import RunProgress
 from windflutter.post.rundata import MODEL_SIZE_KEYS, assemble_dataset, check_operating, describe_run  # noqa: F401
 from windflutter.post.runfolder import RUN_FILE  # noqa: F401  (re-exported: the run's record)
 from windflutter.results import OperatingPoint, PointResult  # noqa: F401  (the per-point types; importable here)
-from windflutter.units import RPM
-
-
-# --------------------------------------------------------------------------------------------
-# the per-point interface
-# --------------------------------------------------------------------------------------------
-ProgressCallback = Callable[..., None]
-
-
-class Analyser(Protocol):
-    """``analyse(point, progress=None) -> PointResult``; ``progress(fraction, text=None)``."""
-
-    def __call__(self, point: OperatingPoint, progress: ProgressCallback | None = None) -> PointResult: ...
+from windflutter.analysers import (  # noqa: F401  (re-exported: the per-point interface)
+    Analyser, ProgressCallback, TurbinePointAnalyser, make_analyser, mesh_settings, operating_campbell,
+    turbine_options)
 
 
 # --------------------------------------------------------------------------------------------
@@ -80,139 +67,6 @@ def plan_points(config: AnalysisConfig) -> list[OperatingPoint]:
             pts.append(OperatingPoint(len(pts), float(v), aero, method, r.min_rpm, r.max_rpm,
                                       r.tolerance_rpm, sweep))
     return pts
-
-
-def make_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
-    """The analyser of ``config.solver.backend``.
-
-    ``windflutter`` gives the built-in stability solver (:func:`_builtin_analyser`); any other
-    name is a plug-in of :mod:`windflutter.backends` (registered in this process or in the
-    entry-point group ``windflutter.backends``) and gives ``factory(turbine, config)``.
-    """
-    from windflutter.backends import BUILTIN, backend_factory  # noqa: PLC0415
-
-    backend = config.solver.backend
-    if backend == BUILTIN:
-        return _builtin_analyser(turbine, config)
-    return backend_factory(backend)(turbine, config)
-
-
-def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
-    """The built-in turbine stability solver (:mod:`windflutter.stability.turbine`) behind the
-    per-point interface, with the flutter mode shape and aero-work diagnostic added."""
-    try:
-        from windflutter.stability import turbine as _st  # noqa: PLC0415
-    except ImportError as exc:
-        raise ModelError(f"the built-in turbine stability solver is not available ({exc}); use "
-                         "a plug-in solver.backend (windflutter.backends) for your own analyser") from None
-    if config.model.type not in ("beam", "shell"):
-        raise InputError("model.type", config.model.type, "'beam' or 'shell' for the built-in turbine solver")
-    return TurbinePointAnalyser(turbine, config, _st)
-
-
-def mesh_settings(config: AnalysisConfig) -> dict[str, Any]:
-    """Mesh-setting overrides of ``config`` (:func:`windflutter.stability.build.mesh_settings`)."""
-    from windflutter.stability.build import mesh_settings as _mesh  # noqa: PLC0415
-
-    return _mesh(config)
-
-
-def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any = None):
-    """The seed's solver options of one ``(aero, method)`` case (methods pk, thesis), with the mesh
-    (:func:`windflutter.stability.build.turbine_options`; ``module`` only for tests that substitute
-    the solver module)."""
-    if module is None:
-        from windflutter.stability.build import turbine_options as _opts  # noqa: PLC0415
-
-        return _opts(config, aero, method)
-    opts = module.options_from_config(config, aero, method)
-    return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
-
-
-class TurbinePointAnalyser:
-    """Adapter: the solver of each (aero, method) case (:func:`windflutter.stability.build.
-    stability_analysis`) -> ``analyse(point)``; one solver per case, so models are built once per
-    blade pitch and reused across wind speeds.
-    """
-
-    def __init__(self, turbine: Any, config: AnalysisConfig, module: Any = None):
-        self.turbine = turbine
-        self.config = config
-        self._cases: dict[tuple[str, str], Any] = {}
-        self._size: dict[str, Any] = {}
-        # validate the options now, so a bad combination fails before the first point
-        from windflutter.stability.build import operational_options  # noqa: PLC0415
-
-        for aero, method in config.cases:
-            if method == "p":
-                operational_options(config, aero)
-            else:
-                turbine_options(config, aero, method, module)
-
-    def _stability(self, aero: str, method: str):
-        key = (aero, method)
-        if key not in self._cases:
-            from windflutter.stability.build import stability_analysis  # noqa: PLC0415
-
-            self._cases[key] = stability_analysis(self.turbine, self.config, aero, method)
-        return self._cases[key]
-
-    def fe_model(self, point: OperatingPoint):
-        """The FE model of ``point`` (its blade pitch), for the mode animation (seed's methods)."""
-        ts = self._stability(point.aero, point.method)
-        return ts.model(ts.pitch_at(point.wind_speed))[0] if hasattr(ts, "model") and callable(ts.model) else None
-
-    def describe(self) -> dict[str, Any]:
-        info: dict[str, Any] = {"model_type": self.config.model.type,
-                                "mesh_density": self.config.model.mesh_density}
-        info.update(self._size)
-        return info
-
-    def _model_size(self, ts, pitch: float) -> dict[str, int]:
-        if hasattr(ts, "model") and callable(ts.model):
-            fe, sections, am = ts.model(pitch)
-            return {"n_nodes": int(len(fe.nodes)), "n_dof": int(6 * len(fe.nodes)),
-                    "n_aero_sections": int(sections.n_sections), "n_reduced_dof": int(am.size)}
-        rb = ts.model.blade(pitch)
-        n_b = int(ts.model.n_blades)
-        return {"n_nodes": int(rb.fe.n_nodes) * n_b, "n_dof": int(rb.fe.n_dof) * n_b,
-                "n_aero_sections": int(rb.sections.n_sections) * n_b}
-
-    def __call__(self, point: OperatingPoint, progress: ProgressCallback | None = None) -> PointResult:
-        ts = self._stability(point.aero, point.method)
-        if progress is not None:
-            progress(0.02, f"{point.label}: model and search")
-        grid = None if point.method == "p" else np.asarray(point.sweep_rpm, float)
-        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=grid)
-        size = self._model_size(ts, ts.pitch_at(point.wind_speed))
-        if not self._size:
-            self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
-        nan = float("nan")
-        res = PointResult(
-            flutter_rpm=nan if s.flutter_rpm is None else float(s.flutter_rpm),
-            flutter_frequency_hz=nan if s.flutter_frequency_hz is None else float(s.flutter_frequency_hz),
-            flutter_mode=s.flutter_mode or "",
-            divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
-            sweep_rpm=np.asarray(s.sweep_rpm, float), frequency_hz=np.asarray(s.frequency_hz, float),
-            damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
-            # the model size goes with each point (the reduced size may depend on its pitch), so
-            # the run's attributes do not depend on which points this process computed
-            info={"pitch_deg": float(s.pitch_deg), **size})
-        on = s.onset
-        if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
-            if progress is not None:
-                progress(0.95, f"{point.label}: flutter mode")
-            from windflutter.post.aerowork import flutter_mode_diagnostics  # noqa: PLC0415
-
-            _, sections, am = ts.model(ts.pitch_at(point.wind_speed))
-            sys_on = am.at(point.wind_speed, float(s.flutter_rpm) * RPM)
-            u = sys_on.expand(on.flutter_vector)
-            omega = float(on.flutter_frequency) if on.flutter_frequency else 2 * math.pi * res.flutter_frequency_hz
-            d = flutter_mode_diagnostics(u, sys_on.strip, sections, omega)
-            res.station_radius, res.flutter_shape, res.aero_work = d.radius, d.shape, d.work
-            res.info["aero_work_rotor_total_J"] = d.work_total
-            res.flutter_dof_vector = u
-        return res
 
 
 def _accepts_progress(fn: Callable) -> bool:
@@ -500,30 +354,6 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)
     write_outputs(ds, config, outdir, campbell=camp)
     return ds
-
-
-def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = None, progress: bool = False):
-    """The operating-point Campbell of a run (``campbell.enabled`` with method p; None otherwise):
-    every mode along the operating curve at the run's wind speeds, with the model of the run's
-    first p case (its parts reused when the built-in analyser built them in this process)."""
-    if not (config.campbell.enabled and "p" in config.method and config.solver.backend == "windflutter"):
-        return None
-    if getattr(turbine, "operating_curve", None) is None:
-        return None
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
-    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
-    from windflutter.system.campbell import campbell  # noqa: PLC0415
-    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
-
-    aero = next(a for a, m in config.cases if m == "p")
-    case = getattr(analyser, "_cases", {}).get((aero, "p")) if analyser is not None else None
-    model = case.model if case is not None else OperationalModel(turbine, operational_options(config, aero))
-    oc = turbine.operating_curve
-    winds = [v for v in config.wind_speeds if oc.wind_speed[0] - 1e-9 <= v <= oc.wind_speed[-1] + 1e-9]
-    if not winds:
-        return None
-    max_hz = config.campbell.max_hz or 1.25 * torsion_frequency(model, 0.0)
-    return campbell(turbine, winds, max_hz=max_hz, model=model)
 
 
 def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, config: AnalysisConfig,

@@ -23,7 +23,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from windflutter import __version__
+from windflutter.version import __version__
 from windflutter.errors import InputError
 
 #: units and long names; units are UDUNITS-2 strings (CF section 3.1)

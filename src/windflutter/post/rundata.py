@@ -16,7 +16,7 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from windflutter import __version__
+from windflutter.version import __version__
 from windflutter.config import AnalysisConfig
 from windflutter.errors import InputError
 from windflutter.post import store

@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from windflutter import __version__
+from windflutter.version import __version__
 from windflutter.errors import InputError
 from windflutter.files import check_output_folder, dump_yaml, load_yaml
 from windflutter.post import store

@@ -54,11 +54,14 @@ def operational_options(config, aero: str):
     if config.damping.model not in ("file", "none"):
         raise InputError("damping.model", config.damping.model, "file or none with method p (the turbine files' "
                          "damping; stiffness, rayleigh and modal belong to the seed's methods pk and thesis)")
+    if s.structure == "deflected" and (m.type != "beam" or not s.deflection):
+        raise InputError("solver.structure", s.structure, "'undeformed' unless model.type is beam and "
+                         "solver.deflection is true (the deflected shape is the beam's)")
     return OperationalOptions(model=m.type, part=m.part, mesh=mesh_settings(config),
                               blade_modes=None if s.reduction == "none" else s.basis_modes,
                               corrections=s.reduction == "mta", correction_tol=max(s.correction_tol, 1e-10),
                               drivetrain=m.drivetrain, aero=unsteady_options(config, aero),
-                              deflection=bool(s.deflection), induction=bool(s.induction), damping=config.damping.model,
+                              deflection=bool(s.deflection), structure=s.structure, induction=bool(s.induction), damping=config.damping.model,
                               tower_damping=config.damping.tower_ratio,
                               air_density=config.air_density)
 
