@@ -30,8 +30,10 @@ run: $(STAMP_RUN)
 	$(VENV)/bin/windflutter run nrel5mw -o $(OUT)/nrel5mw
 
 ## make test: set up with the test extras and run the test suite (slow end-to-end runs use reduced models)
+## (two test processes, whole test files per process, one BLAS thread each: TEST_WORKERS=0 runs serially)
+TEST_WORKERS ?= 2
 test: $(STAMP_TEST)
-	$(PY) -m pytest -q -m "not slow and not nastran" $(PYTEST_ARGS)
+	$(PY) -m pytest -q -m "not slow and not nastran" -n $(TEST_WORKERS) --dist loadfile $(PYTEST_ARGS)
 
 ## the long end-to-end runs at full model size
 test-slow: $(STAMP_TEST)

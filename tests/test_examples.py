@@ -83,8 +83,10 @@ def test_analysis_config_and_stability_example_agree(cached, tmp_path, capsys):
         "--config", EXAMPLES / "analysis_nrel5mw.yaml", "--wind-speed", "11.4", *SET_QUICK, "--json"]))["points"][0]
     assert point["flutter_rpm"] == pytest.approx(float(line.group(1)), abs=0.006)  # printed to 0.01
     assert point["flutter_mode"] == line.group(2)
-    # the NREL 5 MW's overspeed instability lies near twice rated (12.1 RPM): docs/stability.md
-    assert 1.5 * 12.1 < point["flutter_rpm"] < 2.5 * 12.1
+    # the NREL 5 MW's first overspeed instability lies above rated (12.1 RPM) and below the
+    # flap-torsion flutter near twice rated (docs/stability.md); with the deflected blade (the
+    # default) it is the 1st edge BW at 1.2-1.4 x rated (docs/edgewise_damping.md sec. 8)
+    assert 12.1 < point["flutter_rpm"] < 2.5 * 12.1
     text = run_script(capsys, "run_analysis", ["--results", tmp_path / "run" / "results.nc"])
     assert line.group(0) in text  # reading an earlier run prints the same table
 

@@ -42,7 +42,7 @@ MODEL_PARTS = ("turbine", "rotor")
 DAMPING_MODELS = ("file", "none", "stiffness", "rayleigh", "modal")
 DRIVETRAINS = ("flexible", "rigid", "locked")
 CIRCULATIONS = ("jones", "rfa", "quasi_steady")
-STRUCTURES = ("undeformed", "deflected")
+STRUCTURES = ("auto", "undeformed", "deflected")
 PLOT_FORMATS = ("png", "svg", "pdf")
 REDUCTIONS = ("mta", "modal", "none")
 AERO_DISTRIBUTIONS = ("spline", "skin")
@@ -203,10 +203,11 @@ class SolverConfig:
     deflection: bool = opt(True, "bool", "method p: linearize about the deflected steady state (BEM, centrifugal "
                            "and aerodynamic loads, elastic twist); false: the undeformed blade (pk and thesis "
                            "always)")
-    structure: str = opt("undeformed", "choice", "method p, beam blades: the blade structure the stability "
-                         "problem is linearized about: undeformed (straight axis turned by the elastic twist, "
-                         "axial-force geometric stiffness) or deflected (the co-rotational beam re-equilibrated "
-                         "under the steady loads, the geometric stiffness of every steady stress resultant)",
+    structure: str = opt("auto", "choice", "method p: the blade structure the stability problem is linearized "
+                         "about: deflected (beam blades: the co-rotational beam re-equilibrated under the steady "
+                         "loads, the geometric stiffness of every steady stress resultant), undeformed (the "
+                         "straight axis turned by the elastic twist, axial-force geometric stiffness) or auto "
+                         "(deflected for beam blades with solver.deflection, undeformed otherwise)",
                          choices=STRUCTURES)
     circulation: str = opt("jones", "choice", "method p: the rational approximation of Theodorsen's C(k) behind "
                            "the aerodynamic lag states: jones (R.T. Jones, 2 states per strip), rfa (Roger fit "

@@ -56,7 +56,8 @@ def windflutter_points():
     from windflutter.system.modes import point_modes
     from windflutter.system.operational import OperationalModel, OperationalOptions
 
-    om = OperationalModel(load_turbine("iea15mw"), OperationalOptions(mesh={"n_span": 20}, tower_damping=0.001))
+    om = OperationalModel(load_turbine("iea15mw"), OperationalOptions(mesh={"n_span": 20}, tower_damping=0.001,
+                                                              structure="deflected"))  # the default of the config (auto)
     out = {}
     for v in WINDS:
         rpm, pitch = operating_point(v)
@@ -135,10 +136,12 @@ def hawcstab2_labelled(wind: float, min_hz: float = 0.3):
 FAMILY_PAIRS = {("BW edge", 1): "1st edge BW", ("FW edge", 1): "1st edge FW", ("Sym edge", 1): "1st edge collective",
                 ("BW flap", 1): "1st flap BW", ("FW flap", 1): "1st flap FW", ("Sym flap", 1): "1st flap collective"}
 
-#: pairs that miss the criterion today (docs/campbell.md sec. 4): the 1st edge BW at rated wind (its
-#: decay rate 2.2 x HAWCStab2's: the edge-torsion coupling of the deflected blade, docs/edgewise_damping.md)
-#: and the 1st flap collective at 25 m/s (zeta 25.0 % against 34.0 %: -26 %, the band is 25 %)
-KNOWN_MISSES = {("1st edge BW", 10.0), ("1st flap collective", 25.0)}
+#: pairs that miss the criterion today with the blade linearized about its deflected shape (the
+#: default; docs/campbell.md sec. 4): the 1st edge BW at rated wind (zeta 2.78 % against 1.55 %: the
+#: BW/FW split, a support question, docs/edgewise_damping.md sec. 8) and the 1st edge collective at
+#: 25 m/s (2.76 % against 4.24 %, decay rate -35 %).  (The undeformed blade missed the 1st edge BW at
+#: 10 m/s and the 1st flap collective at 25 m/s.)
+KNOWN_MISSES = {("1st edge BW", 10.0), ("1st edge collective", 25.0)}
 
 
 def test_iea15mw_damping_family_by_family_against_hawcstab2(windflutter_points):

@@ -54,16 +54,28 @@ def operational_options(config, aero: str):
     if config.damping.model not in ("file", "none"):
         raise InputError("damping.model", config.damping.model, "file or none with method p (the turbine files' "
                          "damping; stiffness, rayleigh and modal belong to the seed's methods pk and thesis)")
-    if s.structure == "deflected" and (m.type != "beam" or not s.deflection):
-        raise InputError("solver.structure", s.structure, "'undeformed' unless model.type is beam and "
-                         "solver.deflection is true (the deflected shape is the beam's)")
+    structure = resolved_structure(config)
     return OperationalOptions(model=m.type, part=m.part, mesh=mesh_settings(config),
                               blade_modes=None if s.reduction == "none" else s.basis_modes,
                               corrections=s.reduction == "mta", correction_tol=max(s.correction_tol, 1e-10),
                               drivetrain=m.drivetrain, aero=unsteady_options(config, aero),
-                              deflection=bool(s.deflection), structure=s.structure, induction=bool(s.induction), damping=config.damping.model,
+                              deflection=bool(s.deflection), structure=structure, induction=bool(s.induction), damping=config.damping.model,
                               tower_damping=config.damping.tower_ratio,
                               air_density=config.air_density)
+
+
+def resolved_structure(config) -> str:
+    """``solver.structure`` with ``auto`` resolved: ``deflected`` for beam blades linearized about the
+    deflected steady state (``solver.deflection``), ``undeformed`` otherwise (shell blades have no
+    co-rotational model yet)."""
+    m, s = config.model, config.solver
+    can = m.type == "beam" and bool(s.deflection)
+    if s.structure == "auto":
+        return "deflected" if can else "undeformed"
+    if s.structure == "deflected" and not can:
+        raise InputError("solver.structure", s.structure, "undeformed or auto unless model.type is beam and "
+                         "solver.deflection is true (the deflected shape is the co-rotational beam's)")
+    return s.structure
 
 
 def search_settings(config):

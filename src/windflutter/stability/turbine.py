@@ -289,13 +289,18 @@ class TurbineStability:
         else:
             on = thesis_search(system_at, grid, n_eig=o.n_eig)
 
-        # the field's names ("1st flap asymmetric", "1st tower fore-aft": structure/labels) of the
-        # tracked modes at the first rotor speed; the flutter mode by the mode it grew from
-        labels = field_names(fe, sys_ref, on.vectors0, sections) if on.vectors0 is not None else []
+        def lab(x):
+            return label_mode(sys_ref.expand(x), sections, sys_ref.strip.P, tower_dofs)
+
         mode = None
         if on.flutter_vector is not None:
-            mode = labels[on.flutter_mode] if (on.flutter_mode is not None and on.flutter_mode < len(labels)) \
-                else field_names(fe, system_at(on.flutter), [on.flutter_vector], sections)[0]
+            s_on = system_at(on.flutter)
+            mode = label_mode(s_on.expand(on.flutter_vector), sections, s_on.strip.P, tower_dofs)
+        # a mode without a free root at the first grid point (lost there) has no shape yet
+        labels = [lab(x) if x is not None else "lost" for x in on.vectors0] if on.vectors0 is not None else []
+        if mode is not None and on.flutter_mode is not None and on.flutter_mode < len(labels):
+            # the structural mode it grew from, and the shape at onset
+            mode = f"{labels[on.flutter_mode]} -> {mode}"
         if mode is not None and on.divergence is not None and on.flutter > on.divergence:
             # reported like a V-g plot shows it, but the stability limit is the divergence: beyond
             # it the linearization about the undeformed rotor describes no equilibrium
@@ -309,28 +314,6 @@ class TurbineStability:
             flutter_frequency_hz=None if on.flutter_frequency is None else on.flutter_frequency / (2 * math.pi),
             flutter_mode=mode, sweep_rpm=on.params, frequency_hz=np.abs(lam.imag) / (2 * math.pi),
             damping_ratio=zeta, mode_labels=labels, onset=on)
-
-
-def field_names(fe, system, vectors, sections) -> list[str]:
-    """Names in the field's terms (:func:`windflutter.structure.labels.label_modes`) of working-basis
-    mode shapes (complex: each turned to its largest component's phase, the real part named), unique
-    (a repeated name gets its count: the frozen-azimuth model has two asymmetric copies of every
-    blade mode); ``"lost"`` for a mode without a shape."""
-    from windflutter.structure.labels import label_modes
-
-    idx = [i for i, x in enumerate(vectors) if x is not None]
-    out = ["lost"] * len(vectors)
-    if not idx:
-        return out
-    U = np.stack([system.expand(vectors[i]) for i in idx], 1)
-    k = np.argmax(np.abs(U), axis=0)
-    U = np.real(U * np.exp(-1j * np.angle(U[k, np.arange(U.shape[1])]))[None, :])
-    M = system.model.structure.M
-    seen: dict = {}
-    for i, name in zip(idx, label_modes(fe, M, U, sections)):
-        seen[name] = seen.get(name, 0) + 1  # unique keys: the 2nd asymmetric copy is "... asymmetric 2"
-        out[i] = name if seen[name] == 1 else f"{name} {seen[name]}"
-    return out
 
 
 def auto_tracked(system, sections, tower_dofs, factor: float = 1.25) -> int:
