@@ -131,6 +131,7 @@ rotor_speed: {min_rpm: 14, max_rpm: 36, n_points: 4, tolerance_rpm: 0.1}
 model: {type: beam, n_aero_sections: 10}
 solver: {reduction: modal, basis_modes: 15, n_eig: 12}
 output: {plots: false, report: false, animations: false, mode_shapes: false}
+campbell: {enabled: false}   # the run loop in parallel is the check (campbell: tests/system, tests/cli)
 """)
     for name, workers in (("serial", "1"), ("par", "2")):
         assert main(["run", "nrel5mw", "-c", str(cfg), "-o", str(tmp_path / name), "-q",
