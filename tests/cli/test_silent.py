@@ -185,7 +185,27 @@ def test_stability_options_are_the_run_options():
     assert cfg_d == config_from_dict({"wind_speeds": [10], "rotor_speed": {"min_rpm": 2, "max_rpm": 40, "n_points": 20}})
     assert d == operational_options(cfg_d, "viscous")
     assert (d.part, d.drivetrain, d.deflection, d.induction, d.damping) == ("turbine", "flexible", True, True, "file")
+    assert d.structure == "deflected"  # auto: beam blades are linearized about their deflected shape
     assert MeshSettings(**{"model": "beam", **d.mesh}) == MeshSettings(model="beam", part="turbine", n_span=30)
+
+
+@pytest.mark.parametrize("solver, model, want", [
+    ({}, "shell", "undeformed"), ({"deflection": False}, "beam", "undeformed"),
+    ({"structure": "undeformed"}, "beam", "undeformed"), ({"structure": "deflected"}, "beam", "deflected"),
+    ({"structure": "deflected"}, "shell", None), ({"structure": "deflected", "deflection": False}, "beam", None)])
+def test_structure_auto_and_its_limits(solver, model, want):
+    # solver.structure: auto resolves by the model; an explicit deflected blade it cannot build is
+    # refused naming the config field (no silent fall-back)
+    from windflutter.config import config_from_dict
+    from windflutter.errors import InputError
+    from windflutter.stability.build import operational_options
+
+    cfg = config_from_dict({"model": {"type": model}, "solver": solver})
+    if want is None:
+        with pytest.raises(InputError, match="solver.structure"):
+            operational_options(cfg, "viscous")
+    else:
+        assert operational_options(cfg, "viscous").structure == want
 
 
 @pytest.mark.parametrize("lo, hi, step", [(2, 40, 2), (2, 40, 3), (0, 25, 0.5), (4, 30, 7), (2, 2.5, 2)])
