@@ -132,9 +132,52 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     if blade.layup is None or not blade.layup.layers:
         raise InputError("blade.layup", None, "a composite layup (layers and webs) for the shell model")
     eta = station_positions(settings.n_span, settings.span_clustering)
-    n_st = len(eta)
     layup = blade.layup
     shell_layers = extend_to_blade_ends(layup.shell_layers)
+    webs, web_rows = _present_webs(layup, eta)
+    keys, key_arr, counts = _key_arcs(webs, web_rows, shell_layers, eta, settings.n_chord)
+    key_index = {name: int(np.sum(counts[: i + 1])) for i, (name, _) in enumerate(keys)}
+    st = _lofted_stations(blade, airfoils, eta, key_arr, counts)
+    parts = _skin_part(st, shell_layers, materials, settings.n_chord, reference_surface)
+    for w in webs:
+        _add_web(parts, w, layup.web_layers(w.name), web_rows[w.name], key_index, st.eta, settings.n_web, materials)
+
+    all_nodes = np.vstack(parts.nodes)
+    conn = np.vstack(parts.conns)
+    all_nodes, conn, station_nodes = _compact(all_nodes, conn, parts.station_nodes)
+    return BladeShellMesh(
+        nodes=all_nodes,
+        conn=conn,
+        prop=np.concatenate(parts.prop),
+        matdir=_span_directions(all_nodes, conn),
+        properties=parts.properties,
+        region=np.concatenate(parts.region),
+        region_names=parts.region_names,
+        eta=eta,
+        station_nodes=station_nodes,
+        arc=st.arc,
+        ref_axis=st.ref,
+        chord=st.chord,
+        twist=st.twist,
+        pitch_axis=st.pitch_axis,
+    )
+
+
+def _present_webs(layup, eta: np.ndarray) -> tuple[list, dict[str, np.ndarray]]:
+    """The webs that get elements, and the rows of elements of each.
+
+    Parameters
+    ----------
+    layup : the blade's layup.
+    eta : (n_st,) station span positions (-).
+
+    Returns
+    -------
+    webs : the layup's webs with layers and non-zero thickness on at least one row, in layup
+        order.
+    web_rows : web name -> indices of the element rows (between stations i and i+1) whose two
+        bounding stations both have web thickness (m) > 0.
+    """
     # a web exists where its layers have thickness (windIO files give attachment arcs along the
     # whole span, also where the web is absent and may coincide with another web's)
     web_t = {w.name: sum(lay.thickness_at(eta) for lay in layup.web_layers(w.name)) * ((eta >= w.s_start - 1e-9) & (eta <= w.s_end + 1e-9))
@@ -143,8 +186,28 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     # web elements on the rows whose two bounding stations both have web thickness
     web_rows = {w.name: np.where((web_t[w.name][:-1] > 0) & (web_t[w.name][1:] > 0))[0] for w in webs}
     webs = [w for w in webs if web_rows[w.name].size]
+    return webs, web_rows
 
-    # --- key arcs: webs first, then layer boundaries
+
+def _key_arcs(webs: list, web_rows: dict, shell_layers: list, eta: np.ndarray, n_chord: int):
+    """Key arcs of the chordwise grid (webs first, then layer boundaries) and its segment counts.
+
+    Parameters
+    ----------
+    webs, web_rows : from :func:`_present_webs`.
+    shell_layers : the skin layers (extended to the blade ends).
+    eta : (n_st,) station span positions (-).
+    n_chord : chordwise elements (-).
+
+    Returns
+    -------
+    keys : (name, (n_st,) arc (-)) of the kept key arcs, sorted by mean arc.
+    key_arr : (n_st, nk + 1) segment start arcs (-) at every station, the first column 0.
+    counts : (nk + 1,) elements in each segment (sum ``n_chord``).
+
+    Raises InputError if a web's attachment arc could not be kept as a key.
+    """
+    n_st = len(eta)
     raw = []
     for w in webs:
         rows = web_rows[w.name]
@@ -160,7 +223,7 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
         a0, a1 = lay.arcs_at(eta)
         curves.append((f"{lay.name}.start", np.mod(a0, 1.0)))
         curves.append((f"{lay.name}.end", np.mod(a1, 1.0)))
-    max_keys = max(n_web_keys, settings.n_chord // 3 - 1)
+    max_keys = max(n_web_keys, n_chord // 3 - 1)
     keys = choose_key_arcs(curves, max_keys, n_web_keys)
     web_keys = {name for name, _ in keys}
     for w in webs:
@@ -169,10 +232,42 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
                 raise InputError(f"blade.layup.webs[{w.name}]", h, "web attachment arcs inside (0, 1), distinct from other webs")
     key_arr = np.column_stack([np.zeros(n_st)] + [c for _, c in keys])  # (n_st, nk+1)
     seg_len = np.diff(np.column_stack([key_arr, np.ones(n_st)]), axis=1).mean(axis=0)
-    counts = lf.distribute_counts(seg_len, settings.n_chord)
-    key_index = {name: int(np.sum(counts[: i + 1])) for i, (name, _) in enumerate(keys)}
+    counts = lf.distribute_counts(seg_len, n_chord)
+    return keys, key_arr, counts
 
-    # --- sections: airfoil blend at each station on its own arc grid
+
+@dataclass
+class _Stations:
+    """Lofted stations of the blade (see :func:`_lofted_stations`).
+
+    Attributes
+    ----------
+    eta : (n_st,) span positions (-).  arc : (n_st, nc) contour arc of each skin point (-).
+    sec : (n_st, nc, 2) unit airfoil coordinates (-).  ref : (n_st, 3) reference axis (m).
+    chord (m), twist (rad), pitch_axis (-) : (n_st,) section data.
+    skin : (n_st, nc, 3) skin points on the outer mould line, blade root frame (m).
+    """
+
+    eta: np.ndarray
+    arc: np.ndarray
+    sec: np.ndarray
+    ref: np.ndarray
+    chord: np.ndarray
+    twist: np.ndarray
+    pitch_axis: np.ndarray
+    skin: np.ndarray
+
+
+def _lofted_stations(blade, airfoils: dict, eta: np.ndarray, key_arr: np.ndarray, counts: np.ndarray) -> _Stations:
+    """Airfoil blend at each station on its own arc grid, lofted to the blade root frame.
+
+    Parameters
+    ----------
+    blade, airfoils : as :func:`blade_shell_mesh`.
+    eta : (n_st,) station span positions (-).
+    key_arr, counts : segment start arcs (-) and element counts from :func:`_key_arcs`.
+    """
+    n_st = len(eta)
     pos, shapes = _oriented_stack(blade, airfoils)
     arc = np.stack([lf.segmented_grid(key_arr[i], counts) for i in range(n_st)])
     tc_target = blade.at("relative_thickness", eta)
@@ -183,88 +278,119 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     twist = blade.at("twist", eta)
     pa = blade.at("pitch_axis", eta)
     skin = lf.loft(sec, chord, twist, pa, ref)  # (n_st, n_chord, 3)
-    nc = settings.n_chord
+    return _Stations(eta=eta, arc=arc, sec=sec, ref=ref, chord=chord, twist=twist, pitch_axis=pa, skin=skin)
+
+
+@dataclass
+class _MeshParts:
+    """Nodes and element regions collected while meshing (skin first, then one region per web).
+
+    Attributes
+    ----------
+    skin : (n_st, nc, 3) skin nodes on the elements' reference surface (m).
+    station_nodes : (n_st, nc) node index of each skin point.
+    nodes : (k, 3) node blocks (m), numbered consecutively.  next_id : next free node index.
+    conns, prop, region : per region (ne_r, 4) quads, (ne_r,) laminate and region indices.
+    properties : laminates.  region_names : one per region.
+    """
+
+    skin: np.ndarray
+    station_nodes: np.ndarray
+    nodes: list
+    next_id: int
+    conns: list
+    prop: list
+    properties: list
+    region: list
+    region_names: list
+
+
+def _skin_part(st: _Stations, shell_layers: list, materials: dict, nc: int, reference_surface: str) -> _MeshParts:
+    """Skin quads and their laminates; with ``"midsurface"`` the skin nodes moved inwards.
+
+    Parameters
+    ----------
+    st : lofted stations.  shell_layers : skin layers.  materials : name -> FE material.
+    nc : chordwise elements (-).  reference_surface : ``"outer"`` or ``"midsurface"``.
+
+    Returns
+    -------
+    The mesh parts holding the skin region only.
+    """
+    eta, skin = st.eta, st.skin
+    n_st = len(eta)
     nodes = [skin.reshape(-1, 3)]
     station_nodes = np.arange(n_st * nc).reshape(n_st, nc)
-    next_id = n_st * nc
-
-    # --- skin elements
     conn_skin = lf.quad_grid(n_st, nc)
     ii = np.repeat(np.arange(n_st - 1), nc)
     jj = np.tile(np.arange(nc), n_st - 1)
-    a_lo, a_hi = _arc_interval(arc, ii, jj)
+    a_lo, a_hi = _arc_interval(st.arc, ii, jj)
     T, A = layer_tables(shell_layers, eta[ii], eta[ii + 1], a_lo, a_hi)
     mats = [_material(materials, lay.material, lay.name) for lay in shell_layers]
     T, A = fill_uncovered(T, A, n_st - 1, nc)
     prop_skin, props = group_laminates(T, A, mats, "skin")
     if reference_surface == "midsurface":
-        e_c, e_n = lf.chord_frame(twist)
-        off = midsurface_offsets(sec, T.sum(axis=1).reshape(n_st - 1, nc), chord)  # (n_st, nc, 2)
+        e_c, e_n = lf.chord_frame(st.twist)
+        off = midsurface_offsets(st.sec, T.sum(axis=1).reshape(n_st - 1, nc), st.chord)  # (n_st, nc, 2)
         skin = skin + off[:, :, 0:1] * e_c[:, None, :] + off[:, :, 1:2] * e_n[:, None, :]
         nodes = [skin.reshape(-1, 3)]
-    conns = [conn_skin]
-    prop_list = [prop_skin]
-    region = [np.zeros(len(conn_skin), dtype=np.int64)]
-    region_names = ["skin"]
+    return _MeshParts(skin=skin, station_nodes=station_nodes, nodes=nodes, next_id=n_st * nc, conns=[conn_skin],
+                      prop=[prop_skin], properties=props, region=[np.zeros(len(conn_skin), dtype=np.int64)],
+                      region_names=["skin"])
 
-    # --- webs
-    nw = settings.n_web
-    for w in webs:
-        wl = layup.web_layers(w.name)
-        js, je = key_index[f"{w.name}.start"], key_index[f"{w.name}.end"]
-        a = skin[:, js, :]
-        b = skin[:, je, :]
-        t = np.linspace(0.0, 1.0, nw + 1)[1:-1]
-        inner = a[:, None, :] + t[None, :, None] * (b - a)[:, None, :]  # (n_st, nw-1, 3)
-        cols = np.empty((n_st, nw + 1), dtype=np.int64)
-        cols[:, 0] = station_nodes[:, js]
-        cols[:, -1] = station_nodes[:, je]
-        if nw > 1:
-            cols[:, 1:-1] = next_id + np.arange(n_st * (nw - 1)).reshape(n_st, nw - 1)
-            nodes.append(inner.reshape(-1, 3))
-            next_id += n_st * (nw - 1)
-        se = 0.5 * (eta[:-1] + eta[1:])
-        on = web_rows[w.name]
-        if on.size == 0:
-            continue
-        i = np.repeat(on, nw)
-        k = np.tile(np.arange(nw), on.size)
-        cw = np.stack([cols[i, k], cols[i + 1, k], cols[i + 1, k + 1], cols[i, k + 1]], axis=1)
-        Tw, Aw = layer_tables(wl, np.repeat(eta[on], nw), np.repeat(eta[on + 1], nw))
-        if np.any(Tw.sum(axis=1) <= 0):
-            raise InputError(f"blade.layup.webs[{w.name}]", "zero thickness", "web layers over the web's extent")
-        pw, props_w = group_laminates(Tw, Aw, [_material(materials, lay.material, lay.name) for lay in wl], f"web_{w.name}")
-        conns.append(cw)
-        prop_list.append(pw + len(props))
-        props = props + props_w
-        region.append(np.full(len(cw), len(region_names), dtype=np.int64))
-        region_names.append(f"web:{w.name}")
 
-    all_nodes = np.vstack(nodes)
-    conn = np.vstack(conns)
-    all_nodes, conn, station_nodes = _compact(all_nodes, conn, station_nodes)
-    p = all_nodes[conn]
-    # every quad is (station i, station i+1, station i+1, station i) -> span edge p1 + p2 - p0 - p3
+def _add_web(parts: _MeshParts, w, wl: list, on: np.ndarray, key_index: dict, eta: np.ndarray, nw: int,
+             materials: dict) -> None:
+    """Append one web to ``parts``: its interior nodes and, on its rows, its quads and laminates.
+
+    Parameters
+    ----------
+    parts : mesh parts (modified in place).  w : the web.  wl : its layers.
+    on : indices of the element rows the web has (see :func:`_present_webs`).
+    key_index : key-arc name -> chordwise skin point index.  eta : (n_st,) span positions (-).
+    nw : elements across the web (-).  materials : name -> FE material.
+    """
+    skin, station_nodes = parts.skin, parts.station_nodes
+    n_st = len(eta)
+    js, je = key_index[f"{w.name}.start"], key_index[f"{w.name}.end"]
+    a = skin[:, js, :]
+    b = skin[:, je, :]
+    t = np.linspace(0.0, 1.0, nw + 1)[1:-1]
+    inner = a[:, None, :] + t[None, :, None] * (b - a)[:, None, :]  # (n_st, nw-1, 3)
+    cols = np.empty((n_st, nw + 1), dtype=np.int64)
+    cols[:, 0] = station_nodes[:, js]
+    cols[:, -1] = station_nodes[:, je]
+    if nw > 1:
+        cols[:, 1:-1] = parts.next_id + np.arange(n_st * (nw - 1)).reshape(n_st, nw - 1)
+        parts.nodes.append(inner.reshape(-1, 3))
+        parts.next_id += n_st * (nw - 1)
+    if on.size == 0:
+        return
+    i = np.repeat(on, nw)
+    k = np.tile(np.arange(nw), on.size)
+    cw = np.stack([cols[i, k], cols[i + 1, k], cols[i + 1, k + 1], cols[i, k + 1]], axis=1)
+    Tw, Aw = layer_tables(wl, np.repeat(eta[on], nw), np.repeat(eta[on + 1], nw))
+    if np.any(Tw.sum(axis=1) <= 0):
+        raise InputError(f"blade.layup.webs[{w.name}]", "zero thickness", "web layers over the web's extent")
+    pw, props_w = group_laminates(Tw, Aw, [_material(materials, lay.material, lay.name) for lay in wl], f"web_{w.name}")
+    parts.conns.append(cw)
+    parts.prop.append(pw + len(parts.properties))
+    parts.properties = parts.properties + props_w
+    parts.region.append(np.full(len(cw), len(parts.region_names), dtype=np.int64))
+    parts.region_names.append(f"web:{w.name}")
+
+
+def _span_directions(nodes: np.ndarray, conn: np.ndarray) -> np.ndarray:
+    """(ne, 3) unit material axis of every quad: its span direction (-), blade frame.
+
+    Every quad is (station i, station i+1, station i+1, station i), so the span edge is
+    ``p1 + p2 - p0 - p3``.  (No nudge needed: structure/shell.py computes the material angle
+    itself, exact when the material axis is the element x axis.)
+    """
+    p = nodes[conn]
     matdir = p[:, 1] + p[:, 2] - p[:, 0] - p[:, 3]
     matdir /= np.linalg.norm(matdir, axis=1, keepdims=True)
-    # (no nudge needed: structure/shell.py computes the material angle itself, exact when the
-    # material axis is the element x axis)
-    return BladeShellMesh(
-        nodes=all_nodes,
-        conn=conn,
-        prop=np.concatenate(prop_list),
-        matdir=matdir,
-        properties=props,
-        region=np.concatenate(region),
-        region_names=region_names,
-        eta=eta,
-        station_nodes=station_nodes,
-        arc=arc,
-        ref_axis=ref,
-        chord=chord,
-        twist=twist,
-        pitch_axis=pa,
-    )
+    return matdir
 
 
 def midsurface_offsets(sec: np.ndarray, t_elem: np.ndarray, chord: np.ndarray) -> np.ndarray:
