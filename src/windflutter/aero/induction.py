@@ -229,6 +229,35 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
     and ``phi = atan2(V, Omega r)`` (the uninduced inflow).  Elements without a bracketed root
     (e.g. no lift) also get ``a = a' = 0`` and ``converged = False``.
     """
+    r, chord, theta, idx, V, Om, Vj = _checked_bem_inputs(r, chord, theta, polars, airfoil, wind_speed, omega,
+                                                          n_blades, r_tip, normal_factor)
+    polar = _PolarTable(polars, idx)
+    phi, a, ap, conv = _solve_inflow(r, chord, theta, polar, Vj, Om, V, n_blades, r_tip, r_hub,
+                                     (tip_loss, hub_loss, high_thrust), xtol)
+    alpha = phi - theta
+    cl, cd = polar(alpha)
+    F = prandtl_factor(r, phi, n_blades, r_tip, r_hub, tip_loss, hub_loss)
+    W = np.hypot(Vj * (1.0 - a), Om * r * (1.0 + ap))
+    q = 0.5 * air_density * W**2 * chord
+    fn = q * (cl * np.cos(phi) + cd * np.sin(phi))
+    ft = q * (cl * np.sin(phi) - cd * np.cos(phi))
+    T, Q, P, cp, ct, tsr = _rotor_totals(fn, ft, r, dr, V, Om, n_blades, r_tip, air_density)
+    return BEMResult(a=a, ap=ap, phi=phi, alpha=alpha, cl=cl, cd=cd, F=F, W=W, fn=fn, ft=ft, converged=conv,
+                     thrust=T, torque=Q, power=P, cp=float(cp), ct=float(ct), tsr=float(tsr))
+
+
+def _checked_bem_inputs(r, chord, theta, polars, airfoil, wind_speed, omega, n_blades, r_tip, normal_factor):
+    """Validated, broadcast inputs of :func:`bem_induction` (same meaning and units).
+
+    Returns
+    -------
+    r, chord, theta : (n,) radius (m), chord (m), blade angle (rad).  idx : (n,) polar indices.
+    V : wind speed (m/s).  Om : ``|omega|`` (rad/s).  Vj : (n,) normal wind of each element
+    (m/s), ``V`` times its ``normal_factor``.
+
+    Raises InputError on a negative or non-finite speed, a bad blade count, radii outside
+    ``(0, r_tip]``, negative chords, polar indices out of range or a factor outside (0, 1].
+    """
     r = np.atleast_1d(np.asarray(r, float))
     n = r.size
     chord = np.broadcast_to(np.asarray(chord, float), (n,))
@@ -254,7 +283,26 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
         if not np.all((nf > 0) & (nf <= 1 + 1e-12)):
             raise InputError("normal_factor", "outside (0, 1]", "cosines of the local cone angles in (0, 1]")
         Vj = V * nf
-    polar = _PolarTable(polars, idx)
+    return r, chord, theta, idx, V, Om, Vj
+
+
+def _solve_inflow(r, chord, theta, polar, Vj, Om, V, n_blades, r_tip, r_hub, flags, xtol):
+    """Inflow angle and induction of every element: the root of the BEM residual per bracket.
+
+    Parameters
+    ----------
+    r, chord, theta : (n,) radius (m), chord (m), blade angle (rad).  polar : :class:`_PolarTable`.
+    Vj : (n,) normal wind of each element (m/s).  Om : rotor speed (rad/s, >= 0).  V : wind (m/s).
+    n_blades, r_tip (m), r_hub (m) : as :func:`bem_induction`.
+    flags : (tip_loss, hub_loss, high_thrust).  xtol : bisection tolerance on ``phi`` (rad).
+
+    Returns
+    -------
+    phi (rad), a, ap (-), conv : (n,) arrays; the windmill bracket ``(0, pi/2]`` is tried first,
+    then ``(pi/2, pi)``, then ``[-pi/4, 0)``; elements without a root keep the uninduced
+    ``phi = atan2(V_j, Omega r)``, ``a = a' = 0`` and ``conv = False``.
+    """
+    n = r.size
     a = np.zeros(n)
     ap = np.zeros(n)
     phi = np.arctan2(Vj, Om * r)
@@ -262,42 +310,69 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
     if V > 0 and Om > 0:
         lam = Om * r / Vj
         sig = n_blades * chord / (2.0 * np.pi * r)
-        args = (r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, tip_loss, hub_loss, high_thrust)
+        args = (r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, *flags)
         todo = np.ones(n, bool)
         for lo_, hi_ in ((_PHI_EPS, 0.5 * np.pi), (0.5 * np.pi, np.pi - _PHI_EPS), (-0.25 * np.pi, -_PHI_EPS)):
             sel = np.flatnonzero(todo)
             if sel.size == 0:
                 break
-            lo = np.full(sel.size, lo_)
-            hi = np.full(sel.size, hi_)
-            flo = _state(lo, sel, *args)[0]
-            fhi = _state(hi, sel, *args)[0]
-            ok = np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi <= 0)
-            if not np.any(ok):
+            found = _bisect_bracket(lo_, hi_, sel, args, xtol)
+            if found is None:
                 continue
-            sel, lo, hi, flo = sel[ok], lo[ok], hi[ok], flo[ok]
-            n_it = int(np.ceil(np.log2(max(hi_ - lo_, xtol) / xtol))) + 1
-            for _ in range(n_it):
-                mid = 0.5 * (lo + hi)
-                fm = _state(mid, sel, *args)[0]
-                left = (fm * flo <= 0) | ~np.isfinite(fm)
-                hi = np.where(left, mid, hi)
-                lo = np.where(left, lo, mid)
-                flo = np.where(left, flo, fm)
-            ph = 0.5 * (lo + hi)
-            _, aa, aap, *_ = _state(ph, sel, *args)
-            good = np.isfinite(aa) & np.isfinite(aap)
-            sel = sel[good]
-            phi[sel], a[sel], ap[sel] = ph[good], aa[good], aap[good]
+            sel, ph, aa, aap = found
+            phi[sel], a[sel], ap[sel] = ph, aa, aap
             conv[sel] = True
             todo[sel] = False
-    alpha = phi - theta
-    cl, cd = polar(alpha)
-    F = prandtl_factor(r, phi, n_blades, r_tip, r_hub, tip_loss, hub_loss)
-    W = np.hypot(Vj * (1.0 - a), Om * r * (1.0 + ap))
-    q = 0.5 * air_density * W**2 * chord
-    fn = q * (cl * np.cos(phi) + cd * np.sin(phi))
-    ft = q * (cl * np.sin(phi) - cd * np.cos(phi))
+    return phi, a, ap, conv
+
+
+def _bisect_bracket(lo_: float, hi_: float, sel: np.ndarray, args: tuple, xtol: float):
+    """Vectorized bisection of the residual of :func:`_state` on ``[lo_, hi_]`` (rad).
+
+    Parameters
+    ----------
+    lo_, hi_ : bracket ends (rad).  sel : indices of the elements still unsolved.
+    args : the arguments of :func:`_state` after ``phi, sel``.  xtol : tolerance on ``phi`` (rad).
+
+    Returns
+    -------
+    None if no element has a sign change in the bracket, else ``(sel, phi, a, ap)`` of the
+    elements whose root gives finite inductions: indices, inflow angle (rad), ``a``, ``a'`` (-).
+    """
+    lo = np.full(sel.size, lo_)
+    hi = np.full(sel.size, hi_)
+    flo = _state(lo, sel, *args)[0]
+    fhi = _state(hi, sel, *args)[0]
+    ok = np.isfinite(flo) & np.isfinite(fhi) & (flo * fhi <= 0)
+    if not np.any(ok):
+        return None
+    sel, lo, hi, flo = sel[ok], lo[ok], hi[ok], flo[ok]
+    n_it = int(np.ceil(np.log2(max(hi_ - lo_, xtol) / xtol))) + 1
+    for _ in range(n_it):
+        mid = 0.5 * (lo + hi)
+        fm = _state(mid, sel, *args)[0]
+        left = (fm * flo <= 0) | ~np.isfinite(fm)
+        hi = np.where(left, mid, hi)
+        lo = np.where(left, lo, mid)
+        flo = np.where(left, flo, fm)
+    ph = 0.5 * (lo + hi)
+    _, aa, aap, *_ = _state(ph, sel, *args)
+    good = np.isfinite(aa) & np.isfinite(aap)
+    return sel[good], ph[good], aa[good], aap[good]
+
+
+def _rotor_totals(fn, ft, r, dr, V, Om, n_blades, r_tip, air_density):
+    """Rotor thrust (N), torque (N m), power (W), cp, ct (-) and tip-speed ratio (-).
+
+    Parameters
+    ----------
+    fn, ft : (n,) normal and tangential force per unit span (N/m).  r : (n,) radius (m).
+    dr : (n,) radial length of each element (m), or None (totals zero).  V : wind (m/s).
+    Om : rotor speed (rad/s, >= 0).  n_blades : B.  r_tip : tip radius (m).  air_density : kg/m^3.
+
+    With ``V = 0``: ``cp = ct = nan`` and ``tsr = inf``.
+    """
+    n = r.size
     if dr is None:
         T = Q = 0.0
     else:
@@ -310,8 +385,7 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
     cp = P / (qV * V) if V > 0 else float("nan")
     ct = T / qV if V > 0 else float("nan")
     tsr = Om * r_tip / V if V > 0 else float("inf")
-    return BEMResult(a=a, ap=ap, phi=phi, alpha=alpha, cl=cl, cd=cd, F=F, W=W, fn=fn, ft=ft, converged=conv,
-                     thrust=T, torque=Q, power=P, cp=float(cp), ct=float(ct), tsr=float(tsr))
+    return T, Q, P, cp, ct, tsr
 
 
 def theta_from_geometry(sections: AeroSections, rotor: RotorGeometry, pitch: float = 0.0) -> np.ndarray:
