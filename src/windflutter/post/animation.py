@@ -93,9 +93,26 @@ def write_mode_animation(
     -------
     Path of the ``.pvd`` collection.
     """
-    import meshio  # noqa: PLC0415
+    # imported first, as before the split: without meshio nothing is checked or created
+    import meshio  # noqa: F401
 
     phi = np.asarray(mode)
+    _check_animation_inputs(fe, phi, n_frames, frequency_hz, name)
+    phi = phi.astype(complex)
+    if align_phase:
+        phi = _phase_aligned(fe, phi)
+    s = animation_scale(fe, phi, fraction) if scale is None else float(scale)
+    if not (np.isfinite(s) and s > 0):
+        raise InputError("scale", scale, "a positive scale factor")
+    pvd, stem = _collection_path(Path(out), name)
+    entries = _write_frames(fe, phi, s, pvd.parent, stem, int(n_frames), frequency_hz, rigid_links)
+    _write_collection(pvd, entries)
+    return pvd
+
+
+def _check_animation_inputs(fe: FEModel, phi: np.ndarray, n_frames, frequency_hz, name: str) -> None:
+    """Raise InputError unless ``phi`` is a finite (n_dof,) mode, ``n_frames`` an integer >= 4,
+    ``frequency_hz`` None or a positive frequency (Hz) and ``name`` a plain file base name."""
     if phi.shape != (fe.n_dof,):
         raise InputError("mode", phi.shape, f"a ({fe.n_dof},) mode shape")
     if not np.all(np.isfinite(phi)):
@@ -111,31 +128,51 @@ def write_mode_animation(
             raise InputError("frequency_hz", frequency_hz, "a positive frequency (Hz) or None")
     if not name or any(c in name for c in "/\\"):
         raise InputError("name", name, "a non-empty file base name without path separators")
-    phi = phi.astype(complex)
-    if align_phase:
-        trans = phi.reshape(fe.n_nodes, 6)[:, :3].ravel()
-        k = int(np.argmax(np.abs(trans)))
-        if abs(trans[k]) > 0:
-            phi = phi * np.exp(-1j * np.angle(trans[k]))
-    s = animation_scale(fe, phi, fraction) if scale is None else float(scale)
-    if not (np.isfinite(s) and s > 0):
-        raise InputError("scale", scale, "a positive scale factor")
 
-    out = Path(out)
+
+def _phase_aligned(fe: FEModel, phi: np.ndarray) -> np.ndarray:
+    """The complex mode ``phi`` (m, rad) times ``exp(-i angle)`` making its largest translation
+    component real (unchanged if all translations are zero)."""
+    trans = phi.reshape(fe.n_nodes, 6)[:, :3].ravel()
+    k = int(np.argmax(np.abs(trans)))
+    if abs(trans[k]) > 0:
+        phi = phi * np.exp(-1j * np.angle(trans[k]))
+    return phi
+
+
+def _collection_path(out: Path, name: str) -> tuple[Path, str]:
+    """``(pvd, stem)``: the ``.pvd`` path and the frames' base name for ``out`` (a ``.pvd`` path,
+    whose folder is created, or a directory, created, holding ``<name>.pvd``)."""
     if out.suffix.lower() == ".pvd":
         pvd, stem = out, out.stem
         out.parent.mkdir(parents=True, exist_ok=True)
     else:
         out.mkdir(parents=True, exist_ok=True)
         pvd, stem = out / f"{name}.pvd", name
-    folder = pvd.parent
+    return pvd, stem
+
+
+def _write_frames(fe: FEModel, phi: np.ndarray, s: float, folder: Path, stem: str, n_frames: int,
+                  frequency_hz: float | None, rigid_links: bool) -> list[tuple[float, str]]:
+    """Write the ``n_frames`` VTU frames ``<stem>_<k>.vtu`` of one cycle into ``folder``.
+
+    Parameters
+    ----------
+    fe : the model.  phi : (n_dof,) complex mode (m, rad).  s : scale factor on it (-).
+    frequency_hz : frame times in s of the period ``1/f`` (Hz); None: fractions of the period.
+    rigid_links : include rigid-link spokes in the cells.
+
+    Returns
+    -------
+    ``(time, file name)`` of every frame, time in s (or periods) as a plain float.
+    """
+    import meshio  # noqa: PLC0415
 
     cells, cdata = model_cells(fe, rigid_links=rigid_links)
     nodes = np.asarray(fe.nodes, float)
     amp = s * peak_translation(fe, phi)
     period = 1.0 / float(frequency_hz) if frequency_hz is not None else 1.0  # plain float: the .pvd gets "0.25", not "np.float64(0.25)"
     entries = []
-    n_frames = int(n_frames)
     for k in range(n_frames):
         theta = 2.0 * np.pi * k / n_frames
         u = (s * (phi * np.exp(1j * theta)).real).reshape(fe.n_nodes, 6)
@@ -144,7 +181,11 @@ def write_mode_animation(
         fname = f"{stem}_{k:04d}.vtu"
         write_vtu(folder / fname, mesh, region_field_data(fe.region_names))
         entries.append((float(k * period / n_frames), fname))
+    return entries
 
+
+def _write_collection(pvd: Path, entries: list[tuple[float, str]]) -> None:
+    """Write the ParaView ``.pvd`` collection of the frames (``(time, file)``), atomically."""
     lines = ['<?xml version="1.0"?>',
              '<VTKFile type="Collection" version="0.1" byte_order="LittleEndian">',
              "  <Collection>"]
@@ -153,4 +194,3 @@ def write_mode_animation(
     tmp = pvd.with_name(pvd.name + ".tmp")
     tmp.write_text("\n".join(lines))
     tmp.replace(pvd)
-    return pvd
