@@ -267,26 +267,62 @@ def skin_distribution(fe, sections: AeroSections, options: SkinOptions | None = 
     ns = sections.n_sections
     if ns == 0:
         raise InputError("sections", 0, "at least one aerodynamic strip")
-    if elements is None:
-        elements, element_blade = skin_elements(fe)
-    else:
-        elements = np.asarray(elements, dtype=np.int64)
-        element_blade = np.zeros(elements.size, np.int64) if element_blade is None else np.asarray(element_blade, np.int64)
-        if elements.size == 0 or elements.min() < 0 or elements.max() >= len(fe.shell_conn):
-            raise InputError("elements", elements[:5].tolist(), f"shell element rows in [0, {len(fe.shell_conn)})")
-        if element_blade.shape != elements.shape:
-            raise InputError("element_blade", element_blade.shape, f"one blade index per element {elements.shape}")
+    elements, element_blade = _checked_skin_elements(fe, elements, element_blade)
     conn = np.asarray(fe.shell_conn, dtype=np.int64)[elements]  # (ne, 4)
     X = np.asarray(fe.nodes, float)[conn]  # (ne, 4, 3)
     strip = assign_to_strips(X.mean(axis=1), element_blade, sections)
+    x, Ng, dxg, deg, nrm, dA = _gauss_geometry(X, elements)
+    par = np.repeat(strip, 4)
+    o = np.asarray(sections.origin, float)
+    xg = np.einsum("gn,gnc->gc", Ng, x)
+    upper, frac = _work_fractions(sections, par, xg, nrm, dA, options.weighting)
+    W = _gauss_rows(x, Ng, dxg, deg, o[par], options)  # (ng, 6, 4, 6)
+    mm = _motion_rows_matrix(W, conn, fe.n_dof)
+    if options.rotation == "strip":
+        mm = mm + _strip_rotation_rows(sections, par, xg, o[par], options.kinematics == "section")
+    return SkinDistribution(sections=_sub_sections(sections, par, frac, mm), parent=par,
+                            element=np.repeat(elements, 4), upper=upper, point=xg, fraction=frac)
 
+
+def _checked_skin_elements(fe, elements, element_blade) -> tuple[np.ndarray, np.ndarray]:
+    """``(elements, element_blade)``: the skin rows of ``fe.shell_conn`` and their blade index.
+
+    None: the regions ``blade<k>:skin`` (:func:`skin_elements`); else the given rows, checked,
+    with blade 0 unless ``element_blade`` is given (one per element).
+    """
+    if elements is None:
+        return skin_elements(fe)
+    elements = np.asarray(elements, dtype=np.int64)
+    element_blade = np.zeros(elements.size, np.int64) if element_blade is None else np.asarray(element_blade, np.int64)
+    if elements.size == 0 or elements.min() < 0 or elements.max() >= len(fe.shell_conn):
+        raise InputError("elements", elements[:5].tolist(), f"shell element rows in [0, {len(fe.shell_conn)})")
+    if element_blade.shape != elements.shape:
+        raise InputError("element_blade", element_blade.shape, f"one blade index per element {elements.shape}")
+    return elements, element_blade
+
+
+def _gauss_geometry(X: np.ndarray, elements: np.ndarray):
+    """2x2 Gauss points of the skin quads, flattened to ``g = 4 e + p``.
+
+    Parameters
+    ----------
+    X : (ne, 4, 3) node coordinates of each quad (m).  elements : (ne,) their shell rows (for
+        the error message).
+
+    Returns
+    -------
+    x : (ng, 4, 3) the quad's nodes (m) at each Gauss point.  N, dxi, deta : (ng, 4) shape
+    functions and derivatives.  nrm : (ng, 3) ``t_xi x t_eta`` (m^2).  dA : (ng,) its length,
+    the area element (m^2, Gauss weight 1).
+
+    Raises InputError on a quad with zero area at a Gauss point.
+    """
     gxi, geta = gauss_points_2x2()
     N, dxi, deta = shape_functions(gxi, geta)  # (4, 4) each: Gauss point x node
     ne = len(elements)
     # flatten to Gauss points: g = 4 e + p
     x = np.repeat(X, 4, axis=0)  # (ng, 4, 3)
     Ng, dxg, deg = (np.tile(a, (ne, 1)) for a in (N, dxi, deta))
-    par = np.repeat(strip, 4)
     t_xi = np.einsum("gn,gnc->gc", dxg, x)
     t_eta = np.einsum("gn,gnc->gc", deg, x)
     nrm = np.cross(t_xi, t_eta)
@@ -294,11 +330,31 @@ def skin_distribution(fe, sections: AeroSections, options: SkinOptions | None = 
     if np.any(dA <= 0):
         e = int(elements[np.argmin(dA) // 4])
         raise InputError("fe.shell_conn", e, "non-degenerate skin quads (zero area at a Gauss point)")
+    return x, Ng, dxg, deg, nrm, dA
+
+
+def _work_fractions(sections: AeroSections, par: np.ndarray, xg: np.ndarray, nrm: np.ndarray, dA: np.ndarray,
+                    weighting: str) -> tuple[np.ndarray, np.ndarray]:
+    """Side and share of its parent strip's work of every Gauss point.
+
+    Parameters
+    ----------
+    sections : the strips.  par : (ng,) parent strip.  xg : (ng, 3) Gauss point (m).
+    nrm, dA : (ng, 3) surface normal ``t_xi x t_eta`` and (ng,) its length (m^2).
+    weighting : ``"area"`` or ``"projected"`` (area projected on the chord plane).
+
+    Returns
+    -------
+    upper : (ng,) True on the suction side.  frac : (ng,) ``c_g`` (-): each side carries half of
+    its strip's work in proportion to the area, a strip with skin on one side only gives it all.
+
+    Raises InputError if a strip has no skin quad.
+    """
+    ns = sections.n_sections
     o = np.asarray(sections.origin, float)
     nc = _unit(np.cross(np.asarray(sections.e_chord, float), np.asarray(sections.e_span, float)))  # suction side
-    xg = np.einsum("gn,gnc->gc", Ng, x)
     upper = np.einsum("gc,gc->g", xg - o[par], nc[par]) >= 0.0
-    if options.weighting == "projected":
+    if weighting == "projected":
         dA = dA * np.abs(np.einsum("gc,gc->g", nrm / dA[:, None], nc[par]))
     # each side carries half of its strip's work; a strip with skin on one side only gives it all
     S_up = np.bincount(par[upper], weights=dA[upper], minlength=ns)
@@ -310,25 +366,30 @@ def skin_distribution(fe, sections: AeroSections, options: SkinOptions | None = 
     share = np.where(both, 0.5, 1.0)
     S = np.where(upper, S_up[par], S_lo[par])
     frac = share[par] * dA / S
-    W = _gauss_rows(x, Ng, dxg, deg, o[par], options)  # (ng, 6, 4, 6)
+    return upper, frac
+
+
+def _motion_rows_matrix(W: np.ndarray, conn: np.ndarray, n_dof: int) -> sp.csr_matrix:
+    """(6 ng, n_dof) sparse motion map from the Gauss-point rows ``W`` (ng, 6, 4, 6) of
+    :func:`_gauss_rows` and the quads' node indices ``conn`` (ne, 4), ``g = 4 e + p``."""
     ng = W.shape[0]
     rows = np.broadcast_to((6 * np.arange(ng))[:, None, None, None] + np.arange(6)[None, :, None, None], W.shape)
     cols = np.broadcast_to((6 * np.repeat(conn, 4, axis=0))[:, None, :, None] + np.arange(6)[None, None, None, :], W.shape)
     keep = W != 0.0
-    mm = sp.csr_matrix((W[keep], (rows[keep], cols[keep])), shape=(6 * ng, fe.n_dof))
-    if options.rotation == "strip":
-        mm = mm + _strip_rotation_rows(sections, par, xg, o[par], options.kinematics == "section")
+    return sp.csr_matrix((W[keep], (rows[keep], cols[keep])), shape=(6 * ng, n_dof))
 
+
+def _sub_sections(sections: AeroSections, par: np.ndarray, frac: np.ndarray, mm) -> AeroSections:
+    """One sub-strip per Gauss point: the parent strip's data, width (m) times ``frac`` and the
+    motion map ``mm`` (6 ng, n_dof)."""
     def pick(a):
         return np.asarray(a)[par]
 
-    sub = replace(sections, blade=pick(sections.blade), radius=pick(sections.radius),
-                  width=np.asarray(sections.width, float)[par] * frac, chord=pick(sections.chord),
-                  elastic_axis=pick(sections.elastic_axis), origin=pick(sections.origin),
-                  e_chord=pick(sections.e_chord), e_span=pick(sections.e_span), airfoil=pick(sections.airfoil),
-                  twist=pick(sections.twist), motion_map=mm)
-    return SkinDistribution(sections=sub, parent=par, element=np.repeat(elements, 4), upper=upper, point=xg,
-                            fraction=frac)
+    return replace(sections, blade=pick(sections.blade), radius=pick(sections.radius),
+                   width=np.asarray(sections.width, float)[par] * frac, chord=pick(sections.chord),
+                   elastic_axis=pick(sections.elastic_axis), origin=pick(sections.origin),
+                   e_chord=pick(sections.e_chord), e_span=pick(sections.e_span), airfoil=pick(sections.airfoil),
+                   twist=pick(sections.twist), motion_map=mm)
 
 
 def skin_quad_sections(fe, sections: AeroSections, options: SkinOptions | None = None, **kwargs) -> AeroSections:
