@@ -31,6 +31,7 @@ import os
 import pickle
 import time
 import traceback
+import warnings
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
 from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
@@ -211,7 +212,13 @@ def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
     _die_with_parent()
     # for the life of the worker process, also for BLAS libraries it loads later (windflutter.threads)
     set_process_threads(blas_threads)
+    # a warning in a worker reaches the user's terminal: one line, like the command's own
+    warnings.formatwarning = _one_line_warning
     _WORKER_FN = _cp.loads(fn_bytes)
+
+
+def _one_line_warning(message, category, filename, lineno, line=None) -> str:  # noqa: ARG001
+    return f"windflutter worker: warning: {' '.join(str(message).split())}\n"
 
 
 def _run_in_worker(index: int, task_bytes: bytes) -> bytes:

@@ -70,8 +70,11 @@ def _main(argv: list[str] | None) -> int:
     except SystemExit as exc:  # --help, --version, or a usage error already printed in one line
         return exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 2)
     prog = f"windflutter {args.command}"
+    from windflutter.cli.warn import one_line_warnings  # noqa: PLC0415
+
     try:
-        return int(args.func(args) or 0)
+        with one_line_warnings(prog):
+            return int(args.func(args) or 0)
     except InputError as exc:
         print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
         return 2

@@ -2,8 +2,8 @@
 
 Python's default shows a warning as two lines with the file and source line of the code that
 raised it, which means nothing to the user of a command.  :func:`one_line_warnings` replaces that
-for the duration of a command (used by ``modes`` and ``mesh``; the entry point could wrap every
-command the same way).
+for the duration of every command (the entry point, :func:`windflutter.cli.main`); the local
+worker processes of ``run`` print theirs in one line too (:mod:`windflutter.parallel`).
 """
 
 from __future__ import annotations
