@@ -56,6 +56,11 @@ class InputWarning(UserWarning):
     was found and what was done."""
 
 
+class ValidityWarning(UserWarning):
+    """A model used outside its range of validity (e.g. momentum theory in the propeller-brake
+    state); the message says where and what the result then depends on."""
+
+
 def check_choice(field: str, value: Any, choices, source: str | None = None) -> Any:
     """Return ``value`` if it is one of ``choices``, else raise :class:`InputError` naming the
     field, the value and the allowed choices.

@@ -41,12 +41,13 @@ Units: SI (m, s, rad, kg/m^3, N, N m, W).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from windflutter.aero.sections import AeroSections, Polar, RotorGeometry
-from windflutter.errors import InputError
+from windflutter.errors import InputError, ValidityWarning
 
 __all__ = ["BEMResult", "prandtl_factor", "buhl_axial", "axial_from_k", "bem_induction",
            "sections_induction", "theta_from_geometry", "rotor_extent"]
@@ -456,5 +457,29 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
         span = np.asarray(sections.e_span, float)
         sg = (span @ axis) / (np.linalg.norm(span, axis=1) * np.linalg.norm(axis))
         kw["normal_factor"] = np.sqrt(np.maximum(1.0 - sg**2, 1e-12))
-    return bem_induction(sections.radius, sections.chord, theta, sections.polars, sections.airfoil, vn, omega,
-                         int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
+    res = bem_induction(sections.radius, sections.chord, theta, sections.polars, sections.airfoil, vn, omega,
+                        int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
+    _warn_outside_momentum_theory(res, float(wind_speed))
+    return res
+
+
+#: limits of the momentum balance: the axial induction of Buhl's turbulent-wake relation ends at 1
+#: (C_T = 2); a tangential induction below -0.1 is a strip driving the flow (propeller state)
+MOMENTUM_LIMITS = {"a": 0.99, "ap": -0.1}
+
+
+def _warn_outside_momentum_theory(res: BEMResult, wind_speed: float) -> None:
+    """One :class:`~windflutter.errors.ValidityWarning` per wind speed when a converged strip of
+    ``res`` lies outside momentum theory (:data:`MOMENTUM_LIMITS`): at fixed pitch far above the
+    operating tip-speed ratio the rotor enters the propeller-brake state, where the BEM induction,
+    and every result built on it, is not physics but the model's extrapolation."""
+    ok = np.asarray(res.converged, bool)
+    if not ok.any():
+        return
+    a, ap = np.asarray(res.a, float)[ok], np.asarray(res.ap, float)[ok]
+    if np.nanmax(a) < MOMENTUM_LIMITS["a"] and np.nanmin(ap) > MOMENTUM_LIMITS["ap"]:
+        return
+    warnings.warn(f"at V = {wind_speed:.1f} m/s the BEM induction leaves momentum theory at high rotor speed "
+                  f"(axial induction reaches 1 or tangential induction falls below {MOMENTUM_LIMITS['ap']}: the "
+                  "propeller-brake state); onsets in that range depend on the induction model (compare with "
+                  "solver.induction: false)", ValidityWarning, stacklevel=3)
