@@ -11,13 +11,14 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 from collections.abc import Callable
 from typing import Any, Protocol
 
 import numpy as np
 
 from windflutter.config import AnalysisConfig
-from windflutter.errors import InputError, ModelError
+from windflutter.errors import InputError, ModelError, ValidityWarning
 from windflutter.results import OperatingPoint, PointResult
 from windflutter.units import RPM
 
@@ -134,7 +135,7 @@ class TurbinePointAnalyser:
         if progress is not None:
             progress(0.02, f"{point.label}: model and search")
         grid = None if point.method == "p" else np.asarray(point.sweep_rpm, float)
-        s = ts.analyse_operating_point(point.wind_speed, rpm_grid=grid)
+        s, notes = _with_validity_notes(ts.analyse_operating_point, point.wind_speed, rpm_grid=grid)
         size = self._model_size(ts, ts.pitch_at(point.wind_speed))
         if not self._size:
             self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
@@ -148,7 +149,7 @@ class TurbinePointAnalyser:
             damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
             # the model size goes with each point (the reduced size may depend on its pitch), so
             # the run's attributes do not depend on which points this process computed
-            info={"pitch_deg": float(s.pitch_deg), **size})
+            info={"pitch_deg": float(s.pitch_deg), **size}, reason="; ".join(notes)[:500])
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:
@@ -188,3 +189,21 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
         return None
     max_hz = config.campbell.max_hz or 1.25 * torsion_frequency(model, 0.0)
     return campbell(turbine, winds, max_hz=max_hz, model=model)
+
+
+def _with_validity_notes(fn: Callable, *args, **kw):
+    """``(fn(*args, **kw), notes)``: the messages of the
+    :class:`~windflutter.errors.ValidityWarning`\ s raised inside (a model used outside its range,
+    e.g. the BEM in the propeller-brake state), kept with the point (its ``reason``, shown in the
+    report beside ``ok``); every warning is still shown as usual."""
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ValidityWarning)
+        out = fn(*args, **kw)
+    notes: list[str] = []
+    for w in caught:  # shown after the block through the caller's display; each validity note once
+        if issubclass(w.category, ValidityWarning):
+            if str(w.message) in notes:
+                continue
+            notes.append(str(w.message))
+        warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    return out, notes
