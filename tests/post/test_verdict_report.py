@@ -101,3 +101,19 @@ def test_report_opens_with_the_verdict_and_assumptions(unstable_campbell):
     html = report.build_report(ds, figs, dpi=30, campbell=unstable_campbell)
     assert html.count("data-figure='operating_campbell'") == 1
     assert html.index("data-figure='operating_campbell'") > html.index("data-section='campbell'")
+
+
+def test_an_onset_whose_point_kept_a_validity_note_is_said_so():
+    # the lowest onset (19 RPM at 20 m/s) comes from a point whose sweep left the BEM's range:
+    # the headline names it with the caution; without the note it reads as before
+    from windflutter.post import verdict as vd
+
+    ds = synthetic_run(flutter_rpm=(20.0, 19.0))
+    plain = vd.headline(ds)
+    assert "caution" not in plain
+    ds["reason"] = ds["reason"].copy(data=["", "at V = 20.0 m/s the BEM induction leaves momentum theory ..."])
+    v = vd.verdict(ds)
+    assert v.first.wind_speed == 20.0 and v.first.caveat == vd.CAVEAT
+    assert f"caution: {vd.CAVEAT}" in vd.headline(ds)
+    ds["reason"] = ds["reason"].copy(data=["at V = 10.0 m/s ...", ""])  # a note on the other point only
+    assert "caution" not in vd.headline(ds)

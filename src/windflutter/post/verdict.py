@@ -53,6 +53,7 @@ class Instability:
     damping_ratio: float = float("nan")
     margin_rated: float = float("nan")
     margin_overspeed: float = float("nan")
+    caveat: str = ""
 
 
 @dataclass
@@ -75,6 +76,11 @@ class Verdict:
         return self.status in (STABLE_TO_OVERSPEED, NO_INSTABILITY)
 
 
+#: said of an onset whose point kept a note (a model used outside its range, e.g. the BEM in the
+#: propeller-brake state: :func:`windflutter.analysers._with_validity_notes`)
+CAVEAT = "a model leaves its range of validity in this point's sweep (see the point's note)"
+
+
 def _margin(rpm: float, ref) -> float:
     try:
         ref = float(ref)
@@ -95,8 +101,9 @@ def _sweep_onsets(ds: xr.Dataset) -> list[Instability]:
         for i in np.where(np.isfinite(rpm))[0]:
             onset, grew, _ = fmt.flutter_label(ds["flutter_mode"].values[i]) if kind == "flutter" else ("static divergence", "", "")
             f = float(ds["flutter_frequency"].values[i]) if kind == "flutter" else 0.0
+            note = str(ds["reason"].values[i]) if "reason" in ds and str(ds["status"].values[i]) == "ok" else ""
             out.append(Instability(kind, onset, f, float(rpm[i]), float(v[i]), case[i],
-                                   grew_from=grew, damping_ratio=0.0))
+                                   grew_from=grew, damping_ratio=0.0, caveat=CAVEAT if note else ""))
     return out
 
 
@@ -183,7 +190,7 @@ def instability_text(f: Instability, v: Verdict) -> str:
                ((f.margin_rated, "rated", v.rated_rpm), (f.margin_overspeed, "overspeed", v.overspeed_rpm))
                if math.isfinite(m)]
     return (f"{what} at {fmt.qty(f.rotor_speed_rpm, 'RPM')}{freq}{grew} (V = {fmt.sig(f.wind_speed)} m/s; {f.where})"
-            + (": " + ", ".join(margins) if margins else ""))
+            + (": " + ", ".join(margins) if margins else "") + (f" -- caution: {f.caveat}" if f.caveat else ""))
 
 
 def least_damped_text(ld: dict | None) -> str:
