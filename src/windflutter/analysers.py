@@ -194,16 +194,22 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
 def _with_validity_notes(fn: Callable, *args, **kw):
     """``(fn(*args, **kw), notes)``: the messages of the
     :class:`~windflutter.errors.ValidityWarning`\ s raised inside (a model used outside its range,
-    e.g. the BEM in the propeller-brake state), kept with the point (its ``reason``, shown in the
-    report beside ``ok``); every warning is still shown as usual."""
+    e.g. the BEM in the propeller-brake state), each with the lowest rotor speed it was raised at
+    (``"... [from 17.31 RPM]"``, :func:`validity_from_rpm`), kept with the point (its ``reason``,
+    shown in the report beside ``ok``); every warning is still shown as usual, each note once."""
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", ValidityWarning)
         out = fn(*args, **kw)
-    notes: list[str] = []
-    for w in caught:  # shown after the block through the caller's display; each validity note once
+    lowest: dict[str, float] = {}
+    for w in caught:  # shown after the block through the caller's display
         if issubclass(w.category, ValidityWarning):
-            if str(w.message) in notes:
+            text = str(w.message)
+            rpm = getattr(w.message, "rotor_speed_rpm", None)
+            rpm = float(rpm) if rpm is not None and math.isfinite(rpm) else math.inf
+            if text in lowest:
+                lowest[text] = min(lowest[text], rpm)
                 continue
-            notes.append(str(w.message))
+            lowest[text] = rpm
         warnings.showwarning(w.message, w.category, w.filename, w.lineno)
+    notes = [t + (f" [from {r:.2f} RPM]" if math.isfinite(r) else "") for t, r in lowest.items()]
     return out, notes

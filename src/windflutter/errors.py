@@ -58,7 +58,12 @@ class InputWarning(UserWarning):
 
 class ValidityWarning(UserWarning):
     """A model used outside its range of validity (e.g. momentum theory in the propeller-brake
-    state); the message says where and what the result then depends on."""
+    state); the message says where and what the result then depends on.  ``rotor_speed_rpm``: the
+    rotor speed at which it was found (RPM), when there is one."""
+
+    def __init__(self, message: str, rotor_speed_rpm: float | None = None):
+        super().__init__(message)
+        self.rotor_speed_rpm = rotor_speed_rpm
 
 
 def check_choice(field: str, value: Any, choices, source: str | None = None) -> Any:

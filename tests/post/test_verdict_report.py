@@ -117,3 +117,8 @@ def test_an_onset_whose_point_kept_a_validity_note_is_said_so():
     assert f"caution: {vd.CAVEAT}" in vd.headline(ds)
     ds["reason"] = ds["reason"].copy(data=["at V = 10.0 m/s ...", ""])  # a note on the other point only
     assert "caution" not in vd.headline(ds)
+    # a note that starts above the onset (19 RPM) does not concern it; one that starts below does
+    ds["reason"] = ds["reason"].copy(data=["", "at V = 20.0 m/s ... [from 25.00 RPM]"])
+    assert "caution" not in vd.headline(ds)
+    ds["reason"] = ds["reason"].copy(data=["", "at V = 20.0 m/s ... [from 18.50 RPM]"])
+    assert f"caution: {vd.CAVEAT}" in vd.headline(ds)

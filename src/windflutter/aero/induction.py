@@ -459,7 +459,7 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
         kw["normal_factor"] = np.sqrt(np.maximum(1.0 - sg**2, 1e-12))
     res = bem_induction(sections.radius, sections.chord, theta, sections.polars, sections.airfoil, vn, omega,
                         int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
-    _warn_outside_momentum_theory(res, float(wind_speed))
+    _warn_outside_momentum_theory(res, float(wind_speed), float(omega))
     return res
 
 
@@ -469,7 +469,7 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
 MOMENTUM_LIMITS = {"a": 0.99, "ap": -0.1}
 
 
-def _warn_outside_momentum_theory(res: BEMResult, wind_speed: float) -> None:
+def _warn_outside_momentum_theory(res: BEMResult, wind_speed: float, omega: float = float("nan")) -> None:
     """One :class:`~windflutter.errors.ValidityWarning` per wind speed when a converged strip of
     ``res`` lies outside momentum theory (:data:`MOMENTUM_LIMITS`): at fixed pitch far above the
     operating tip-speed ratio the rotor enters the propeller-brake state, where the BEM induction,
@@ -482,7 +482,8 @@ def _warn_outside_momentum_theory(res: BEMResult, wind_speed: float) -> None:
     # (several exist: on a coarse NREL 5 MW blade at 4 m/s, 20 RPM one with a <= 0.17, C_P = -3.3)
     if np.nanmax(a) < MOMENTUM_LIMITS["a"] and np.nanmin(ap) > MOMENTUM_LIMITS["ap"] and not (res.cp < 0):
         return
-    warnings.warn(f"at V = {wind_speed:.1f} m/s the BEM induction leaves momentum theory at high rotor speed "
+    # the text names the wind speed only (one line per wind speed); the rotor speed goes with the object
+    warnings.warn(ValidityWarning(f"at V = {wind_speed:.1f} m/s the BEM induction leaves momentum theory at high rotor speed "
                   f"(the rotor takes power, or axial induction reaches 1, or tangential induction falls below "
                   f"{MOMENTUM_LIMITS['ap']}: the propeller-brake state); onsets in that range depend on the induction model (compare with "
-                  "solver.induction: false)", ValidityWarning, stacklevel=3)
+                  "solver.induction: false)", rotor_speed_rpm=omega * 30.0 / np.pi), stacklevel=3)

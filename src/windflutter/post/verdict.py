@@ -17,6 +17,7 @@ The *first instability* is the one at the lowest rotor speed.  Margin = onset / 
 from __future__ import annotations
 
 import math
+import re
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -78,7 +79,14 @@ class Verdict:
 
 #: said of an onset whose point kept a note (a model used outside its range, e.g. the BEM in the
 #: propeller-brake state: :func:`windflutter.analysers._with_validity_notes`)
-CAVEAT = "a model leaves its range of validity in this point's sweep (see the point's note)"
+CAVEAT = "at this rotor speed a model is outside its range of validity (see the point's note)"
+
+
+def _note_from_rpm(note: str) -> float:
+    """The lowest rotor speed (RPM) a point's validity notes hold (``"... [from 17.31 RPM]"``);
+    -inf for a note without one (it then applies to the whole sweep)."""
+    found = [float(x) for x in re.findall(r"\[from ([0-9.]+) RPM\]", note)]
+    return min(found) if found else -math.inf
 
 
 def _margin(rpm: float, ref) -> float:
@@ -103,7 +111,8 @@ def _sweep_onsets(ds: xr.Dataset) -> list[Instability]:
             f = float(ds["flutter_frequency"].values[i]) if kind == "flutter" else 0.0
             note = str(ds["reason"].values[i]) if "reason" in ds and str(ds["status"].values[i]) == "ok" else ""
             out.append(Instability(kind, onset, f, float(rpm[i]), float(v[i]), case[i],
-                                   grew_from=grew, damping_ratio=0.0, caveat=CAVEAT if note else ""))
+                                   grew_from=grew, damping_ratio=0.0,
+                                   caveat=CAVEAT if note and float(rpm[i]) >= _note_from_rpm(note) - 1e-9 else ""))
     return out
 
 
