@@ -67,14 +67,11 @@ def operational_options(config, aero: str):
 def resolved_structure(config) -> str:
     """``solver.structure`` with ``auto`` resolved: ``deflected`` for beam blades linearized about the
     deflected steady state (``solver.deflection``), ``undeformed`` otherwise (shell blades have no
-    co-rotational model yet)."""
+    co-rotational model yet).  An explicit ``deflected`` the model cannot build is refused by the
+    config's own rules (:func:`windflutter.config.check_config`)."""
     m, s = config.model, config.solver
-    can = m.type == "beam" and bool(s.deflection)
     if s.structure == "auto":
-        return "deflected" if can else "undeformed"
-    if s.structure == "deflected" and not can:
-        raise InputError("solver.structure", s.structure, "undeformed or auto unless model.type is beam and "
-                         "solver.deflection is true (the deflected shape is the co-rotational beam's)")
+        return "deflected" if m.type == "beam" and bool(s.deflection) else "undeformed"
     return s.structure
 
 
