@@ -66,6 +66,12 @@ class ValidityWarning(UserWarning):
         self.rotor_speed_rpm = rotor_speed_rpm
 
 
+def one_line(text: object) -> str:
+    """``text`` with every run of whitespace (newlines included) folded to one space: a message
+    printed as one line at the command line."""
+    return " ".join(str(text).split())
+
+
 def check_choice(field: str, value: Any, choices, source: str | None = None) -> Any:
     """Return ``value`` if it is one of ``choices``, else raise :class:`InputError` naming the
     field, the value and the allowed choices.

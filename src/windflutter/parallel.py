@@ -37,7 +37,7 @@ from concurrent.futures.process import BrokenProcessPool
 from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Iterator, Sequence
 
-from windflutter.errors import InputError
+from windflutter.errors import InputError, one_line
 from windflutter.threads import blas_limit, set_process_threads
 
 try:  # cloudpickle ships with dask; fall back to pickle (module-level functions only)
@@ -218,7 +218,7 @@ def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
 
 
 def _one_line_warning(message, category, filename, lineno, line=None) -> str:  # noqa: ARG001
-    return f"windflutter worker: warning: {' '.join(str(message).split())}\n"
+    return f"windflutter worker: warning: {one_line(message)}\n"
 
 
 def _run_in_worker(index: int, task_bytes: bytes) -> bytes:

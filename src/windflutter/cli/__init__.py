@@ -19,7 +19,7 @@ import os
 import sys
 
 from windflutter import __version__, threads
-from windflutter.errors import InputError, ModelError, WindflutterError
+from windflutter.errors import InputError, ModelError, WindflutterError, one_line
 
 #: Sub-command modules, in the order shown by ``--help``.
 COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "campbell", "run")
@@ -41,10 +41,6 @@ def build_parser() -> argparse.ArgumentParser:
         module = importlib.import_module(f"windflutter.cli.{name}")
         module.add_parser(sub)
     return parser
-
-
-def _one_line(text: object) -> str:
-    return " ".join(str(text).split())
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -76,13 +72,13 @@ def _main(argv: list[str] | None) -> int:
         with one_line_warnings(prog):
             return int(args.func(args) or 0)
     except InputError as exc:
-        print(f"{prog}: error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{prog}: error: {one_line(exc)}", file=sys.stderr)
         return 2
     except ModelError as exc:
-        print(f"{prog}: model error: {_one_line(exc)}", file=sys.stderr)
+        print(f"{prog}: model error: {one_line(exc)}", file=sys.stderr)
         return 3
     except WindflutterError as exc:
-        print(f"{prog}: {type(exc).__name__}: {_one_line(exc)}", file=sys.stderr)
+        print(f"{prog}: {type(exc).__name__}: {one_line(exc)}", file=sys.stderr)
         return 4
     except KeyboardInterrupt:
         print(f"{prog}: interrupted", file=sys.stderr)
@@ -99,7 +95,7 @@ def _main(argv: list[str] | None) -> int:
     except Exception as exc:  # noqa: BLE001 - a bug of ours: still one line, unless asked for more
         if os.environ.get("WINDFLUTTER_TRACEBACK"):
             raise
-        print(f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)[:300]} (please report it; "
+        print(f"{prog}: internal error: {type(exc).__name__}: {one_line(exc)[:300]} (please report it; "
               "set WINDFLUTTER_TRACEBACK=1 for the traceback)", file=sys.stderr)
         return 70
 

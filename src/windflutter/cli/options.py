@@ -20,7 +20,7 @@ from dataclasses import dataclass
 from typing import Any, Callable
 
 from windflutter.config import PLOT_FORMATS, field_spec, n_points_for_step
-from windflutter.errors import InputError
+from windflutter.errors import InputError, one_line
 from windflutter.schema import Spec
 
 
@@ -28,8 +28,7 @@ class OneLineParser(argparse.ArgumentParser):
     """``argparse`` parser whose usage errors are one line (``PROG: error: ...``), exit code 2."""
 
     def error(self, message: str) -> None:  # type: ignore[override]
-        message = " ".join(str(message).split())
-        self.exit(2, f"{self.prog}: error: {message} (see {self.prog} --help)\n")
+        self.exit(2, f"{self.prog}: error: {one_line(message)} (see {self.prog} --help)\n")
 
 
 def scalar(text: str) -> Any:

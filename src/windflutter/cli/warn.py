@@ -12,6 +12,8 @@ import contextlib
 import sys
 import warnings
 
+from windflutter.errors import one_line
+
 
 @contextlib.contextmanager
 def one_line_warnings(prog: str, stream=None):
@@ -19,8 +21,7 @@ def one_line_warnings(prog: str, stream=None):
     folded to one line) on ``stream`` (default stderr); the filters are unchanged."""
 
     def show(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001
-        text = " ".join(str(message).split())
-        print(f"{prog}: warning: {text}", file=stream or file or sys.stderr)
+        print(f"{prog}: warning: {one_line(message)}", file=stream or file or sys.stderr)
 
     with warnings.catch_warnings():
         warnings.showwarning = show
