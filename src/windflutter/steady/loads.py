@@ -107,50 +107,32 @@ def rotor_totals(sections: AeroSections, rotor: RotorGeometry, loads: np.ndarray
     return thrust, torque, abs(float(omega)) * torque
 
 
-def centrifugal_loads(fe, M, nodes: np.ndarray, omega_vec, center, rotary: bool = True) -> np.ndarray:
+def centrifugal_loads(fe, M, nodes: np.ndarray, omega_vec, center) -> np.ndarray:
     """Centrifugal nodal loads (N, N m) of the steadily rotating part, full numbering.
 
-    For a rigid section of mass ``m`` whose centre is offset by ``c`` from its reference point
-    ``x`` and whose rotary inertia about ``x`` is ``J`` (the 6x6 section mass
-    ``[[m I, -m S(c)], [m S(c), J]]``), spinning at ``Omega`` about ``center``, the inertial
-    force is ``-m Omega x (Omega x (x + c))`` and its moment about ``x`` is
-    ``-m c x (Omega x (Omega x x)) - Omega x (J Omega)``.  The nodal loads are
-    :func:`windflutter.structure.prestress.centrifugal_load` (``-M a`` with the node
-    accelerations ``a = Omega x (Omega x (x - center))``: the force at the node and the moment of
-    the offset mass, consistent with the mass matrix) plus, with ``rotary``, for the beam
-    elements the rest, ``-m Omega x (Omega x c)`` and the "propeller" moment
-    ``-Omega x (J Omega)`` that turns a pitched section towards the plane of rotation (lumped
-    half to each node).  Shell models carry their section inertia in the translational mass of
-    their nodes, so ``-M a`` holds it.
+    The beam sections and lumped masses are rigid bodies on their nodes: for a section of mass ``m``
+    whose centre is offset by ``c`` from its reference point ``x`` and whose inertia about ``x`` is
+    ``J`` (the 6x6 section mass ``[[m I, -m S(c)], [m S(c), J]]``), spinning at ``Omega`` about
+    ``center``, the inertial force is ``-m Omega x (Omega x (x + c))`` and its moment about ``x`` is
+    ``-m c x (Omega x (Omega x x)) - Omega x (J Omega)`` (the "propeller" moment that turns a pitched
+    section towards the plane of rotation), integrated along each element with its section-motion
+    interpolation (:func:`windflutter.rotor.spin.spin_terms`, which also gives the matching
+    softening and Coriolis matrices).  Shell models carry their inertia in the translational mass of
+    their nodes.
 
     Parameters
     ----------
     fe : the model.  M : (n_dof, n_dof) full-numbering mass matrix.
     nodes : rotating node indices.  omega_vec : (3,) rotor speed vector (rad/s).  center : (3,)
-    a point on the axis (m).  rotary : include the section terms of the beams.
+    a point on the axis (m).
     """
-    from windflutter.structure.beam import beam_frames
-    from windflutter.structure.prestress import centrifugal_load
+    from windflutter.rotor.spin import spin_terms
 
     w = np.asarray(omega_vec, float)
-    f = centrifugal_load(fe, M, w, center, nodes).reshape(-1, 6)
-    if rotary and len(fe.beam_conn):
-        conn = np.asarray(fe.beam_conn, dtype=np.int64)
-        spin = np.isin(conn, np.asarray(nodes)).all(axis=1)
-        L, R = beam_frames(fe)
-        Ms = np.array([np.asarray(fe.beam_sections[i].mass, float) for i in np.asarray(fe.beam_section)[spin]])
-        Rs = R[spin]  # global -> local
-        m = Ms[:, 0, 0]
-        mc = np.einsum("eji,ejk->eik", Rs, Ms[:, 3:, :3] @ Rs)  # m S(c), global
-        c = np.stack([mc[:, 2, 1], mc[:, 0, 2], mc[:, 1, 0]], axis=1) / np.where(m > 0, m, 1.0)[:, None]
-        J = np.einsum("eji,ejk->eik", Rs, Ms[:, 3:, 3:] @ Rs)
-        load = np.zeros((len(m), 6))
-        load[:, :3] = -m[:, None] * np.cross(w, np.cross(w, c))
-        load[:, 3:] = -np.cross(w, J @ w)
-        load *= 0.5 * L[spin][:, None]
-        np.add.at(f, conn[spin, 0], load)
-        np.add.at(f, conn[spin, 1], load)
-    return f.reshape(-1)
+    speed = float(np.linalg.norm(w))
+    if speed == 0.0:
+        return np.zeros(fe.n_dof)
+    return speed**2 * spin_terms(fe, M, nodes, w / speed, center)[2]
 
 
 def _rev_cumsum(a: np.ndarray) -> np.ndarray:

@@ -49,10 +49,11 @@ from windflutter.aero.induction import BEMResult, sections_induction
 from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.aero.strip import OperatingPoint, SectionFlow
 from windflutter.errors import InputError, ModelError
-from windflutter.rotor.rotating import centrifugal_load, coriolis_and_softening, rotating_nodes, translational_dofs
+from windflutter.rotor.rotating import centrifugal_load, rotating_nodes
+from windflutter.rotor.spin import spin_terms
 from windflutter.steady.geometry import (Deflection, deflected_sections, deflection, pitching_frames, strip_motion,
                                          tip_motion)
-from windflutter.steady.loads import (StripLoads, centrifugal_loads, nodal_loads, rotor_totals, second_order_moments,
+from windflutter.steady.loads import (StripLoads, nodal_loads, rotor_totals, second_order_moments,
                                       strip_loads)
 from windflutter.structure.prestress import geometric_stiffness, static_solve
 
@@ -213,8 +214,8 @@ class _Static:
 
     ``seed=True``: the centrifugal load and prestress of :func:`windflutter.rotor.rotating.rotor_terms`
     (``Omega^2 S^T M_tt S R``, the seed's); else the rigid-section centrifugal loads of
-    :func:`windflutter.steady.loads.centrifugal_loads` (node accelerations through the full mass
-    matrix, offsets and rotary inertia of the beam sections).
+    :func:`windflutter.rotor.spin.spin_terms` (beam sections and lumped masses as rigid bodies:
+    their offsets and rotary inertia) and the matching spin softening.
     """
 
     def __init__(self, fe, struct, rotor: RotorGeometry, omega: float, group: str, seed: bool):
@@ -223,18 +224,19 @@ class _Static:
         hub = np.asarray(rotor.hub_center, float)
         nodes = rotating_nodes(fe, group) if omega != 0 else np.zeros(0, dtype=np.int64)
         self.struct = struct
+        Kr1 = None
         if omega == 0:
             self.f_cf = np.zeros(fe.n_dof)
         elif seed:
             self.f_cf = omega**2 * centrifugal_load(struct.M, fe, nodes, axis, hub)
         else:
-            self.f_cf = centrifugal_loads(fe, struct.M, nodes, omega * axis, hub)
+            _, Kr1, f1 = spin_terms(fe, struct.M, nodes, axis, hub)
+            self.f_cf = omega**2 * f1
         self.u_cf = static_solve(struct, self.f_cf)  # linear centrifugal displacement (the prestress)
         self._fac = None
         if not seed:
             K = struct.Kr
-            if omega != 0:
-                _, Kr1 = coriolis_and_softening(struct.M, translational_dofs(nodes), axis)
+            if Kr1 is not None:
                 K_cf = geometric_stiffness(fe, self.u_cf)
                 K = K + struct.reduce(sp.csr_matrix(K_cf - omega**2 * Kr1))
             K = sp.csc_matrix(K)

@@ -32,7 +32,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError
-from windflutter.rotor.rotating import coriolis_and_softening, translational_dofs
+from windflutter.rotor.spin import spin_terms
 from windflutter.structure.assembly import rigid_body_vectors
 
 
@@ -114,20 +114,16 @@ class RotorBlade:
             raise InputError("fe.node_groups['hub']", fe.node_groups.get("hub"), "one hub node (part rotor_blade)")
         self.hub_node = int(fe.node_groups["hub"][0])
         self.Gamma = rigid_body_vectors(fe.nodes, center=self.apex)
-        M = struct.M
-        dofs = translational_dofs(np.arange(fe.n_nodes))
-        self.G1, self.Kr1 = coriolis_and_softening(M, dofs, self.axis)
+        self.G1, self.Kr1, self._f1 = spin_terms(fe, struct.M, np.arange(fe.n_nodes), self.axis, self.apex)
         self.damping = damping
         self.St = axis_skew_translations(fe.n_nodes, self.axis)
         self._unit_prestress = None
 
     # -- prestress ---------------------------------------------------------------------------
     def centrifugal_load(self, omega: float = 1.0) -> np.ndarray:
-        """Centrifugal nodal loads (N) at ``omega`` (rad/s), full numbering: ``Omega^2 Kr1 R``."""
-        R = (np.asarray(self.fe.nodes, float) - self.apex).ravel()
-        x = np.zeros(self.fe.n_dof)
-        x.reshape(-1, 6)[:, :3] = R.reshape(-1, 3)
-        return omega**2 * np.asarray(self.Kr1 @ x)
+        """Centrifugal nodal loads (N, N m) at ``omega`` (rad/s), full numbering: the rigid sections'
+        (:func:`windflutter.rotor.spin.spin_terms`)."""
+        return omega**2 * self._f1
 
     def prestress(self, load: np.ndarray):
         """``(Ksigma (full, sparse), Klink (3, 3), u0)`` of the static state under ``load`` (N)."""

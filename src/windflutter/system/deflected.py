@@ -11,8 +11,8 @@ module:
    a linear structure with second-order load corrections) starts a Newton iteration of the
    co-rotational beam (:mod:`windflutter.structure.corotational`) under the steady state's
    aerodynamic nodal loads (held fixed) and the centrifugal loads of the deformed blade
-   (:func:`windflutter.steady.loads.centrifugal_loads` on its deformed geometry and mass; their
-   derivative the spin softening ``Omega^2 K_r``).  The result is an exact equilibrium of the
+   (:func:`windflutter.rotor.spin.spin_terms` on its deformed geometry and mass, the sections'
+   offsets and rotary inertia included; their derivative the spin softening ``Omega^2 K_r``).  The result is an exact equilibrium of the
    nonlinear beam under those loads.
 2. **The deformed structure.**  The FE model rebuilt on it (:func:`~windflutter.structure.
    corotational.deformed_model`: nodes moved, section axes turned by the nodal rotations -- the
@@ -41,7 +41,8 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError
-from windflutter.rotor.rotating import coriolis_and_softening, rotating_nodes, translational_dofs
+from windflutter.rotor.rotating import rotating_nodes
+from windflutter.rotor.spin import spin_terms
 from windflutter.structure.assembly import Structural, assemble_matrices
 from windflutter.structure.constraints import constraint_map
 from windflutter.structure.corotational import (Equilibrium, chained_configuration, deformed_model,
@@ -88,19 +89,17 @@ class DeflectedBlade:
 
 def _centrifugal(fe, omega: float, apex: np.ndarray, axis: np.ndarray, group: str = "rotor"):
     """``loads(config) -> (F (n_dof,), dF/dq)``: centrifugal loads of the blade in a configuration
-    (its deformed geometry and mass) and their stiffness ``Omega^2 K_r`` (translational mass)."""
-    from windflutter.steady.loads import centrifugal_loads
-
+    (its deformed geometry and mass) and their stiffness ``Omega^2 K_r`` (rigid sections:
+    :func:`windflutter.rotor.spin.spin_terms`)."""
     nodes = rotating_nodes(fe, group)
-    dofs = translational_dofs(nodes)
 
     def loads(config):
         if omega == 0.0:
             return np.zeros(fe.n_dof), None
         fe_c = deformed_model(fe, config)
         M, _ = assemble_matrices(fe_c)
-        _, Kr = coriolis_and_softening(M, dofs, omega * axis)
-        return centrifugal_loads(fe_c, M, nodes, omega * axis, apex), Kr
+        _, Kr1, f1 = spin_terms(fe_c, M, nodes, axis, apex)
+        return omega**2 * f1, omega**2 * Kr1
 
     return loads
 
