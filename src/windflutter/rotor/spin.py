@@ -40,8 +40,7 @@ import scipy.sparse as sp
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew
 from windflutter.structure.assembly import lumped_mass_matrices
-from windflutter.structure.beam import (_GAUSS_W, _GAUSS_XI, _block_rotation, _section_arrays, _shape_functions,
-                                        beam_frames, element_dofs)
+from windflutter.structure.beam import _GAUSS_W, _GAUSS_XI, _block_rotation, _shape_functions, beam_frames, element_dofs
 from windflutter.structure.fem import FEModel
 
 _EPS = np.zeros((3, 3, 3))
@@ -104,19 +103,20 @@ def section_spin(m, mc, Q, omega_unit: np.ndarray, X: np.ndarray):
 
 
 def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndarray):
-    """(G, Kr, f, M, dofs) of the rotating beam elements ``spin`` (mask), global axes."""
-    from windflutter.structure.beam import beam_global_matrices
-
+    """(G, Kr, f, M, dofs) of the rotating beam elements ``spin`` (mask), global axes; ``M`` is the
+    elements' consistent mass (the same quadrature as :mod:`windflutter.structure.beam`'s)."""
     conn = np.asarray(fe.beam_conn, dtype=np.int64)[spin]
     L, R = beam_frames(fe)
     L, R = L[spin], R[spin]
-    _, Ms = _section_arrays(fe)
-    m, mc, Q = inertia_moments(Ms[np.asarray(fe.beam_section, dtype=np.int64)[spin]])
+    # the section masses as assembled (validated there); symmetric part
+    Ms = np.array([np.asarray(fe.beam_sections[i].mass, float) for i in np.asarray(fe.beam_section)[spin]])
+    Ms = 0.5 * (Ms + np.swapaxes(Ms, -1, -2))
+    m, mc, Q = inertia_moments(Ms)
     x = np.asarray(fe.nodes, float) - np.asarray(center, float)
     x0, x1 = x[conn[:, 0]], x[conn[:, 1]]
     w_loc = np.einsum("eij,j->ei", R, axis)
     G = np.zeros((len(L), 12, 12))
-    Kr = np.zeros_like(G)
+    Kr, Me = np.zeros_like(G), np.zeros_like(G)
     f = np.zeros((len(L), 12))
     for xi, wq in zip(_GAUSS_XI, _GAUSS_W):
         N, _ = _shape_functions(L, xi)
@@ -125,14 +125,13 @@ def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndar
         wl = (wq * L)[:, None, None]
         G += wl * np.einsum("eki,ekl,elj->eij", N, Gs, N)
         Kr += wl * np.einsum("eki,ekl,elj->eij", N, Ks, N)
+        Me += wl * np.einsum("eki,ekl,elj->eij", N, Ms, N)
         f[:, :6] += (wq * L * (1.0 - xi))[:, None] * fs  # loads lumped on the nodes (docstring)
         f[:, 6:] += (wq * L * xi)[:, None] * fs
     T = _block_rotation(R)
-    G = np.einsum("eki,ekl,elj->eij", T, G, T)
-    Kr = np.einsum("eki,ekl,elj->eij", T, Kr, T)
+    G, Kr, Me = (np.einsum("eki,ekl,elj->eij", T, A, T) for A in (G, Kr, Me))
     f = np.einsum("eki,ek->ei", T, f)
-    _, Me, _ = beam_global_matrices(fe)
-    return G, Kr, f, Me[spin], element_dofs(conn)
+    return G, Kr, f, Me, element_dofs(conn)
 
 
 def _lumped_terms(fe: FEModel, rotating: np.ndarray, axis: np.ndarray, center: np.ndarray):
