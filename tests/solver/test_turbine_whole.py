@@ -157,7 +157,7 @@ def test_all_three_torsion_modes_tracked(whole):
     # onset each must be found (no NaN) on its own root (no two on one root).  (The heavily
     # damped 1st-flap modes may turn overdamped -- no oscillatory root -- and are not checked.)
     p = whole
-    tors = [j for j, lab in enumerate(p.mode_labels) if lab.startswith("torsion")]
+    tors = [j for j, lab in enumerate(p.mode_labels) if " torsion" in lab and "tower" not in lab]
     assert len(tors) >= 3, p.mode_labels
     below = p.sweep_rpm < p.flutter_rpm
     lam = p.onset.eigenvalues[below][:, tors]
@@ -206,3 +206,19 @@ def test_full_order_whole_turbine(nrel5mw):
     assert full.flutter_rpm == pytest.approx(rot.flutter_rpm, rel=0.02)
     assert full.divergence_rpm == pytest.approx(rot.divergence_rpm, rel=0.02)
     assert not math.isnan(full.flutter_frequency_hz)
+
+
+def test_tracked_modes_are_named_in_the_field_vocabulary(whole):
+    """The frozen-azimuth sweep names its modes like ``windflutter modes`` (structure/labels): ordinal,
+    family and collective/asymmetric, one collective per blade triplet; the flutter mode keeps the name
+    of the tracked mode it grew from."""
+    import re
+
+    p = whole
+    pat = re.compile(r"^\d+(st|nd|rd|th) (flap|edge|torsion|tower fore-aft|tower side-side|tower torsion)"
+                     r"( collective| asymmetric| blade \d)?$")
+    named = [lab for lab in p.mode_labels if lab != "lost"]
+    assert named and all(pat.match(lab) for lab in named), p.mode_labels
+    tors = [lab for lab in named if lab.startswith("1st torsion")]
+    assert sorted(tors) == ["1st torsion asymmetric", "1st torsion asymmetric", "1st torsion collective"], named
+    assert p.flutter_mode.split(" (")[0] in p.mode_labels

@@ -1,45 +1,54 @@
-"""Mode labels from the motion at the aerodynamic sections (the MAC lives in
-:mod:`windflutter.linalg_tools`; re-exported here for older imports)."""
+"""Names of the seed model's modes (frozen azimuth, p-k and thesis searches) in the field's terms.
+
+The modes a p-k search tracks are named at the first rotor speed of the sweep, where they are
+still close to the structural modes they grew from, by :func:`windflutter.structure.labels.
+label_modes` -- the vocabulary of ``windflutter modes`` and, with multi-blade whirl in place of
+collective/asymmetric, of ``campbell`` (``"1st torsion asymmetric"``, ``"2nd flap collective"``,
+``"1st tower fore-aft"``).  A flutter mode keeps the name of the mode it grew from: at onset a
+classical-flutter mode is a flap-torsion mixture whose largest part can be either.  Orders count
+the tracked modes of a kind in frequency order in families of one per blade (``label_modes``);
+a copy of a blade mode that the tower takes over at a frozen azimuth can shift the later orders
+of its kind by one.
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
-from windflutter.linalg_tools import mac, mac_matrix  # noqa: F401  (re-exported)
+__all__ = ["real_shapes", "mode_names", "has_torsion"]
 
 
-def label_mode(x_dof: np.ndarray, sections, P=None, tower_dofs: np.ndarray | None = None) -> str:
-    """Label a mode from its motion at the aerodynamic sections.
+def real_shapes(vectors: np.ndarray) -> np.ndarray:
+    """(n, m) real shapes of complex mode shapes (columns): each turned so that its largest
+    component is real, then its real part (a lightly damped mode's shape is nearly real)."""
+    V = np.asarray(vectors)
+    if not np.iscomplexobj(V):
+        return V.astype(float)
+    k = np.argmax(np.abs(V), axis=0)
+    ph = V[k, np.arange(V.shape[1])]
+    return np.real(V * (np.abs(ph) / np.where(ph == 0, 1.0, ph))[None, :])
+
+
+def mode_names(fe, M, shapes: np.ndarray, frequencies: np.ndarray, sections) -> list[str]:
+    """Names of the modes ``shapes`` (n_dof, m; full numbering, any order) at ``frequencies`` (Hz).
 
     Parameters
     ----------
-    x_dof : (n_dof,) mode shape, unconstrained numbering.
-    sections : :class:`~windflutter.aero.sections.AeroSections`.
-    P : (3 ns, n_dof) section-motion map (h, alpha, s) of a :class:`StripAero`; when None the
-        global translations/rotations of ``motion_map`` are used.
-    tower_dofs : translational DOFs of the tower, to detect tower modes.
-
-    Returns
-    -------
-    str like ``"flap b1 r/R=1.00"``, ``"torsion b2 r/R=0.80"``, ``"edge ..."``, ``"tower"``.
+    fe : the model (node groups).  M : its full-numbering mass matrix.
+    shapes : mode shapes (real or complex).  frequencies : (m,) their frequencies (Hz).
+    sections : the model's aerodynamic strips.
     """
-    ns = sections.n_sections
-    b = np.asarray(sections.semi_chord, float)
-    q = (P @ x_dof).reshape(ns, 3)
-    h, al, s = np.abs(q[:, 0]), np.abs(q[:, 1]) * b, np.abs(q[:, 2])
-    energy = np.array([np.sum(h**2), np.sum(al**2), np.sum(s**2)])
-    blade_e = h**2 + al**2 + s**2
-    if tower_dofs is not None and tower_dofs.size:
-        t = np.max(np.abs(x_dof[tower_dofs]))
-        if t > np.sqrt(blade_e.max(initial=0.0)):
-            return "tower"
-    names = ("flap", "torsion", "edge")
-    order = np.argsort(energy)[::-1]
-    kind = names[order[0]]
-    if energy[order[1]] > 0.3 * energy[order[0]]:  # strongly coupled, e.g. flap-torsion flutter
-        kind = f"{kind}-{names[order[1]]}"
-    j = int(np.argmax(blade_e))
-    r = np.asarray(sections.radius, float)
-    blade = np.asarray(sections.blade)[j]
-    rr = r[j] / r[np.asarray(sections.blade) == blade].max()
-    return f"{kind} b{int(blade) + 1} r/R={rr:.2f}"
+    from windflutter.structure.labels import label_modes
+
+    f = np.asarray(frequencies, float)
+    order = np.argsort(f, kind="stable")
+    names = label_modes(fe, M, real_shapes(shapes)[:, order], sections)
+    out = [""] * len(f)
+    for j, i in enumerate(order):
+        out[i] = names[j]
+    return out
+
+
+def has_torsion(name: str) -> bool:
+    """A blade-torsion name (``"1st torsion asymmetric"``)."""
+    return " torsion" in f" {name}" and "tower" not in name

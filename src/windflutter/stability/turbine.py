@@ -26,10 +26,11 @@ import numpy as np
 from windflutter.aero.strip import AeroOptions
 from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, DAMPING_MODELS, REDUCTIONS, SEARCH_METHODS
 from windflutter.errors import InputError, check_choice
+from windflutter.linalg_tools import mac_matrix
 from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.stability.search import Onset, pk_search, structural_eig, thesis_search
-from windflutter.stability.tracking import label_mode
+from windflutter.stability.tracking import has_torsion, mode_names
 from windflutter.units import RPM
 
 
@@ -279,28 +280,15 @@ class TurbineStability:
         def system_at(rpm):
             return am.at(wind_speed, rpm * RPM)
 
-        tower = np.asarray(fe.node_groups.get("tower", []), dtype=np.int64)
-        tower_dofs = (6 * tower[:, None] + np.arange(3)).ravel()
         sys_ref = system_at(grid[0])
+        M = am.structure.M
         if o.method == "pk":
-            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, sections, tower_dofs)
+            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, fe, M, sections)
             on = pk_search(system_at, grid, n_track=min(n_track, am.size), n_eig=o.n_eig, xtol=o.tolerance_rpm,
                            stop_at_onset=not o.full_sweep)
         else:
             on = thesis_search(system_at, grid, n_eig=o.n_eig)
-
-        def lab(x):
-            return label_mode(sys_ref.expand(x), sections, sys_ref.strip.P, tower_dofs)
-
-        mode = None
-        if on.flutter_vector is not None:
-            s_on = system_at(on.flutter)
-            mode = label_mode(s_on.expand(on.flutter_vector), sections, s_on.strip.P, tower_dofs)
-        # a mode without a free root at the first grid point (lost there) has no shape yet
-        labels = [lab(x) if x is not None else "lost" for x in on.vectors0] if on.vectors0 is not None else []
-        if mode is not None and on.flutter_mode is not None and on.flutter_mode < len(labels):
-            # the structural mode it grew from, and the shape at onset
-            mode = f"{labels[on.flutter_mode]} -> {mode}"
+        labels, mode = self._names(on, sys_ref, system_at, fe, M, sections)
         if mode is not None and on.divergence is not None and on.flutter > on.divergence:
             # reported like a V-g plot shows it, but the stability limit is the divergence: beyond
             # it the linearization about the undeformed rotor describes no equilibrium
@@ -316,19 +304,56 @@ class TurbineStability:
             damping_ratio=zeta, mode_labels=labels, onset=on)
 
 
-def auto_tracked(system, sections, tower_dofs, factor: float = 1.25) -> int:
+    @staticmethod
+    def _names(on, sys_ref, system_at, fe, M, sections):
+        """Names of the tracked modes and of the flutter mode (:mod:`~windflutter.stability.tracking`).
+
+        A tracked mode is named as the structural mode (``Ks(Omega), M`` at the first rotor speed,
+        no aerodynamics) it is closest to by MAC: the aerodynamic coupling there can already make
+        a torsion mode's strips move more in flap than in twist.  The flutter mode is the tracked
+        mode it grew from; without one (the thesis search), its shape at onset, without an order."""
+        labels = []
+        if on.vectors0 is not None:
+            # a mode without a free root at the first grid point (lost there) has no shape yet
+            w2, V = structural_eig(sys_ref)
+            f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
+            X = np.stack([sys_ref.expand(V[:, i]) for i in range(len(f))], axis=1)
+            struct_names = mode_names(fe, M, X, f, sections)
+            have = [i for i, x in enumerate(on.vectors0) if x is not None]
+            labels = ["lost"] * len(on.vectors0)
+            if have:  # one structural mode each (the blade copies span near-degenerate subspaces)
+                from scipy.optimize import linear_sum_assignment
+
+                C = mac_matrix(np.stack([np.asarray(on.vectors0[i]) for i in have], axis=1), V)
+                rows, cols = linear_sum_assignment(-C)
+                for r, c in zip(rows, cols):
+                    labels[have[r]] = struct_names[c]
+        mode = None
+        if on.flutter is None:
+            pass
+        elif on.flutter_mode is not None and on.flutter_mode < len(labels) and labels[on.flutter_mode] != "lost":
+            mode = labels[on.flutter_mode]
+        elif on.flutter_vector is not None:
+            s_on = system_at(on.flutter)
+            f = [on.flutter_frequency / (2 * math.pi)]
+            mode = mode_names(fe, M, s_on.expand(on.flutter_vector)[:, None], f, sections)[0].split(" ", 1)[-1]
+        return labels, mode
+
+
+def auto_tracked(system, fe, M, sections, factor: float = 1.25) -> int:
     """Number of modes to track: every structural mode up to ``factor`` x the first torsion.
 
     Classical flutter of a blade couples a flap mode with a torsion mode; a whole turbine has
     tower, drivetrain and three of each blade mode below the first torsion, so a fixed count is
     fragile.  The modes of ``Ks(Omega) , M`` at the first rotor speed of the sweep are labelled
-    (:func:`~windflutter.stability.tracking.label_mode`); without a torsion-dominated mode all
+    (:func:`~windflutter.stability.tracking.mode_names`); without a torsion-dominated mode all
     modes of the basis are tracked.
     """
     w2, V = structural_eig(system)
     f = np.sqrt(np.maximum(w2, 0.0))
-    for i in range(len(f)):
-        if label_mode(system.expand(V[:, i]), sections, system.strip.P, tower_dofs).startswith("torsion"):
+    X = np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1)
+    for i, name in enumerate(mode_names(fe, M, X, f / (2 * math.pi), sections)):
+        if has_torsion(name):
             return int(np.count_nonzero(f <= factor * f[i]))
     return len(f)
 

@@ -90,7 +90,7 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
                 ref = c[b == kref]
                 proj = np.array([np.sum(w[b == k, 0] * c[b == k] * ref) for k in range(nbl)]) / max(np.sum(w[b == kref, 0] * ref**2), 1e-300)
                 if np.sum(amps > 0.1 * amps.max()) == 1:
-                    variant = f"blade {kref}"
+                    variant = f"blade {kref + 1}"
                 elif nbl * np.mean(proj) ** 2 > 0.5 * np.sum(proj**2):
                     variant = "collective"
                 else:
