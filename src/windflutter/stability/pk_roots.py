@@ -187,6 +187,53 @@ def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-8, maxite
     return lam, x, False
 
 
+def _pick_root(system, w: float, x, exclude, n_eig: int):
+    """The frozen-frequency root at ``w`` (rad/s) of best shape match to ``x`` (the nearest to
+    ``i w`` without a shape), never one of ``exclude``; None when no root is free."""
+    cache = system.eig_cache  # identical frequencies (symmetric blades) share solves
+    key = (w, n_eig)
+    if key not in cache:
+        M, D, K = system.matrices(w)
+        cache[key] = _qep(M, D, K, n_eig, shift=1j * w)
+    e = cache[key]
+    vals, vecs = e.values, e.vectors
+    phys = vals.imag >= -1e-9 * max(1.0, abs(w))
+    if exclude:
+        phys &= ~_excluded(vals, vecs, exclude)
+    if not np.any(phys):
+        return None
+    vals, vecs = vals[phys], vecs[:, phys]
+    if x is not None:
+        m = mac_matrix(x[:, None], vecs)[0]
+        score = m - 0.05 * np.abs(vals - 1j * w) / max(abs(w), 1.0)
+    else:
+        score = -np.abs(vals - 1j * w)
+    i = int(np.argmax(score))
+    return vals[i], vecs[:, i]
+
+
+def _upper(lam: complex) -> bool:
+    """A root of the upper half plane (the conjugates are not modes)."""
+    return lam.imag >= -1e-9 * max(1.0, abs(lam))
+
+
+def _refine_from_estimate(system, w: float, x0, lam0: complex, n_eig: int, near: float | None):
+    """``(lambda, x)`` from the estimate ``lam0`` of the mode of shape ``x0`` by Newton
+    (:func:`newton_mode`), or from the best-shape root at ``w`` refined by Newton; None when
+    neither converges onto that mode (see :func:`pk_mode`)."""
+    lam, x, ok = newton_mode(system, lam0, x0)
+    if ok and _upper(lam) and (mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
+        return lam, x
+    # the Newton root is not the tracked one: choose the root of best shape at w by one
+    # frozen-frequency solve, and refine that one by Newton (it starts on an eigenpair)
+    got = _pick_root(system, w, x0, (), n_eig)
+    if got is not None:
+        lam, x, ok = newton_mode(system, got[0], got[1])
+        if ok and _upper(lam) and mac(x, got[1]) >= 0.9:
+            return lam, x
+    return None
+
+
 def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, maxiter: int = 40,
             n_eig: int = 20, exclude=(), lam0: complex | None = None, near: float | None = None):
     """p-k iteration for one mode: solve with Theodorsen frozen at the mode's own frequency.
@@ -210,55 +257,19 @@ def pk_mode(system, omega0: float, x0: np.ndarray | None, tol: float = 1e-6, max
 
     Returns (lambda, x).  A mode whose frequency falls to zero is returned with the aero at k=0.
     """
-    cache = system.eig_cache  # identical frequencies (symmetric blades) share solves
-
-    def pick(w, x, exclude):
-        """The frozen-frequency root at ``w`` of best shape match to ``x`` (None: none free)."""
-        key = (w, n_eig)
-        if key not in cache:
-            M, D, K = system.matrices(w)
-            cache[key] = _qep(M, D, K, n_eig, shift=1j * w)
-        e = cache[key]
-        vals, vecs = e.values, e.vectors
-        phys = vals.imag >= -1e-9 * max(1.0, abs(w))
-        if exclude:
-            phys &= ~_excluded(vals, vecs, exclude)
-        if not np.any(phys):
-            return None
-        vals, vecs = vals[phys], vecs[:, phys]
-        if x is not None:
-            m = mac_matrix(x[:, None], vecs)[0]
-            score = m - 0.05 * np.abs(vals - 1j * w) / max(abs(w), 1.0)
-        else:
-            score = -np.abs(vals - 1j * w)
-        i = int(np.argmax(score))
-        return vals[i], vecs[:, i]
-
-    def upper(lam):  # a root of the upper half plane (the conjugates are not modes)
-        return lam.imag >= -1e-9 * max(1.0, abs(lam))
-
     w = max(float(omega0), 0.0)
     if lam0 is not None and x0 is not None and not exclude:
-        lam, x, ok = newton_mode(system, lam0, x0)
-        if ok and upper(lam) and (mac(x, x0) >= 0.8 or (near is not None and abs(lam - lam0) <= near * abs(lam0))):
-            return lam, x
-        # the Newton root is not the tracked one: choose the root of best shape at w by one
-        # frozen-frequency solve, and refine that one by Newton (it starts on an eigenpair)
-        got = pick(w, x0, ())
+        got = _refine_from_estimate(system, w, x0, lam0, n_eig, near)
         if got is not None:
-            lam, x, ok = newton_mode(system, got[0], got[1])
-            if ok and upper(lam) and mac(x, got[1]) >= 0.9:
-                return lam, x
+            return got
     lam, x = None, x0
-    change = np.inf
     for it in range(maxiter):
-        got = pick(w, x, exclude)
+        got = _pick_root(system, w, x, exclude, n_eig)
         if got is None:
             return complex(np.nan, np.nan), None
         lam, x_new = got
         w_new = max(lam.imag, 0.0)
-        change = abs(w_new - w) / max(abs(w_new), 1.0)
-        if change <= tol:
+        if abs(w_new - w) / max(abs(w_new), 1.0) <= tol:
             return lam, x_new
         if it >= 4 and -lam.real > 0.3 * abs(lam):
             # heavily damped (zeta > 0.3): far from any onset; its frequency may wander between
