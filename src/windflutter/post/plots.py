@@ -64,13 +64,13 @@ def _case_name(case: tuple[str, str]) -> str:
     return f"{case[0]}, {case[1]}"
 
 
-def _reference_lines(ax, ds: xr.Dataset) -> None:
-    rated = ds.attrs.get("rated_rpm")
-    over = ds.attrs.get("overspeed_rpm")
-    if rated is not None and np.isfinite(rated):
-        ax.axhline(rated, color="k", lw=1.0, ls="-.", label=f"rated {rated:.1f} RPM")
-    if over is not None and np.isfinite(over):
-        ax.axhline(over, color="0.4", lw=1.0, ls=":", label=f"overspeed {over:.1f} RPM")
+def _reference_lines(ax, ds: xr.Dataset, vertical: bool = False) -> None:
+    """The rated and overspeed rotor speeds of the run as lines (horizontal: RPM on the y axis)."""
+    line = ax.axvline if vertical else ax.axhline
+    for key, color, ls, what in (("rated_rpm", "k", "-.", "rated"), ("overspeed_rpm", "0.4", ":", "overspeed")):
+        v = ds.attrs.get(key)
+        if v is not None and np.isfinite(v):
+            line(v, color=color, lw=1.0, ls=ls, label=f"{what} {v:.1f} RPM")
 
 
 def stability_map(ds: xr.Dataset) -> Figure:
@@ -157,7 +157,7 @@ def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
         xe = min(rpm[-1], fmax * 60.0 / n)
         ax.annotate(f"{n}P", (xe, n * xe / 60.0), fontsize=8, color="0.3", xytext=(-2, 2), ha="right",
                     textcoords="offset points")
-    _rpm_lines(ax, ds)
+    _reference_lines(ax, ds, vertical=True)
     fr = ds["flutter_rpm"].values[i]
     if np.isfinite(fr):
         ax.axvline(fr, color="r", lw=1.2, label=f"flutter {fr:.2f} RPM")
@@ -185,15 +185,6 @@ def _legend_below(fig, ax) -> None:
         fig.legend(h, lab, loc="lower left", bbox_to_anchor=(_SWEEP_X[0], 0.0), ncols=min(len(h), 4), fontsize=8)
 
 
-def _rpm_lines(ax, ds: xr.Dataset) -> None:
-    rated = ds.attrs.get("rated_rpm")
-    over = ds.attrs.get("overspeed_rpm")
-    if rated is not None and np.isfinite(rated):
-        ax.axvline(rated, color="k", lw=1.0, ls="-.", label=f"rated {rated:.1f} RPM")
-    if over is not None and np.isfinite(over):
-        ax.axvline(over, color="0.4", lw=1.0, ls=":", label=f"overspeed {over:.1f} RPM")
-
-
 def damping_plot(ds: xr.Dataset, i: int) -> Figure:
     """V-g / V-f style: damping ratio (top, axis scaled to the lightly damped modes, the heavily
     damped ones above a break) and frequency (bottom) of each mode vs rotor speed; names at the
@@ -214,7 +205,7 @@ def damping_plot(ds: xr.Dataset, i: int) -> Figure:
     draw(axf, freq)
     fr = ds["flutter_rpm"].values[i]
     for ax in (*axz, axf):
-        _rpm_lines(ax, ds)
+        _reference_lines(ax, ds, vertical=True)
         if np.isfinite(fr):
             ax.axvline(fr, color="r", lw=1.2, label=f"flutter {fr:.2f} RPM")
         ax.set_xlim(rpm[0], rpm[-1] if rpm.size else 1)

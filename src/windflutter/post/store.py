@@ -242,37 +242,40 @@ def _temporary(path: Path, suffix: str) -> tuple[int, str]:
     raise FileExistsError(f"no free temporary name next to {path}")
 
 
-def _atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
+def _atomic(path: str | Path, suffix: str, write) -> Path:
+    """``write(fd, tmp)`` fills a temporary file beside ``path`` (synced to disk), which then
+    replaces ``path`` in one step; on any error the temporary file is removed."""
     path = Path(path)
-    fd, tmp = _temporary(path, ".nc.tmp")
-    os.close(fd)
+    fd, tmp = _temporary(path, suffix)
     try:
-        _strings_fixed(ds).to_netcdf(tmp, engine="netcdf4")
-        with open(tmp, "rb+") as fh:
-            os.fsync(fh.fileno())
+        write(fd, tmp)
         os.replace(tmp, path)
     except BaseException:
         if os.path.exists(tmp):
             os.remove(tmp)
         raise
     return path
+
+
+def _atomic_write_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
+    def write(fd, tmp):
+        os.close(fd)
+        _strings_fixed(ds).to_netcdf(tmp, engine="netcdf4")
+        with open(tmp, "rb+") as fh:
+            os.fsync(fh.fileno())
+
+    return _atomic(path, ".nc.tmp", write)
 
 
 def atomic_write_text(text: str, path: str | Path) -> Path:
     """Write text atomically."""
-    path = Path(path)
-    fd, tmp = _temporary(path, ".tmp")
-    try:
+    def write(fd, tmp):
         with os.fdopen(fd, "w", encoding="utf-8") as fh:
             fh.write(text)
             fh.flush()
             os.fsync(fh.fileno())
-        os.replace(tmp, path)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.remove(tmp)
-        raise
-    return path
+
+    return _atomic(path, ".tmp", write)
 
 
 def point_path(outdir: str | Path, index: int) -> Path:
