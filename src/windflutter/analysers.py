@@ -149,7 +149,8 @@ class TurbinePointAnalyser:
             damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
             # the model size goes with each point (the reduced size may depend on its pitch), so
             # the run's attributes do not depend on which points this process computed
-            info={"pitch_deg": float(s.pitch_deg), **size}, reason="; ".join(notes)[:500])
+            info={"pitch_deg": float(s.pitch_deg), **size},
+            reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:

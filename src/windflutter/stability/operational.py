@@ -63,6 +63,24 @@ def blade_static_margin(ps) -> float:
     return float(np.min(w.real)) if w.size else float("inf")
 
 
+def blade_structural_margin(ps) -> tuple[float, float]:
+    """``(smallest eigenvalue (1/s^2), r/R of its largest motion)`` of the blade's structural static
+    stiffness over its mass -- rotating-frame and steady-stress terms, no aerodynamics, hub clamped.
+    Negative: the FE structure under its steady stress is statically unstable on its own (e.g. a
+    local buckling mode of shell elements), which is not aeroelastic divergence."""
+    M, K = ps.blade_structure
+    e = slice(6, None)
+    w, V = sla.eig(K[e, e], M[e, e])
+    ok = np.isfinite(w)
+    if not ok.any():
+        return float("inf"), float("nan")
+    i = np.flatnonzero(ok)[np.argmin(w[ok].real)]
+    rb = ps.blade
+    v = np.asarray(rb.basis_full(ps.Phi) @ np.concatenate([np.zeros(6), V[:, i].real])).reshape(-1, 6)
+    r = np.linalg.norm(np.asarray(rb.fe.nodes, float) - rb.apex, axis=1)
+    return float(w[i].real), float(r[np.argmax(np.linalg.norm(v[:, :3], axis=1))] / r.max())
+
+
 def torsion_frequency(om, pitch: float) -> float:
     """The first torsion-dominated fixed-interface blade mode (Hz) at standstill (structure only)."""
     from windflutter.structure.labels import blade_motion_components
@@ -142,6 +160,12 @@ class OperationalStability:
                     raise
                 on.reason = str(exc)
                 break
+            if i == 0 and blade_structural_margin(ps)[0] <= 0:
+                raise ModelError(f"at V = {wind_speed:g} m/s the blade's FE structure under its steady stress is "
+                                 f"statically unstable at the operating point ({rpm:.2f} RPM) without aerodynamics "
+                                 "(a local buckling of the mesh is likely)")
+            if i > 0 and self._structure_lost(ps, wind_speed, pitch, grid[i - 1], rpm, on):
+                break
             sweep.append((float(rpm), modes))
             margins.append(blade_static_margin(ps))
             if on.divergence is None and i > 0 and margins[-2] > 0 >= margins[-1]:
@@ -156,6 +180,19 @@ class OperationalStability:
         return self._summary(wind_speed, pitch, sweep, flutter, on)
 
     # -- pieces ------------------------------------------------------------------------------
+    def _structure_lost(self, ps, V: float, pitch: float, a: float, b: float, on: Onset) -> bool:
+        """The blade's structure alone turned statically unstable between ``a`` and ``b`` RPM: the
+        sweep stops there with the reason in ``on`` (not reported as divergence, which is the
+        aerodynamic stiffness overcoming a stable structure)."""
+        w, where = blade_structural_margin(ps)
+        if w > 0:
+            return False
+        r0 = self._locate(lambda r: blade_structural_margin(self.model.at(V, r, pitch))[0], a, b)
+        on.reason = (f"the blade's FE structure under its steady stress loses static stability on its own at "
+                     f"{r0:.2f} RPM (a mode without aerodynamics, largest at r/R = {where:.2f}; a local buckling of "
+                     f"the mesh is likely): the sweep stops there; this is not aeroelastic divergence")
+        return True
+
     def _locate(self, f, a: float, b: float) -> float:
         try:
             return float(brentq(f, a, b, xtol=self.search.tolerance_rpm))

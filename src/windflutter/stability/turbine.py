@@ -185,7 +185,7 @@ class PointSummary:
         return {"wind_speed": float(self.wind_speed), "flutter_rpm": f(self.flutter_rpm),
                 "flutter_frequency_hz": f(self.flutter_frequency_hz), "flutter_mode": self.flutter_mode,
                 "divergence_rpm": f(self.divergence_rpm), "first_instability": self.first_instability,
-                "pitch_deg": float(self.pitch_deg)}
+                "pitch_deg": float(self.pitch_deg), "note": (getattr(self.onset, "reason", "") or None)}
 
 
 class TurbineStability:

@@ -131,7 +131,8 @@ class PointSystem:
     wind_speed (m/s), omega (rad/s), pitch (rad); ``mbc`` the time-invariant system; ``blade``
     the substructure; ``Phi`` (nq_blade, m) its fixed-interface basis; ``support`` the support
     model (None for ``part="rotor"``); ``steady`` the steady state (or None); ``labels`` of the
-    ground-fixed coordinates.
+    ground-fixed coordinates; ``blade_structure`` the blade's structural ``(M, K)`` (rotating-frame
+    and steady-stress terms, no aerodynamics) in its coordinates.
     """
 
     wind_speed: float
@@ -145,6 +146,7 @@ class PointSystem:
     n_blades: int
     labels: list
     blade_system: object = None
+    blade_structure: tuple | None = None
 
 
 class OperationalModel:
@@ -347,7 +349,7 @@ class OperationalModel:
         mbc = multiblade_system(ff, blade, self.n_blades, omega, self.rotor.shaft_axis)
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
-                           blade_system=blade)
+                           blade_system=blade, blade_structure=(M, K))
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):

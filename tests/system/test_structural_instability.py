@@ -1,0 +1,48 @@
+"""A blade structure that loses static stability on its own is not reported as divergence.
+
+Found on the NREL 5 MW shell blade at 8 m/s: its steady stress makes the FE structure statically
+unstable at 22.0 RPM without any aerodynamics (a local mode of the tip's slender shell elements,
+w^2 from +38 to -7800 1/s^2 between 22 and 23 RPM), and the static-margin search called that
+"divergence".  Aeroelastic divergence is the aerodynamic stiffness overcoming a stable structure;
+a structural instability of the FE model stops the sweep with a note instead.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import windflutter
+import windflutter.stability.operational as op
+from windflutter.units import RPM
+
+
+def test_a_structural_instability_stops_the_sweep_with_a_note(monkeypatch):
+    """Control logic, on the beam model: the structure alone declared unstable from 14 RPM on (the
+    real margin of a beam blade stays positive); the sweep stops between its grid points, the note
+    says where and why, and no divergence or flutter is reported beyond it."""
+    real = op.blade_structural_margin
+
+    def fake(ps):
+        w, where = real(ps)
+        return (w if ps.omega / RPM < 14.0 else -1.0), where
+
+    monkeypatch.setattr(op, "blade_structural_margin", fake)
+    (p,) = windflutter.stability("nrel5mw", [11.4], model={"part": "rotor"})
+    note = p.as_dict()["note"]
+    assert note and "loses static stability on its own at" in note and "not aeroelastic divergence" in note
+    stop = float(note.split(" at ")[1].split(" RPM")[0])
+    assert 12.1 < stop <= 14.0 + 0.02
+    assert p.divergence_rpm is None and p.flutter_rpm is None
+    assert np.max(p.sweep_rpm) < 14.0
+
+
+@pytest.mark.slow
+def test_nrel5mw_shell_tip_instability_is_not_divergence():
+    """The real case (~2 min): the shell blade at 8 m/s."""
+    (p,) = windflutter.stability("nrel5mw", [8.0], model="shell")
+    note = p.as_dict()["note"]
+    assert p.divergence_rpm is None, p.as_dict()
+    assert note and "r/R = 1.00" in note
+    stop = float(note.split(" at ")[1].split(" RPM")[0])
+    assert 21.5 < stop < 22.5
