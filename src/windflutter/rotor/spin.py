@@ -152,17 +152,21 @@ def _sparse(mats: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
     return sp.csr_matrix((v, (r, c)), shape=(n, n))
 
 
-def spin_terms(fe: FEModel, M: sp.spmatrix, nodes: np.ndarray, axis: np.ndarray, center: np.ndarray):
+def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.ndarray, center: np.ndarray):
     """``(G1, Kr1, f1)``: Coriolis (per rad/s), spin softening and centrifugal load (per (rad/s)^2)
     of the rotating nodes ``nodes`` about ``axis`` (unit) through ``center`` (m), full numbering.
 
     Beam elements with both nodes rotating and lumped masses on rotating nodes are rigid sections
-    (module docstring); the rest of ``M`` (shells) enters by its translational block.
+    (module docstring); the rest of ``M`` (shells) enters by its translational block.  ``M`` may be
+    None for a model of beams and lumped masses only (nothing else carries mass).
     """
     from windflutter.rotor.rotating import coriolis_and_softening
+
     axis = np.asarray(axis, float)
     if not np.isclose(np.linalg.norm(axis), 1.0, atol=1e-6):
         raise InputError("rotor.shaft_axis", axis.tolist(), "a unit vector")
+    if M is None and len(fe.shell_conn):
+        raise InputError("M", None, "the mass matrix of a model with shells")
     n = fe.n_dof
     nodes = np.unique(np.asarray(nodes, dtype=np.int64))
     parts = []  # (G, Kr, f, M, dofs) per element of the rigid sections
@@ -174,16 +178,20 @@ def spin_terms(fe: FEModel, M: sp.spmatrix, nodes: np.ndarray, axis: np.ndarray,
         lt = _lumped_terms(fe, nodes, axis, center)
         if len(lt[4]):
             parts.append(lt)
-    rest = sp.csr_matrix(M).copy()
-    for p in parts:
-        rest = rest - _sparse(p[3], p[4], n)
-    scale = abs(sp.csr_matrix(M)).max() if sp.csr_matrix(M).nnz else 1.0
-    rest.data[np.abs(rest.data) <= 1e-12 * scale] = 0.0
-    rest.eliminate_zeros()
-    G1, Kr1 = coriolis_and_softening(rest, (6 * nodes[:, None] + np.arange(3)[None, :]).ravel(), axis)
-    X = np.zeros(n)
-    X.reshape(-1, 6)[nodes, :3] = np.asarray(fe.nodes, float)[nodes] - np.asarray(center, float)
-    f1 = np.asarray(Kr1 @ X)
+    G1 = Kr1 = sp.csr_matrix((n, n))
+    f1 = np.zeros(n)
+    if M is not None:
+        rest = sp.csr_matrix(M).copy()
+        for p in parts:
+            rest = rest - _sparse(p[3], p[4], n)
+        scale = abs(sp.csr_matrix(M)).max() if sp.csr_matrix(M).nnz else 1.0
+        rest.data[np.abs(rest.data) <= 1e-12 * scale] = 0.0
+        rest.eliminate_zeros()
+        if rest.nnz:
+            G1, Kr1 = coriolis_and_softening(rest, (6 * nodes[:, None] + np.arange(3)[None, :]).ravel(), axis)
+            X = np.zeros(n)
+            X.reshape(-1, 6)[nodes, :3] = np.asarray(fe.nodes, float)[nodes] - np.asarray(center, float)
+            f1 = np.asarray(Kr1 @ X)
     for Ge, Ke, fe_, _, de in parts:
         G1 = G1 + _sparse(Ge, de, n)
         Kr1 = Kr1 + _sparse(Ke, de, n)

@@ -97,7 +97,7 @@ def _centrifugal(fe, omega: float, apex: np.ndarray, axis: np.ndarray, group: st
         if omega == 0.0:
             return np.zeros(fe.n_dof), None
         fe_c = deformed_model(fe, config)
-        M, _ = assemble_matrices(fe_c)
+        M = assemble_matrices(fe_c)[0] if len(fe.shell_conn) else None  # beams: the sections alone
         _, Kr1, f1 = spin_terms(fe_c, M, nodes, axis, apex)
         return omega**2 * f1, omega**2 * Kr1
 
