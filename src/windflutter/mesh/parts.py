@@ -20,7 +20,7 @@ from windflutter.mesh.blade_shell import blade_shell_mesh
 from windflutter.mesh.frames import blade_placement, rot_y
 from windflutter.mesh.loft import chord_frame
 from windflutter.mesh.tower import tower_beam_mesh, tower_shell_mesh
-from windflutter.structure.fem import FEModel, LumpedMass, RigidLink
+from windflutter.structure.fem import FEModel, LumpedMass
 
 _STRIP_KEYS = ("blade", "radius", "width", "chord", "ea", "origin", "ec", "es", "af", "twist")
 
@@ -172,8 +172,6 @@ def add_blades(b: ModelBuilder, turbine, st, blade_ids) -> list[np.ndarray]:
             rid = np.array([b.region(f"blade{k}:{nm}") for nm in bm.region_names])
             b.add_elements("shell", bm.conn + off, bm.prop + pstart, bm.matdir @ R.T, rid[bm.region])
             roots.append(bm.station_nodes[0] + off)
-            tip = bm.station_nodes[-1] + off  # the open tip section closed by a rigid rib (tip cap)
-            b.links.append(RigidLink(int(tip[0]), tip[1:].astype(np.int64), name=f"blade{k} tip rib"))
         else:
             b.add_elements("beam", bm.conn + off, np.arange(len(bm.sections)) + pstart, bm.orient @ R.T,
                            np.full(len(bm.conn), b.region(f"blade{k}")))
