@@ -46,7 +46,7 @@ from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.aero.strip import OperatingPoint, SectionFlow, mean_coefficients, section_flow
 from windflutter.steady.geometry import Deflection, blade_strips
 
-__all__ = ["centrifugal_loads", "StripLoads", "strip_loads", "nodal_loads", "rotor_totals", "second_order_moments"]
+__all__ = ["StripLoads", "strip_loads", "nodal_loads", "rotor_totals", "second_order_moments"]
 
 
 @dataclass(frozen=True)
@@ -105,34 +105,6 @@ def rotor_totals(sections: AeroSections, rotor: RotorGeometry, loads: np.ndarray
     moment = scale * float(np.sum((np.cross(rel, loads[:, :3]) + loads[:, 3:]) @ axis))
     torque = moment * (np.sign(omega) if omega != 0 else 1.0)
     return thrust, torque, abs(float(omega)) * torque
-
-
-def centrifugal_loads(fe, M, nodes: np.ndarray, omega_vec, center) -> np.ndarray:
-    """Centrifugal nodal loads (N, N m) of the steadily rotating part, full numbering.
-
-    The beam sections and lumped masses are rigid bodies on their nodes: for a section of mass ``m``
-    whose centre is offset by ``c`` from its reference point ``x`` and whose inertia about ``x`` is
-    ``J`` (the 6x6 section mass ``[[m I, -m S(c)], [m S(c), J]]``), spinning at ``Omega`` about
-    ``center``, the inertial force is ``-m Omega x (Omega x (x + c))`` and its moment about ``x`` is
-    ``-m c x (Omega x (Omega x x)) - Omega x (J Omega)`` (the "propeller" moment that turns a pitched
-    section towards the plane of rotation), integrated along each element with its section-motion
-    interpolation (:func:`windflutter.rotor.spin.spin_terms`, which also gives the matching
-    softening and Coriolis matrices).  Shell models carry their inertia in the translational mass of
-    their nodes.
-
-    Parameters
-    ----------
-    fe : the model.  M : (n_dof, n_dof) full-numbering mass matrix.
-    nodes : rotating node indices.  omega_vec : (3,) rotor speed vector (rad/s).  center : (3,)
-    a point on the axis (m).
-    """
-    from windflutter.rotor.spin import spin_terms
-
-    w = np.asarray(omega_vec, float)
-    speed = float(np.linalg.norm(w))
-    if speed == 0.0:
-        return np.zeros(fe.n_dof)
-    return speed**2 * spin_terms(fe, M, nodes, w / speed, center)[2]
 
 
 def _rev_cumsum(a: np.ndarray) -> np.ndarray:

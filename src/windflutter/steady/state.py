@@ -16,8 +16,8 @@ iteration finds the deflected blade and the loads on it:
    (:func:`windflutter.steady.loads.second_order_moments`);
 4. the static solution ``(K + K_sigma,cf - Omega^2 K_r) u = F_cf + motion_map^T (loads)`` with
    the centrifugal loads ``F_cf`` of the rigidly spinning sections
-   (:func:`windflutter.steady.loads.centrifugal_loads`), the geometric stiffness ``K_sigma,cf``
-   of their linear static stress and the spin softening ``K_r`` of the translational mass
+   (:func:`windflutter.rotor.spin.spin_terms`), the geometric stiffness ``K_sigma,cf``
+   of their linear static stress and the spin softening ``K_r`` of the same rigid sections
    (the centrifugal force on the displaced mass is ``F_cf + Omega^2 K_r u``); one
    factorization per call;
 5. Aitken-relaxed update of ``u``; stop when the strip motions and strip loads change by less
