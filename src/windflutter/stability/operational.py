@@ -56,29 +56,40 @@ def blade_static_margin(ps) -> float:
     K = bs.K.copy()
     if bs.n_states:
         K = K + bs.F @ np.linalg.solve(bs.Az, bs.Bq)
+    return _lowest_elastic(K, bs.M)
+
+
+def _lowest_elastic(K: np.ndarray, M: np.ndarray) -> float:
+    """Smallest finite eigenvalue (real part) of ``K x = w M x`` on the blade's elastic coordinates
+    (the six hub coordinates held), ``inf`` if there is none."""
     e = slice(6, None)
-    Ke, Me = K[e, e], bs.M[e, e]
-    w = sla.eigvals(Ke, Me)
+    w = sla.eigvals(K[e, e], M[e, e])
     w = w[np.isfinite(w)]
     return float(np.min(w.real)) if w.size else float("inf")
 
 
-def blade_structural_margin(ps) -> tuple[float, float]:
-    """``(smallest eigenvalue (1/s^2), r/R of its largest motion)`` of the blade's structural static
-    stiffness over its mass -- rotating-frame and steady-stress terms, no aerodynamics, hub clamped.
-    Negative: the FE structure under its steady stress is statically unstable on its own (e.g. a
-    local buckling mode of shell elements), which is not aeroelastic divergence."""
+def blade_structural_margin(ps) -> float:
+    """Smallest eigenvalue (1/s^2) of the blade's structural static stiffness over its mass --
+    rotating-frame and steady-stress terms, no aerodynamics, hub clamped.  Negative: the FE
+    structure under its steady stress is statically unstable on its own (e.g. a local buckling mode
+    of shell elements), which is not aeroelastic divergence."""
+    M, K = ps.blade_structure
+    return _lowest_elastic(K, M)
+
+
+def structural_mode_radius(ps) -> float:
+    """r/R of the largest motion of the mode of :func:`blade_structural_margin` (where it lives)."""
     M, K = ps.blade_structure
     e = slice(6, None)
     w, V = sla.eig(K[e, e], M[e, e])
-    ok = np.isfinite(w)
-    if not ok.any():
-        return float("inf"), float("nan")
-    i = np.flatnonzero(ok)[np.argmin(w[ok].real)]
+    ok = np.flatnonzero(np.isfinite(w))
+    if not ok.size:
+        return float("nan")
+    i = ok[np.argmin(w[ok].real)]
     rb = ps.blade
     v = np.asarray(rb.basis_full(ps.Phi) @ np.concatenate([np.zeros(6), V[:, i].real])).reshape(-1, 6)
     r = np.linalg.norm(np.asarray(rb.fe.nodes, float) - rb.apex, axis=1)
-    return float(w[i].real), float(r[np.argmax(np.linalg.norm(v[:, :3], axis=1))] / r.max())
+    return float(r[np.argmax(np.linalg.norm(v[:, :3], axis=1))] / r.max())
 
 
 def torsion_frequency(om, pitch: float) -> float:
@@ -160,7 +171,7 @@ class OperationalStability:
                     raise
                 on.reason = str(exc)
                 break
-            if i == 0 and blade_structural_margin(ps)[0] <= 0:
+            if i == 0 and blade_structural_margin(ps) <= 0:
                 raise ModelError(f"at V = {wind_speed:g} m/s the blade's FE structure under its steady stress is "
                                  f"statically unstable at the operating point ({rpm:.2f} RPM) without aerodynamics "
                                  "(a local buckling of the mesh is likely)")
@@ -184,10 +195,10 @@ class OperationalStability:
         """The blade's structure alone turned statically unstable between ``a`` and ``b`` RPM: the
         sweep stops there with the reason in ``on`` (not reported as divergence, which is the
         aerodynamic stiffness overcoming a stable structure)."""
-        w, where = blade_structural_margin(ps)
-        if w > 0:
+        if blade_structural_margin(ps) > 0:
             return False
-        r0 = self._locate(lambda r: blade_structural_margin(self.model.at(V, r, pitch))[0], a, b)
+        where = structural_mode_radius(ps)
+        r0 = self._locate(lambda r: blade_structural_margin(self.model.at(V, r, pitch)), a, b)
         on.reason = (f"the blade's FE structure under its steady stress loses static stability on its own at "
                      f"{r0:.2f} RPM (a mode without aerodynamics, largest at r/R = {where:.2f}; a local buckling of "
                      f"the mesh is likely): the sweep stops there; this is not aeroelastic divergence")

@@ -282,13 +282,14 @@ class TurbineStability:
 
         sys_ref = system_at(grid[0])
         M = am.structure.M
+        named = structural_names(sys_ref, fe, M, sections) if o.method == "pk" else None  # only p-k tracks
         if o.method == "pk":
-            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, fe, M, sections)
+            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, fe, M, sections, named=named)
             on = pk_search(system_at, grid, n_track=min(n_track, am.size), n_eig=o.n_eig, xtol=o.tolerance_rpm,
                            stop_at_onset=not o.full_sweep)
         else:
             on = thesis_search(system_at, grid, n_eig=o.n_eig)
-        labels, mode = self._names(on, sys_ref, system_at, fe, M, sections)
+        labels, mode = self._names(on, system_at, fe, M, sections, named)
         if mode is not None and on.divergence is not None and on.flutter > on.divergence:
             # reported like a V-g plot shows it, but the stability limit is the divergence: beyond
             # it the linearization about the undeformed rotor describes no equilibrium
@@ -305,7 +306,7 @@ class TurbineStability:
 
 
     @staticmethod
-    def _names(on, sys_ref, system_at, fe, M, sections):
+    def _names(on, system_at, fe, M, sections, named):
         """Names of the tracked modes and of the flutter mode (:mod:`~windflutter.stability.tracking`).
 
         A tracked mode is named as the structural mode (``Ks(Omega), M`` at the first rotor speed,
@@ -313,12 +314,9 @@ class TurbineStability:
         a torsion mode's strips move more in flap than in twist.  The flutter mode is the tracked
         mode it grew from; without one (the thesis search), its shape at onset, without an order."""
         labels = []
-        if on.vectors0 is not None:
+        if on.vectors0 is not None and named is not None:
             # a mode without a free root at the first grid point (lost there) has no shape yet
-            w2, V = structural_eig(sys_ref)
-            f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
-            X = np.stack([sys_ref.expand(V[:, i]) for i in range(len(f))], axis=1)
-            struct_names = mode_names(fe, M, X, f, sections)
+            _, V, struct_names = named
             have = [i for i, x in enumerate(on.vectors0) if x is not None]
             labels = ["lost"] * len(on.vectors0)
             if have:  # one structural mode each (the blade copies span near-degenerate subspaces)
@@ -340,19 +338,26 @@ class TurbineStability:
         return labels, mode
 
 
-def auto_tracked(system, fe, M, sections, factor: float = 1.25) -> int:
+def structural_names(system, fe, M, sections):
+    """``(f (Hz), V, names)``: the modes of ``Ks(Omega), M`` of ``system`` (working basis) and their
+    names (:func:`~windflutter.stability.tracking.mode_names`)."""
+    w2, V = structural_eig(system)
+    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
+    X = np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1)
+    return f, V, mode_names(fe, M, X, f, sections)
+
+
+def auto_tracked(system, fe, M, sections, factor: float = 1.25, named=None) -> int:
     """Number of modes to track: every structural mode up to ``factor`` x the first torsion.
 
     Classical flutter of a blade couples a flap mode with a torsion mode; a whole turbine has
     tower, drivetrain and three of each blade mode below the first torsion, so a fixed count is
     fragile.  The modes of ``Ks(Omega) , M`` at the first rotor speed of the sweep are labelled
     (:func:`~windflutter.stability.tracking.mode_names`); without a torsion-dominated mode all
-    modes of the basis are tracked.
+    modes of the basis are tracked.  ``named``: :func:`structural_names` of ``system``, if known.
     """
-    w2, V = structural_eig(system)
-    f = np.sqrt(np.maximum(w2, 0.0))
-    X = np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1)
-    for i, name in enumerate(mode_names(fe, M, X, f / (2 * math.pi), sections)):
+    f, _, names = named if named is not None else structural_names(system, fe, M, sections)
+    for i, name in enumerate(names):
         if has_torsion(name):
             return int(np.count_nonzero(f <= factor * f[i]))
     return len(f)
