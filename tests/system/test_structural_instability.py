@@ -35,6 +35,11 @@ def test_a_structural_instability_stops_the_sweep_with_a_note(monkeypatch):
     assert 12.1 < stop <= 14.0 + 0.02
     assert p.divergence_rpm is None and p.flutter_rpm is None
     assert np.max(p.sweep_rpm) < 14.0
+    # the note says from which rotor speed it holds, so that the verdict does not put its caution
+    # on onsets found below it (a note without one concerns the whole sweep)
+    from windflutter.post.verdict import _note_from_rpm
+
+    assert _note_from_rpm(note) == pytest.approx(stop, abs=0.006)
 
 
 @pytest.mark.slow

@@ -169,7 +169,7 @@ class OperationalStability:
             except ModelError as exc:  # no steady state (e.g. it diverges at this overspeed)
                 if not sweep:
                     raise
-                on.reason = str(exc)
+                on.reason = f"{exc} [from {rpm:.2f} RPM]"  # onsets below it are not concerned
                 break
             if i == 0 and blade_structural_margin(ps) <= 0:
                 raise ModelError(f"at V = {wind_speed:g} m/s the blade's FE structure under its steady stress is "
@@ -201,7 +201,7 @@ class OperationalStability:
         r0 = self._locate(lambda r: blade_structural_margin(self.model.at(V, r, pitch)), a, b)
         on.reason = (f"the blade's FE structure under its steady stress loses static stability on its own at "
                      f"{r0:.2f} RPM (a mode without aerodynamics, largest at r/R = {where:.2f}; a local buckling of "
-                     f"the mesh is likely): the sweep stops there; this is not aeroelastic divergence")
+                     f"the mesh is likely): the sweep stops there; this is not aeroelastic divergence [from {r0:.2f} RPM]")
         return True
 
     def _locate(self, f, a: float, b: float) -> float:
