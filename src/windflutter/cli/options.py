@@ -198,9 +198,10 @@ def rpm_flag(default: list | None = None) -> Flag:
 
 
 PHYSICS = Flag("--physics", spec=Spec("choice", choices=("full", "thesis"),
-                                      doc="full: with the centrifugal stress stiffness K_sigma; thesis: without, "
-                                          "as the seed (config solver.geometric_stiffness)"),
-               to_config=lambda v: {"solver": {"geometric_stiffness": v == "full"}})
+                                      doc="full: with the centrifugal stress stiffness K_sigma and the rigid-section "
+                                          "rotating-frame terms; thesis: without either, as the seed (config "
+                                          "solver.geometric_stiffness and solver.rigid_sections)"),
+               to_config=lambda v: {"solver": {"geometric_stiffness": v == "full", "rigid_sections": v == "full"}})
 
 SOLVER_FLAGS = (
     PHYSICS,

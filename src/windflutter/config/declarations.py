@@ -174,6 +174,11 @@ class SolverConfig:
                                  "or skin (the seed's skin quads); beams need spline", choices=AERO_DISTRIBUTIONS)
     geometric_stiffness: bool = opt(True, "bool", "centrifugal stress stiffness K_sigma (full physics); false "
                                     "reproduces the thesis")
+    rigid_sections: bool = opt(True, "bool", "pk and thesis searches: the centrifugal, Coriolis and spin-softening "
+                               "terms of beam sections as rigid bodies (mass-centre offsets, rotary inertia) with "
+                               "the initial stress of every stress resultant (full physics; independent of where "
+                               "the 6x6 reference axis lies); false: the thesis's translational terms and axial "
+                               "initial stress.  Method p always has the full terms")
     induction: bool = opt(True, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
                           "the stability problem; false is the thesis's inflow V, Omega r")
     mean_loads: bool = opt(True, "bool", "the mean-load terms: the quasi-steady force of the mean lift, drag "

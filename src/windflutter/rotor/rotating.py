@@ -70,14 +70,15 @@ def coriolis_and_softening(M: sp.spmatrix, dofs: np.ndarray, omega_vec: np.ndarr
     return expand(Gt), expand(Krt)
 
 
-def relative_to_reference(n_dof: int, dofs: np.ndarray, reference_node: int) -> sp.csr_matrix:
-    """Sparse ``L`` (n_dof x n_dof) giving the rotor's translations relative to a reference node.
+def relative_to_reference(n_dof: int, dofs: np.ndarray, reference_node: int, n_comp: int = 3) -> sp.csr_matrix:
+    """Sparse ``L`` (n_dof x n_dof) giving the rotor's motion relative to a reference node.
 
-    ``(L u)[d] = u[d] - u[ref, c(d)]`` for the translational DOFs ``d`` of the rotating part
-    (component ``c(d)``), zero for every other DOF, and zero for the reference node itself.
+    ``(L u)[d] = u[d] - u[ref, c(d)]`` for the DOFs ``d`` of the rotating part, ``n_comp`` per node
+    (3: the translations, 6: translations and rotations; component ``c(d)``), zero for every other
+    DOF, and zero for the reference node itself.
     """
     dofs = np.asarray(dofs, dtype=np.int64)
-    comp = np.tile(np.arange(3), dofs.size // 3)
+    comp = np.tile(np.arange(n_comp), dofs.size // n_comp)
     ref = 6 * int(reference_node) + comp
     keep = dofs != ref
     d, r = dofs[keep], ref[keep]
@@ -115,18 +116,29 @@ class RotorTerms:
         return self.G1 * omega, self.Kr1 * omega**2, Ks
 
 
-def _prestress(fe: FEModel, struct, Fr: np.ndarray, u0_solver=None) -> sp.csr_matrix:
-    """Geometric stiffness of the static solution of ``Ks u0 = Fr`` (structural engineer's API)."""
+def _prestress(fe: FEModel, struct, Fr: np.ndarray, u0_solver=None, moments: bool = False) -> sp.csr_matrix:
+    """Geometric stiffness of the static solution of ``Ks u0 = Fr`` (structural engineer's API);
+    ``moments``: of every stress resultant of the beams (not the axial force's alone)."""
     from windflutter.structure.prestress import geometric_stiffness, static_solve
 
     u0 = static_solve(struct, Fr) if u0_solver is None else u0_solver(struct, Fr)
-    Kg = geometric_stiffness(fe, u0)
+    Kg = geometric_stiffness(fe, u0, moments=moments)
     return sp.csr_matrix(Kg)
 
 
 def rotor_terms(fe: FEModel, struct, rotor_geometry: RotorGeometry, prestress: bool = True,
-                group: str = "rotor", reference_group: str | None = "hub") -> RotorTerms:
+                group: str = "rotor", reference_group: str | None = "hub",
+                rigid_sections: bool = False) -> RotorTerms:
     """Build :class:`RotorTerms` once for a model (unit rotor speed).
+
+    ``rigid_sections=False`` (the seed's): Coriolis, spin softening and centrifugal load of the
+    translational mass, the axial force's initial stress.  ``True``: beam sections and lumped
+    masses as rigid bodies (:func:`windflutter.rotor.spin.spin_terms`: mass-centre offsets and
+    rotary inertia) and the initial stress of every stress resultant of the beams
+    (``geometric_stiffness(moments=True)``).  Only the second is independent of where a beam's
+    reference axis lies in its sections: with the seed's terms, a blade whose 6x6 refer to a line
+    away from the mass and tension centres (a HAWC2 c2 line) gets an axial force acting on that
+    line, not where it acts (docs/verification.md §11 item 17).
 
     Mixed frames: in a whole-turbine model the tower is in the fixed frame and the rotor is tied
     to it at the hub.  A rigid translation of the whole rotor with the hub changes neither the
@@ -143,16 +155,23 @@ def rotor_terms(fe: FEModel, struct, rotor_geometry: RotorGeometry, prestress: b
     nodes = rotating_nodes(fe, group)
     M = struct.M
     dofs = translational_dofs(nodes)
-    G1, Kr1 = coriolis_and_softening(M, dofs, axis)
+    if rigid_sections:
+        from windflutter.rotor.spin import spin_terms
+
+        G1, Kr1, f1 = spin_terms(fe, M, nodes, axis, np.asarray(rotor_geometry.hub_center, float))
+    else:
+        G1, Kr1 = coriolis_and_softening(M, dofs, axis)
     ref = fe.node_groups.get(reference_group) if reference_group else None
     if ref is not None and len(ref) == 1:
-        L = relative_to_reference(M.shape[0], dofs, int(np.asarray(ref)[0]))
+        # rigid sections: their rotations carry terms too (rotary inertia, offsets), relative to the hub's
+        rel = (6 * nodes[:, None] + np.arange(6)[None, :]).ravel() if rigid_sections else dofs
+        L = relative_to_reference(M.shape[0], rel, int(np.asarray(ref)[0]), 6 if rigid_sections else 3)
         G1 = L.T @ G1 @ L
         Kr1 = L.T @ Kr1 @ L
     Ks1 = None
     if prestress:
-        Fr = centrifugal_load(M, fe, nodes, axis, rotor_geometry.hub_center)
-        Ks1 = _prestress(fe, struct, Fr)
+        Fr = f1 if rigid_sections else centrifugal_load(M, fe, nodes, axis, rotor_geometry.hub_center)
+        Ks1 = _prestress(fe, struct, Fr, moments=rigid_sections)
     return RotorTerms(G1=G1.tocsr(), Kr1=Kr1.tocsr(), Ksigma1=Ks1)
 
 

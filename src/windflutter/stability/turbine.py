@@ -44,6 +44,12 @@ class TurbineOptions:
     aero : ``"potential"`` or ``"viscous"``.
     method : ``"pk"`` (p-k + root-finding) or ``"thesis"`` (the seed's 8-k search).
     geometric_stiffness : with the centrifugal prestress Ksigma (True) or without (False, as the seed).
+    rigid_sections : the rotating-frame terms of beam sections and lumped masses as rigid bodies
+        (mass-centre offsets, rotary inertia) with the initial stress of every beam stress
+        resultant (True), or the seed's translational terms with the axial force's initial stress
+        (False, the default here; ``solver.rigid_sections`` of the analysis config is True).  Only
+        True gives results independent of where a beam's reference axis lies in its sections
+        (:func:`windflutter.rotor.rotating.rotor_terms`).
     air_density : kg/m^3.
     rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
     tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
@@ -86,6 +92,7 @@ class TurbineOptions:
     aero: str = "potential"
     method: str = "pk"
     geometric_stiffness: bool = True
+    rigid_sections: bool = False
     air_density: float = 1.225
     rpm_min: float = 2.0
     rpm_max: float = 40.0
@@ -218,7 +225,7 @@ class TurbineStability:
         fe, sections = build_model(self.turbine, settings)
         st = assemble(fe)
         geom = rotor_geometry(self.turbine)
-        terms = rotor_terms(fe, st, geom, prestress=bool(o.geometric_stiffness))
+        terms = rotor_terms(fe, st, geom, prestress=bool(o.geometric_stiffness), rigid_sections=bool(o.rigid_sections))
         sm = StructuralMatrices.from_structural(st)
         sm.D = self._damping(st)
         aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling, steady_loads=o.mean_loads)
@@ -386,7 +393,7 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
         mesh["n_span"] = max(2, int(config.model.n_aero_sections))
     s = config.solver
     return TurbineOptions(model=mtype, aero=aero, method=method,
-                          geometric_stiffness=s.geometric_stiffness,
+                          geometric_stiffness=s.geometric_stiffness, rigid_sections=s.rigid_sections,
                           air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
                           tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction,
                           basis_modes=s.basis_modes, correction_tol=s.correction_tol,
