@@ -174,7 +174,7 @@ def test_stability_options_are_the_run_options():
     same = config_from_dict({"wind_speeds": [10], "aero": "potential", "method": "pk",
                              "rotor_speed": {"min_rpm": 4, "max_rpm": 30, "n_points": 14},
                              "model": {"n_aero_sections": 12, "part": "rotor"},
-                             "solver": {"basis_modes": 24, "geometric_stiffness": False}})
+                             "solver": {"basis_modes": 24, "geometric_stiffness": False, "rigid_sections": False}})
     assert cfg == same and opts == turbine_options(same, "potential", "pk")
     assert (opts.basis_modes, opts.geometric_stiffness, opts.mesh["n_span"], opts.mesh["part"]) == (24, False, 12,
                                                                                                     "rotor")
