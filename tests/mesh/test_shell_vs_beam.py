@@ -125,20 +125,25 @@ def _onset(model, capsys):
 
 @pytest.mark.slow
 def test_seed5mw_rotor_onsets_shell_vs_beam(capsys):
-    """Overspeed onsets at 10 m/s, rotor (hub clamped), p-k, potential flow, 30 strips (~3 min).
-    Measured (Nov 2026): beam flutter 20.54 RPM at 3.94 Hz, divergence 26.01 RPM; shell 40x30
-    flutter 17.01 RPM at 5.11 Hz, divergence 25.91 RPM (shell 40x90 with 90 strips: 16.61 RPM at
-    4.84 Hz, divergence 25.50; beam with 90 strips 20.54 / 25.97).
+    """Overspeed onsets at 10 m/s, rotor (hub clamped), p-k, potential flow, 30 strips (~3 min),
+    with the default rigid-section rotating-frame terms (solver.rigid_sections).
+    Measured (2 Dec 2026): beam flutter 20.57 RPM at 3.93 Hz, divergence 23.97 RPM; shell 40x30
+    flutter 16.99 RPM at 5.11 Hz, divergence 25.90 RPM.  With the seed's translational terms the
+    beam gave 20.54 / 26.01 RPM (shell 40x90 with 90 strips: 16.61 RPM at 4.84 Hz, divergence
+    25.50; beam with 90 strips 20.54 / 25.97) -- the shell's rotating terms are the same in both
+    (translational terms are exact for shell nodes).
 
-    Verified: divergence within 3 %.  NOT verified: the flutter onsets differ by -17 % (-19 % at
-    40x90), beyond the 5 % target, and the difference is not the mesh (refining moves the shell
-    away), the strips, the torsion frequency (within 3 % at 40x90) or the mass axis (shell and
-    beam chordwise mass centres within 0.01 c over 0-90 % span).  The leading untested cause is
-    the thin-walled sections' shear centre, which model/section.py puts on the reference axis (no
-    shear-torsion coupling in its 6x6).  This test pins the disagreement (-10 ... -25 %) so that a
-    change to either model shows up here and in docs/verification.md section 11."""
+    NOT verified: the flutter onsets differ by -17 % (-19 % at 40x90), the divergence by +8 %
+    since the beam's terms stopped depending on its reference axis (tests/solver/
+    test_reference_axis.py; the former 0.4 % agreement was a cancellation), both beyond the 5 %
+    target.  Not the mesh (refining moves the shell away), the strips, the torsion frequency
+    (within 3 % at 40x90) or the mass axis (shell and beam chordwise mass centres within 0.01 c over
+    0-90 % span).  The leading untested cause is the thin-walled sections' shear centre, which
+    model/section.py puts on the reference axis (no shear-torsion coupling in its 6x6).  This test
+    pins the disagreement (flutter -10 ... -25 %, divergence +4 ... +12 %) so that a change to either
+    model shows up here and in docs/verification.md section 11."""
     beam, shell = _onset("beam", capsys), _onset("shell", capsys)
     print("beam", beam, "shell", shell)
-    assert shell["divergence_rpm"] == pytest.approx(beam["divergence_rpm"], rel=0.03)
+    assert 0.04 < shell["divergence_rpm"] / beam["divergence_rpm"] - 1 < 0.12
     assert -0.25 < shell["flutter_rpm"] / beam["flutter_rpm"] - 1 < -0.10
     assert "torsion" in shell["flutter_mode"] and "torsion" in beam["flutter_mode"]
