@@ -5,6 +5,8 @@ from __future__ import annotations
 
 import re
 
+import numpy as np
+
 import pytest
 from post_fixtures import RATED_RPM, synthetic_run
 
@@ -55,6 +57,14 @@ def test_verdict_levels_from_the_overspeed_search_alone():
     none = synthetic_run(flutter_rpm=(float("nan"), float("nan")))
     assert verdict(none).status == "no instability found"
     assert headline(none).splitlines()[1] == "first instability: none found up to 24.00 RPM"
+    # a sweep stopped early (no steady state, the structure alone unstable) limits the claim
+    r = none["rotor_speed"].values.copy()
+    r[1, r[1] > 16.0] = float("nan")
+    none["rotor_speed"] = none["rotor_speed"].copy(data=r)
+    top = float(np.nanmax(r[1]))
+    assert top < 16.0
+    assert headline(none).splitlines()[1] == (f"first instability: none found up to {top:.2f} RPM at every wind "
+                                              "speed (24.00 RPM at most; see the points' notes)")
 
 
 @pytest.mark.parametrize("label, words", [

@@ -16,7 +16,7 @@ import xarray as xr
 from windflutter.post import fmt
 from windflutter.post.campbell_data import least_damped_per_point
 from windflutter.post.plots import case_points, cases
-from windflutter.post.verdict import Verdict, instability_text, least_damped_text
+from windflutter.post.verdict import Verdict, instability_text, least_damped_text, searched_text
 
 e = html.escape
 
@@ -48,8 +48,7 @@ def verdict_box(v: Verdict, has_campbell: bool) -> str:
     if v.first is not None:
         parts.append(f"<li><b>First instability</b>: {e(instability_text(v.first, v))}.</li>")
     else:
-        upto = f" up to {fmt.qty(v.searched_rpm, 'RPM')}" if math.isfinite(v.searched_rpm) else ""
-        parts.append(f"<li><b>First instability</b>: none found{e(upto)}.</li>")
+        parts.append(f"<li><b>First instability</b>: none found{e(searched_text(v))}.</li>")
     if has_campbell:
         parts.append(f"<li><b>Least damped mode in operation</b>: {e(least_damped_text(v.least_damped))}.</li>")
     parts.append(f"<li>Rated rotor speed {e(fmt.qty(v.rated_rpm, 'RPM'))}, overspeed "

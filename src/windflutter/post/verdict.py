@@ -61,8 +61,9 @@ class Instability:
 class Verdict:
     """``status`` (one of the levels above), the first instability, the least damped mode in
     operation (a :func:`~windflutter.post.campbell_data.cell` dict), the reference rotor speeds
-    (RPM), the highest rotor speed searched (RPM) and the modelling assumptions by analysis
-    (:data:`SWEEP`, :data:`OPERATING`: name -> words)."""
+    (RPM), the rotor speed every point's sweep reached (``searched_rpm``, the lowest of their
+    ends: what "none found up to" may claim) and the highest end (``searched_max_rpm``), and the
+    modelling assumptions by analysis (:data:`SWEEP`, :data:`OPERATING`: name -> words)."""
 
     status: str
     first: Instability | None = None
@@ -70,6 +71,7 @@ class Verdict:
     rated_rpm: float = float("nan")
     overspeed_rpm: float = float("nan")
     searched_rpm: float = float("nan")
+    searched_max_rpm: float = float("nan")
     assumptions: dict = field(default_factory=dict)
 
     @property
@@ -131,15 +133,14 @@ def verdict(ds: xr.Dataset | None = None, campbell=None) -> Verdict:
     found = _sweep_onsets(ds) + (_operating(camp) if camp is not None else [])
     for x in found:
         x.margin_rated, x.margin_overspeed = _margin(x.rotor_speed_rpm, rated), _margin(x.rotor_speed_rpm, over)
-    searched = float(np.nanmax(ds["rotor_speed"].values)) if ds is not None and "rotor_speed" in ds and np.any(
-        np.isfinite(ds["rotor_speed"].values)) else math.nan
+    searched, searched_max = _sweep_ends(ds)
     ld = least_damped(camp) if camp is not None else None
     info = {}
     if ds is not None:
         info[SWEEP] = _run_assumptions(a)
     if camp is not None:
         info[OPERATING] = assumptions(camp)
-    v = Verdict(NO_RESULT, None, ld, rated, over, searched, info)
+    v = Verdict(NO_RESULT, None, ld, rated, over, searched, searched_max, info)
     has_result = (ds is not None and "point" in ds.dims and ds.sizes["point"] > 0
                   and any(str(s) == "ok" for s in ds["status"].values)) or (camp is not None and ld is not None)
     if found:
@@ -156,6 +157,28 @@ def verdict(ds: xr.Dataset | None = None, campbell=None) -> Verdict:
     elif has_result:
         v.status = NO_INSTABILITY
     return v
+
+
+def _sweep_ends(ds: xr.Dataset | None) -> tuple[float, float]:
+    """(lowest, highest) end (RPM) of the finished points' sweeps: a sweep stopped early (no steady
+    state, the structure alone unstable) ends below the grid's top."""
+    if ds is None or "rotor_speed" not in ds or "point" not in ds.dims:
+        return math.nan, math.nan
+    r = np.asarray(ds["rotor_speed"].values, float).reshape(ds.sizes["point"], -1)
+    ok = np.array([str(s) == "ok" for s in ds["status"].values]) if "status" in ds else np.ones(len(r), bool)
+    ends = np.array([np.nanmax(x) if np.any(np.isfinite(x)) else np.nan for x in r[ok]])
+    ends = ends[np.isfinite(ends)]
+    return (float(ends.min()), float(ends.max())) if ends.size else (math.nan, math.nan)
+
+
+def searched_text(v: Verdict) -> str:
+    """`` up to 14 RPM at every wind speed (22 RPM at most)`` (empty without sweeps)."""
+    if not math.isfinite(v.searched_rpm):
+        return ""
+    text = f" up to {fmt.qty(v.searched_rpm, 'RPM')}"
+    if math.isfinite(v.searched_max_rpm) and v.searched_max_rpm > v.searched_rpm + 1e-6:
+        text += f" at every wind speed ({fmt.qty(v.searched_max_rpm, 'RPM')} at most; see the points' notes)"
+    return text
 
 
 def _operating_rpm(ds: xr.Dataset | None, wind_speed: float) -> float:
@@ -217,8 +240,7 @@ def headline(ds: xr.Dataset | None = None, campbell=None) -> str:
     if v.first is not None:
         lines.append(f"first instability: {instability_text(v.first, v)}")
     elif v.status == NO_INSTABILITY:
-        upto = f" up to {fmt.qty(v.searched_rpm, 'RPM')}" if math.isfinite(v.searched_rpm) else ""
-        lines.append(f"first instability: none found{upto}")
+        lines.append(f"first instability: none found{searched_text(v)}")
     if campbell is not None:
         lines.append(f"least damped mode in operation: {least_damped_text(v.least_damped)}")
     return "\n".join(lines)
