@@ -39,8 +39,7 @@ def _onset(turbine):
 def test_flutter_onset_by_reader(turbine, monkeypatch):
     from reference_axis import moved_reference
 
-    import windflutter.model.hawc2 as hawc2
-    from windflutter.model import load_turbine
+    from windflutter.model import hawc2, load_turbine
 
     w = turbine("nrel5mw")
     deck = turbine("nrel5mw_openfast")

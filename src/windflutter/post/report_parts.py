@@ -16,7 +16,12 @@ import xarray as xr
 from windflutter.post import fmt
 from windflutter.post.campbell_data import least_damped_per_point
 from windflutter.post.plots import case_points, cases
-from windflutter.post.verdict import Verdict, instability_text, least_damped_text, searched_text
+from windflutter.post.verdict import (
+    Verdict,
+    instability_text,
+    least_damped_text,
+    searched_text,
+)
 
 e = html.escape
 
