@@ -72,7 +72,11 @@ def run(args: argparse.Namespace) -> int:
     if args.json:
         print(json.dumps({"points": [p.as_dict() for p in points]}))
         return 0
-    physics = "full" if config.solver.geometric_stiffness else "thesis"
+    s = config.solver
+    physics = {(True, True): "full", (False, False): "thesis"}.get(
+        (bool(s.geometric_stiffness), bool(s.rigid_sections)),
+        f"geometric stiffness {'on' if s.geometric_stiffness else 'off'}, rigid sections "
+        f"{'on' if s.rigid_sections else 'off'}")
     print(f"{turbine.name}: {config.model.type} model, {config.aero[0]} aero, {config.method[0]} search, "
           f"{physics} physics")
     print(f"{'V (m/s)':>8} {'pitch':>6} {'flutter RPM':>12} {'f (Hz)':>7} {'divergence RPM':>15}  mode")
