@@ -45,13 +45,17 @@ def _iea22_refs(source):
     return {float(r["wind_speed"]): {k: float(v) for k, v in r.items() if k != "source"} for r in rows}
 
 
-def _solve(turbine, V, rpm, pitch_deg, n_span=30, **opts):
-    ms = MeshSettings(model="beam", part="blade", n_span=n_span, pitch=math.radians(pitch_deg))
+def _model(turbine, pitch_deg, n_span=30, part="blade"):
+    """(fe, struct, strips, rotor geometry without tilt) of one beam blade at ``pitch_deg``."""
+    ms = MeshSettings(model="beam", part=part, n_span=n_span, pitch=math.radians(pitch_deg))
     fe, sec = build_model(turbine, ms)
     g = rotor_geometry(turbine)
-    g = dataclasses.replace(g, wind_direction=g.shaft_axis)  # no tilt
-    return steady_state(fe, assemble(fe), sec, g, V, rpm * RPM, n_blades=turbine.n_blades,
-                        options=SteadyOptions(**opts))
+    return fe, assemble(fe), sec, dataclasses.replace(g, wind_direction=g.shaft_axis)  # no tilt
+
+
+def _solve(turbine, V, rpm, pitch_deg, n_span=30, **opts):
+    fe, struct, sec, g = _model(turbine, pitch_deg, n_span)
+    return steady_state(fe, struct, sec, g, V, rpm * RPM, n_blades=turbine.n_blades, options=SteadyOptions(**opts))
 
 
 def _errors(s, ref):
@@ -228,11 +232,7 @@ def test_iea15mw_steady_twist_is_the_corotational_beams():
 
     t = load_turbine("iea15mw", validate=False)
     V, pitch, rpm = 13.0, 6.052129, 7.559987  # the HAWCStab2 operating point (bundled .opt)
-    ms = MeshSettings(model="beam", part="rotor_blade", n_span=30, pitch=math.radians(pitch))
-    fe, sec = build_model(t, ms)
-    g = rotor_geometry(t)
-    g = dataclasses.replace(g, wind_direction=g.shaft_axis)
-    struct = assemble(fe)
+    fe, struct, sec, g = _model(t, pitch, part="rotor_blade")
     s = steady_state(fe, struct, sec, g, V, rpm * RPM, n_blades=3)
     rb = RotorBlade(fe, struct, sec, np.asarray(g.hub_center, float), np.asarray(g.shaft_axis, float))
     d = deflected_blade(rb, s, rpm * RPM)
