@@ -114,7 +114,8 @@ def test_deflection_off_is_the_seeds_linearization(iea22):
 
 def test_three_blade_rotor_equals_one_blade(iea22):
     # part="rotor" (3 blades on the clamped hub) in the axisymmetric inflow: every blade deflects
-    # like the single clamped blade, and the totals are the same (round-off: 1e-9)
+    # like the single clamped blade, and the totals are the same (1e-6: each model's iteration
+    # stops at its own iterate within the steady tolerance 1e-6; measured 6e-8)
     out = {}
     for part in ("blade", "rotor"):
         fe, sec = build_model(iea22, MeshSettings(model="beam", part=part, n_span=10, pitch=math.radians(10.5)))
@@ -123,16 +124,37 @@ def test_three_blade_rotor_equals_one_blade(iea22):
     one, three = out["blade"], out["rotor"]
     assert three.tip_deflection.shape == (3, 3)
     for b in range(3):
-        np.testing.assert_allclose(three.tip_deflection[b], one.tip_deflection[0], rtol=1e-9, atol=1e-9)
-        np.testing.assert_allclose(three.tip_rotation[b], one.tip_rotation[0], rtol=1e-9, atol=1e-12)
-    assert three.power == pytest.approx(one.power, rel=1e-9)
-    assert three.thrust == pytest.approx(one.thrust, rel=1e-9)
+        np.testing.assert_allclose(three.tip_deflection[b], one.tip_deflection[0], rtol=1e-6, atol=1e-6)
+        np.testing.assert_allclose(three.tip_rotation[b], one.tip_rotation[0], rtol=1e-6, atol=1e-9)
+    assert three.power == pytest.approx(one.power, rel=1e-6)
+    assert three.thrust == pytest.approx(one.thrust, rel=1e-6)
 
 
 def _table(rows, head):
     print("\n" + head)
     for r in rows:
         print(" ".join(f"{v:8.3f}" if isinstance(v, float) else f"{v:>8}" for v in r))
+
+
+#: IEA 22 MW points outside the tolerance since the co-rotational steady state (2 Dec 2026), each
+#: with the bound it must stay within (and must exceed its tolerance: the list shrinks when a cause
+#: is found).  25 m/s, HAWC2: the tip flap deflection is 0.07 m against 0.58 m (the check value is
+#: the difference over 5 m: -10.3 %; the linear structure gave -8.8 %); at 21-25 m/s, where the
+#: blade is pitched 17-22 deg and its flapwise deflection is a small difference of the lift and the
+#: centrifugal and prebend terms, our flap is 0.2-0.5 m below HAWC2's.  Not traced.
+IEA22_KNOWN_MISSES = {("hawc2", 25.0, "tip flap"): 0.12}
+
+
+def _check_listed(s, ref, tol, source, V, label):
+    """_check with IEA22_KNOWN_MISSES allowed up to their bound (and required to miss)."""
+    e = _errors(s, ref)
+    for name, err, t in zip(("power", "thrust", "tip flap", "tip twist"), e, tol):
+        bound = IEA22_KNOWN_MISSES.get((source, V, name))
+        if bound is None:
+            assert abs(err) <= t, f"{label} {name}: {100 * err:+.1f} % (tolerance {100 * t:.0f} %)"
+        else:
+            assert t < abs(err) <= bound, f"{label} {name} (listed): {100 * err:+.1f} % (listed: {100 * t:.0f}..{100 * bound:.0f} %)"
+    return e
 
 
 @pytest.mark.slow
@@ -152,7 +174,7 @@ def test_iea22mw_vs_hawc2_and_openfast_4_to_25(iea22):
                 tol = (0.05, 0.05, 0.10, 0.10)
             else:
                 tol = (0.05 if V <= 11 else 0.07, 0.05, 0.10, 0.12)
-            e = _check(s, r, tol, f"{source} {V} m/s")
+            e = _check_listed(s, r, tol, source, V, f"{source} {V} m/s")
             rows.append((V, s.power / 1e6, 100 * e[0], s.thrust / 1e3, 100 * e[1], s.tip_flap, r["tip_deflection_x_m"],
                          math.degrees(s.tip_twist), r["tip_rotation_z_deg"], s.iterations))
         _table(rows, f"IEA 22 MW vs {source}: V  P(MW) dP%  T(kN) dT%  flap ref  twist ref  iterations")
@@ -170,42 +192,59 @@ def _iea15_wisdem():
     return np.array(out)
 
 
-#: IEA 15 MW steady points outside 5 % of HAWCStab2 since the rigid-section centrifugal terms
-#: (rotor/spin.py, 2 Dec 2026; thrust +5.5 ... +6.3 % at 10-13 m/s and -5.7 % at 25; power +5.8 % at 13
-#: and -5.2 % at 23 m/s).
-#: The structure is not their cause as far as it was checked: the blade's mass, mass centre,
-#: radii of gyration and stiffness are HAWC2's st file's (tests/model), and the steady state's
-#: twist is that of the exact co-rotational beam under the same loads (next test).  Listed, not
-#: widened: each must stay outside (the list shrinks when a cause is found) and within 7 %.
-IEA15_KNOWN_MISSES = {("thrust", 10.0), ("thrust", 10.5), ("thrust", 10.7), ("thrust", 11.0), ("thrust", 13.0),
-                      ("thrust", 25.0), ("power", 13.0), ("power", 23.0)}
+#: The HAWCStab2 operating points were computed on the IEA 15 MW *HAWC2* model, whose blade is the
+#: windIO blade described about its half-chord line (HAWC2's c2_def) with its sections normal to
+#: that line: the line sweeps in the chord plane as the chord tapers and the pitch axis moves
+#: (0.5 c at the root, 0.29 c outboard), and the turned section planes see a share of the flapwise
+#: bending moment as torsion (about 1.5 deg more tip twist towards feather at rated).  The windIO
+#: blade's sections are normal to its pitch axis.  The co-rotational steady state does not depend on
+#: the line's position for a given blade (test_steady_reference_axis.py), so the two descriptions
+#: are two blades.  Measured (2 Dec 2026, 30 elements): the half-chord description within 1.3 % of
+#: HAWCStab2 in power and thrust at 7-25 m/s; the windIO description up to +7.1 % in thrust (11 m/s)
+#: and -9.4 % in power (25 m/s).  The IEA 15 MW HAWC2 files themselves (IEAWindTask37 repository,
+#: not bundled: the pc file is 0.5 MB) read by windflutter's HAWC2 reader give -0.3 ... +0.1 % at
+#: 8-15 m/s.
+IEA15_WINDIO_BOUND = 0.10
 
 
 @pytest.mark.slow
 def test_iea15mw_vs_hawcstab2_and_wisdem():
-    # HAWCStab2 operating points of the onshore HAWC2 model (aero power, thrust): the deflected
-    # state, 5 % on power at 7-23 m/s and on thrust at 5-25 m/s, but for IEA15_KNOWN_MISSES.  Out
-    # of it (printed, documented in docs/steady_state.md): 3 m/s (95 kW) and 5 m/s (1.65 MW,
-    # tip-speed ratio 12.6), where the power is a small difference of driving and dragging strips
-    # (-25 %, -9 %), and 25 m/s (-6 %).
+    # HAWCStab2 operating points of the onshore HAWC2 model (aero power, thrust): the blade as the
+    # HAWC2 model describes it (moved_reference(.., 0.5), the comment above): 5 % on power at
+    # 7-25 m/s and on thrust at 3-25 m/s (issue 14).  Out of it (printed, documented in
+    # docs/steady_state.md): power at 3 m/s (95 kW) and 5 m/s (1.65 MW, tip-speed ratio 12.6), a
+    # small difference of driving and dragging strips (-24 %, -8 %).  The windIO description: within
+    # IEA15_WINDIO_BOUND, and more than 5 % off near rated (the description matters: the check can
+    # fail).
     # WISDEM: rigid CCBlade (no deflection) with its own pitch schedule, so our undeformed state
     # (deflection=False, coned BEM as CCBlade's): thrust 5 %; power 7 % (we are 2-6 % above it;
     # CCBlade in WISDEM runs with the 6 deg shaft tilt, not modelled here, and its own BEM details).
+    import sys
+    from pathlib import Path
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from reference_axis import moved_reference
+
     t = load_turbine("iea15mw", validate=False)
+    c2 = moved_reference(t, 0.5)
     h = np.loadtxt(DATA_DIR / "iea15mw" / "IEA_15MW_RWT_Onshore_hawc2.opt", skiprows=1)
-    rows, missed = [], set()
+    rows, worst_windio = [], 0.0
     for V, pitch, rpm, p_kw, t_kn in h[h[:, 0] >= 3]:
-        s = _solve(t, V, rpm, pitch)
+        s = _solve(c2, V, rpm, pitch)
         dp, dt = s.power / (1e3 * p_kw) - 1, s.thrust / (1e3 * t_kn) - 1
-        rows.append((V, s.power / 1e6, 100 * dp, s.thrust / 1e3, 100 * dt, s.tip_flap, math.degrees(s.tip_twist)))
-        for name, err, checked in (("power", dp, 7 <= V <= 23), ("thrust", dt, V >= 5)):
-            key = (name, round(float(V), 1))
-            if checked and abs(err) > 0.05:
-                missed.add(key)
-            if key in IEA15_KNOWN_MISSES:
-                assert abs(err) <= 0.07, (key, err)
-    assert missed == IEA15_KNOWN_MISSES, (sorted(missed - IEA15_KNOWN_MISSES), sorted(IEA15_KNOWN_MISSES - missed))
-    _table(rows, "IEA 15 MW vs HAWCStab2: V  P(MW) dP%  T(kN) dT%  flap twist")
+        if V >= 7:
+            assert abs(dp) <= 0.05, ("power", V, dp)
+        assert abs(dt) <= 0.05, ("thrust", V, dt)
+        w = _solve(t, V, rpm, pitch)
+        dpw, dtw = w.power / (1e3 * p_kw) - 1, w.thrust / (1e3 * t_kn) - 1
+        if V >= 7:
+            assert max(abs(dpw), abs(dtw)) <= IEA15_WINDIO_BOUND, ("windIO", V, dpw, dtw)
+        if 10 <= V <= 13:
+            worst_windio = max(worst_windio, abs(dtw))
+        rows.append((V, s.power / 1e6, 100 * dp, s.thrust / 1e3, 100 * dt, s.tip_flap, math.degrees(s.tip_twist),
+                     100 * dpw, 100 * dtw))
+    assert worst_windio > 0.05
+    _table(rows, "IEA 15 MW (half-chord description) vs HAWCStab2: V  P(MW) dP%  T(kN) dT%  flap twist | windIO dP% dT%")
     rows = []
     w = _iea15_wisdem()
     for V, pitch, _, _, _, rpm, _, T_MN, _, Q_MNm in w[::3, :10]:
@@ -219,14 +258,15 @@ def test_iea15mw_vs_hawcstab2_and_wisdem():
     _table(rows, "IEA 15 MW (undeformed) vs WISDEM: V  P(MW) dP%  T(MN) dT%")
 
 
-def test_iea15mw_steady_twist_is_the_corotational_beams():
-    """The steady state's structure (linear, axial initial stress, the rigid sections' offset load
-    stiffness; moderate-rotation strips) against the exact co-rotational beam under the same loads
-    (system/deflected.py: Newton, the centrifugal loads of the deformed rigid sections): the IEA
-    15 MW at 13 m/s, whose mass centres lie 0.1-0.2 chord aft of the pitch axis.  Measured: tip
-    flap 8.82 / 8.81 m, elastic twist -4.36 / -4.38 deg.  Tolerances 1 % and 0.1 deg (two
-    second-order theories of one beam; the offsets' terms alone move the twist by 0.2-0.4 deg)."""
-    from windflutter.steady.geometry import rotation_vectors
+def test_iea15mw_steady_state_is_the_corotational_beams_equilibrium():
+    """The steady state of a beam blade is an equilibrium of the co-rotational beam (the default,
+    steady/exact.py): a Newton iteration from it under its own loads (system/deflected.py, the
+    method-p linearization) stops after one step at the same configuration (1e-9 m).  The linear
+    structure with second-order corrections (``corotational=False``), the former default, lands
+    near it on this blade (IEA 15 MW, 13 m/s; its mass centres lie 0.1-0.2 chord aft of the pitch
+    axis): measured tip flap 8.82 against 8.98 m, twist -4.36 against -4.24 deg (last strip),
+    thrust -1.0 %; held to 3 %, 0.3 deg and 2 % (two theories of one beam; the linear one is
+    reference-line dependent, tests/steady/test_steady_reference_axis.py)."""
     from windflutter.system.blade import RotorBlade
     from windflutter.system.deflected import deflected_blade
 
@@ -234,11 +274,13 @@ def test_iea15mw_steady_twist_is_the_corotational_beams():
     V, pitch, rpm = 13.0, 6.052129, 7.559987  # the HAWCStab2 operating point (bundled .opt)
     fe, struct, sec, g = _model(t, pitch, part="rotor_blade")
     s = steady_state(fe, struct, sec, g, V, rpm * RPM, n_blades=3)
+    assert s.configuration is not None
     rb = RotorBlade(fe, struct, sec, np.asarray(g.hub_center, float), np.asarray(g.shaft_axis, float))
     d = deflected_blade(rb, s, rpm * RPM)
-    tip = int(np.asarray(fe.beam_conn)[-1, 1])
-    F = s.frames[0]
-    flap = (F.T @ d.displacement()[tip, :3])[0]
-    twist = (F.T @ rotation_vectors(d.equilibrium.config.R[tip])[0])[2]
-    assert flap == pytest.approx(s.tip_flap, rel=0.01)
-    assert math.degrees(twist) == pytest.approx(math.degrees(s.tip_twist), abs=0.1)
+    assert d.equilibrium.iterations == 1
+    assert np.abs(d.equilibrium.config.x - s.configuration.x).max() < 1e-9
+    lin = steady_state(fe, struct, sec, g, V, rpm * RPM, n_blades=3, options=SteadyOptions(corotational=False))
+    assert lin.configuration is None
+    assert lin.tip_flap == pytest.approx(s.tip_flap, rel=0.03)
+    assert math.degrees(lin.tip_twist) == pytest.approx(math.degrees(s.tip_twist), abs=0.3)
+    assert lin.thrust == pytest.approx(s.thrust, rel=0.02)

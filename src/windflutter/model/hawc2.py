@@ -32,7 +32,7 @@ from windflutter.model.beamprops import beamdyn_to_section
 from windflutter.model.hawc2_beam import hawc2_mass, hawc2_stiffness
 from windflutter.model.hawc2_bodies import H2_TO_WF, Body, place_bodies, read_bodies, to_wf
 from windflutter.model.hawc2_files import interpolate_profiles, read_ae, read_pc, read_st
-from windflutter.model.hawc2_htc import Block, parse_htc
+from windflutter.model.hawc2_htc import Block, model_folder, parse_htc
 from windflutter.model.tower_tube import equivalent_tube
 from windflutter.model.turbine import Airfoil, BeamProperties, Blade, Hub, Nacelle, Polar, Turbine
 
@@ -47,7 +47,7 @@ def load_hawc2(path: Path, validate: bool = True) -> Turbine:
     from windflutter.model.supplement import apply_supplement, find_supplement
 
     src = str(path)
-    base = path.parent.parent if path.parent.name.lower() == "htc" else path.parent
+    base = model_folder(path)
     root = parse_htc(path)
     notes = pl.Notes(src)
     struct = root.child("new_htc_structure", "htc", src)

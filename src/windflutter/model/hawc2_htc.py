@@ -61,13 +61,23 @@ class Block:
         return out
 
 
+def model_folder(path: str | Path) -> Path:
+    """The folder HAWC2 resolves relative file names against: the htc's folder, or its parent when
+    the htc lives in a folder named ``htc`` (HAWC2 runs from the model root: ``./data/...``)."""
+    p = Path(path)
+    return p.parent.parent if p.parent.name.lower() == "htc" else p.parent
+
+
 def parse_htc(path: str | Path) -> Block:
-    """The whole model (with its includes) as a root :class:`Block` named ``"htc"``."""
+    """The whole model (with its includes) as a root :class:`Block` named ``"htc"``.
+
+    ``continue_in_file`` names are relative to :func:`model_folder`, like every other file name.
+    """
     main = Path(path)
     root = Block("htc")
     stack = [root]
     state = {"includes": 0, "commands": 0}
-    _parse_file(main, main.parent, stack, state)
+    _parse_file(main, model_folder(main), stack, state)
     if len(stack) > 1:
         raise InputError(f"begin {stack[-1].name}", "<no end>", f"an 'end {stack[-1].name};'", str(main))
     return root

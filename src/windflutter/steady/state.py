@@ -51,6 +51,7 @@ from windflutter.aero.strip import OperatingPoint, SectionFlow
 from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import centrifugal_load, rotating_nodes
 from windflutter.rotor.spin import spin_terms
+from windflutter.steady import exact as ex
 from windflutter.steady.geometry import (Deflection, deflected_sections, deflection, pitching_frames, strip_motion,
                                          tip_motion)
 from windflutter.steady.loads import (StripLoads, nodal_loads, rotor_totals, second_order_moments,
@@ -79,6 +80,10 @@ class SteadyOptions:
     relaxation : initial relaxation factor of the displacement update (then Aitken's).
     max_deflection : a strip translation beyond this fraction of the rotor radius is taken as
         divergence (no steady state).
+    corotational : beam-only models: the equilibrium of the co-rotational beam
+        (:mod:`windflutter.steady.exact`, exact for any reference line of the sections), started
+        from the linear one; False: the linear structure with second-order load corrections
+        (always used for shells).
     rotating_group : node group of the rotating part (centrifugal load, spin softening).
     strict : raise :class:`~windflutter.errors.ModelError` when the iteration does not converge
         (default); False returns the last iterate with ``converged=False``.
@@ -94,12 +99,13 @@ class SteadyOptions:
     max_iterations: int = 60
     relaxation: float = 1.0
     max_deflection: float = 0.5
+    corotational: bool = True
     rotating_group: str = "rotor"
     strict: bool = True
     bem: dict | None = None
 
     def __post_init__(self):
-        for name in ("deflection", "cone", "second_order", "finite_rotations", "strict"):
+        for name in ("deflection", "cone", "second_order", "finite_rotations", "corotational", "strict"):
             if not isinstance(getattr(self, name), (bool, np.bool_)):
                 raise InputError(f"steady.{name}", getattr(self, name), "true or false")
         if not (np.isfinite(self.tol) and 0 < self.tol < 1):
@@ -135,6 +141,10 @@ class SteadyState:
         (negative towards feather).
     frames : (nb, 3, 3) the blade frames (columns x, y, z, global).
     wind_speed (m/s), omega (rad/s), air_density (kg/m^3), pitch (rad) : the operating point.
+    configuration : the co-rotational beam's equilibrium
+        (:class:`~windflutter.structure.corotational.BeamConfiguration`) when it gave the state,
+        else None; ``u`` is then its node translations and rotation vectors, ``load_aero`` the
+        nodal loads of that equilibrium (lever arms of the deformed blade).
     """
 
     u: np.ndarray
@@ -161,6 +171,7 @@ class SteadyState:
     omega: float
     air_density: float
     pitch: float
+    configuration: object = None
 
     @property
     def load(self) -> np.ndarray:
@@ -265,17 +276,21 @@ class _Aero:
 
 
 def _aero_at(u, sections, rotor, V, omega, n_blades, rho, pitch, options: SteadyOptions, deflected: bool,
-             xtol: float = 1e-12) -> _Aero:
+             xtol: float = 1e-12, defl: Deflection | None = None) -> _Aero:
     """Strip geometry, BEM and strip loads at the displacement ``u`` (undeformed strips unless
-    ``deflected``); ``xtol``: the BEM's bisection tolerance (rad) unless ``options.bem`` sets one."""
-    defl = deflection(sections, strip_motion(sections, u), options.finite_rotations and deflected)
+    ``deflected``); ``xtol``: the BEM's bisection tolerance (rad) unless ``options.bem`` sets one.
+    With ``defl`` (an exact deflection: :mod:`windflutter.steady.exact`) ``u`` is not used and no
+    second-order moments are added (the co-rotational beam holds them)."""
+    exact = defl is not None
+    if not exact:
+        defl = deflection(sections, strip_motion(sections, u), options.finite_rotations and deflected)
     sec = deflected_sections(sections, rotor, defl) if deflected else sections
     kw = {"xtol": xtol, **(options.bem or {})}
     bem = sections_induction(sec, rotor, V, omega, n_blades=n_blades, pitch=pitch, air_density=rho,
                              cone=options.cone, **kw)
     sl = strip_loads(sec, OperatingPoint(V, omega, rho, rotor, pitch, induction=(bem.a, bem.ap)))
     extra = np.zeros_like(sl.loads)
-    if deflected and options.second_order:
+    if deflected and options.second_order and not exact:
         extra = second_order_moments(sections, defl, sl.loads)
     return _Aero(defl=defl, sections=sec, bem=bem, loads=sl, extra=extra)
 
@@ -363,18 +378,51 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
     V, om, rho, pitch = float(wind_speed), float(omega), float(air_density), float(pitch)
     _check_inputs(fe, struct, sections, rotor_geometry, V, om, n_blades, rho, pitch)
     static = _Static(fe, struct, rotor_geometry, om, options.rotating_group, seed=not options.deflection)
+    config = None
     if options.deflection:
         u, aero, iterations, residual, converged = _iterate(static, sections, rotor_geometry, V, om, n_blades, rho,
                                                             pitch, options, u0=initial)
+        load_aero, f_cf = nodal_loads(sections, aero.loads.loads), static.f_cf
+        if converged and options.corotational and len(fe.shell_conn) == 0:
+            config, aero, load_aero, f_cf, it, residual, converged = _exact(
+                fe, struct, sections, rotor_geometry, u, (V, om, n_blades, rho, pitch), options)
+            iterations += it
+            u = ex.configuration_displacement(fe, config)
     else:
         u, iterations, residual, converged = static.u_cf, 0, 0.0, True
         aero = _aero_at(u, sections, rotor_geometry, V, om, n_blades, rho, pitch, options, False)
+        load_aero, f_cf = nodal_loads(sections, aero.loads.loads), static.f_cf
     frames = pitching_frames(sections, rotor_geometry)
     tip_d, tip_r = tip_motion(sections, aero.defl, frames)
     thrust, torque, power = rotor_totals(aero.sections, rotor_geometry, aero.loads.loads, om, n_blades)
     return SteadyState(
         u=u, sections=aero.sections, bem=aero.bem, flow=aero.loads.flow, cl=aero.loads.cl, cd=aero.loads.cd,
-        cm=aero.loads.cm, strip_loads=aero.loads.loads, load_aero=nodal_loads(sections, aero.loads.loads),
-        load_centrifugal=static.f_cf, Ksigma=geometric_stiffness(fe, u), thrust=thrust, torque=torque,
+        cm=aero.loads.cm, strip_loads=aero.loads.loads, load_aero=load_aero,
+        load_centrifugal=f_cf, Ksigma=geometric_stiffness(fe, u), thrust=thrust, torque=torque,
         power=power, iterations=iterations, converged=converged, residual=residual, tip_deflection=tip_d,
-        tip_rotation=tip_r, frames=frames, wind_speed=V, omega=om, air_density=rho, pitch=pitch)
+        tip_rotation=tip_r, frames=frames, wind_speed=V, omega=om, air_density=rho, pitch=pitch,
+        configuration=config)
+
+
+def _exact(fe, struct, sections, rotor, u, point, options: SteadyOptions):
+    """The co-rotational steady state from the linear one ``u`` (:mod:`windflutter.steady.exact`):
+    (config, aero, nodal aero loads, nodal centrifugal loads, iterations, residual, converged)."""
+    from windflutter.structure.corotational import chained_configuration
+
+    V, om, n_blades, rho, pitch = point
+    cf = ex.centrifugal_loads(fe, om, np.asarray(rotor.hub_center, float), np.asarray(rotor.shaft_axis, float),
+                              options.rotating_group)
+
+    def aero_at(defl, xtol):
+        return _aero_at(None, sections, rotor, V, om, n_blades, rho, pitch, options, True, xtol=xtol, defl=defl)
+
+    try:
+        config, aero, f_aero, it, res, ok = ex.iterate_corotational(
+            fe, struct, sections, chained_configuration(fe, u), aero_at, cf, options.tol, options.max_iterations)
+    except ModelError as err:
+        raise ModelError(f"no co-rotational steady state at V = {V:.4g} m/s, Omega = {om:.4g} rad/s: {err}") from None
+    if not ok and options.strict:
+        raise ModelError(f"the co-rotational steady state at V = {V:.4g} m/s, Omega = {om:.4g} rad/s did not converge "
+                         f"in {options.max_iterations} iterations (last relative change {res:.3g} > tol {options.tol:g}); "
+                         "raise steady.max_iterations, or set steady corotational false")
+    return config, aero, f_aero, cf(config)[0], it, res, ok

@@ -7,13 +7,13 @@ flapwise-deflected blade has (Kallesoe 2011, *Wind Energy* 14:209; docs/edgewise
 missing.  HAWCStab2 linearizes its co-rotational beam about the deflected state; so does this
 module:
 
-1. **Equilibrium.**  The steady state's displacement (:func:`windflutter.steady.steady_state`,
-   a linear structure with second-order load corrections) starts a Newton iteration of the
-   co-rotational beam (:mod:`windflutter.structure.corotational`) under the steady state's
-   aerodynamic nodal loads (held fixed) and the centrifugal loads of the deformed blade
-   (:func:`windflutter.rotor.spin.spin_terms` on its deformed geometry and mass, the sections'
-   offsets and rotary inertia included; their derivative the spin softening ``Omega^2 K_r``).  The result is an exact equilibrium of the
-   nonlinear beam under those loads.
+1. **Equilibrium.**  The steady state (:func:`windflutter.steady.steady_state`) is, for beam
+   blades, already an equilibrium of the co-rotational beam (:mod:`windflutter.steady.exact`); a
+   Newton iteration (:mod:`windflutter.structure.corotational`) from it under its aerodynamic
+   nodal loads (held fixed) and the centrifugal loads of the deformed blade
+   (:func:`windflutter.steady.exact.centrifugal_loads`: the sections' offsets and rotary inertia
+   included; their derivative the spin softening ``Omega^2 K_r``) confirms it in one step; from a
+   linear steady state (``SteadyOptions(corotational=False)``) it finds that equilibrium.
 2. **The deformed structure.**  The FE model rebuilt on it (:func:`~windflutter.structure.
    corotational.deformed_model`: nodes moved, section axes turned by the nodal rotations -- the
    bending slopes and the elastic twist); its mass matrix, Coriolis and spin softening, structural
@@ -41,8 +41,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError
-from windflutter.rotor.rotating import rotating_nodes
-from windflutter.rotor.spin import spin_terms
+from windflutter.steady.exact import centrifugal_loads, deformed_motion_map
 from windflutter.structure.assembly import Structural, assemble_matrices
 from windflutter.structure.constraints import constraint_map
 from windflutter.structure.corotational import (Equilibrium, chained_configuration, deformed_model,
@@ -50,6 +49,9 @@ from windflutter.structure.corotational import (Equilibrium, chained_configurati
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 
 __all__ = ["DeflectedBlade", "deflected_blade", "deflected_motion_map"]
+
+#: the deformed blade's strip motion map (:func:`windflutter.steady.exact.deformed_motion_map`)
+deflected_motion_map = deformed_motion_map
 
 #: Newton tolerance of the equilibrium (largest increment: m over the blade size, rad)
 EQUILIBRIUM_TOL = 1e-10
@@ -87,45 +89,6 @@ class DeflectedBlade:
         return np.hstack([c.x - self.reference, rotation_vectors(c.R)])
 
 
-def _centrifugal(fe, omega: float, apex: np.ndarray, axis: np.ndarray, group: str = "rotor"):
-    """``loads(config) -> (F (n_dof,), dF/dq)``: centrifugal loads of the blade in a configuration
-    (its deformed geometry and mass) and their stiffness ``Omega^2 K_r`` (rigid sections:
-    :func:`windflutter.rotor.spin.spin_terms`)."""
-    nodes = rotating_nodes(fe, group)
-
-    def loads(config):
-        if omega == 0.0:
-            return np.zeros(fe.n_dof), None
-        fe_c = deformed_model(fe, config)
-        M = assemble_matrices(fe_c)[0] if len(fe.shell_conn) else None  # beams: the sections alone
-        _, Kr1, f1 = spin_terms(fe_c, M, nodes, axis, apex)
-        return omega**2 * f1, omega**2 * Kr1
-
-    return loads
-
-
-def deflected_motion_map(motion_map: sp.spmatrix, R: np.ndarray) -> sp.csr_matrix:
-    """The strip motion map of the deformed blade: every (strip, node) block ``W`` of a rigid
-    transfer ``u_p = u_n + theta_n x (p - x_n)`` turned with the node's rotation ``R[n]``,
-    ``blockdiag(R, R) W blockdiag(R, R)^T`` (the lever arm ``p - x_n`` turned by ``R[n]``)."""
-    mm = sp.coo_matrix(motion_map)
-    node = mm.col // 6
-    blocks, inv = np.unique(np.stack([mm.row // 6, node], axis=1), axis=0, return_inverse=True)
-    W = np.zeros((len(blocks), 6, 6))
-    np.add.at(W, (inv.ravel(), mm.row % 6, mm.col % 6), mm.data)
-    T6 = np.zeros((len(blocks), 6, 6))
-    Rn = R[blocks[:, 1]]
-    T6[:, :3, :3] = T6[:, 3:, 3:] = Rn
-    Wd = T6 @ W @ np.transpose(T6, (0, 2, 1))
-    k = np.arange(6)
-    rows = (6 * blocks[:, 0])[:, None, None] + k[None, :, None]
-    cols = (6 * blocks[:, 1])[:, None, None] + k[None, None, :]
-    out = sp.coo_matrix((Wd.ravel(), (np.broadcast_to(rows, Wd.shape).ravel(), np.broadcast_to(cols, Wd.shape).ravel())),
-                        shape=motion_map.shape).tocsr()
-    out.eliminate_zeros()
-    return out
-
-
 def deflected_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None,
                     tol: float = EQUILIBRIUM_TOL) -> DeflectedBlade:
     """The blade ``rb`` linearized about its deflected equilibrium at rotor speed ``omega`` (rad/s).
@@ -148,13 +111,16 @@ def deflected_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None 
     else:
         f_aero = np.zeros(fe.n_dof)
         u0 = rb.unit_prestress()[2] * omega**2 if omega != 0.0 else np.zeros(fe.n_dof)
-    centrifugal = _centrifugal(fe, omega, rb.apex, rb.axis)
+    centrifugal = centrifugal_loads(fe, omega, rb.apex, rb.axis)
 
     def external(config, factor):
         f, K = centrifugal(config)
         return factor * (f + f_aero), (None if K is None else factor * K)
 
-    start = chained_configuration(fe, u0) if np.any(u0) else reference_configuration(fe)
+    if steady is not None and getattr(steady, "configuration", None) is not None:
+        start = steady.configuration  # the co-rotational steady state: already this equilibrium
+    else:
+        start = chained_configuration(fe, u0) if np.any(u0) else reference_configuration(fe)
     eq = solve_equilibrium(fe, struct.T, external, start=start, tol=tol)
     return _linearized(rb, steady, eq, mu)
 
@@ -168,7 +134,7 @@ def _linearized(rb: RotorBlade, steady, eq: Equilibrium, mu) -> DeflectedBlade:
     M_d, _ = assemble_matrices(fe_d)
     T_d, free = constraint_map(fe_d, extra_fixed=struct.auto_spc) if struct.auto_spc.size else constraint_map(fe_d)
     st_d = Structural(fe=fe_d, M=M_d, K=eq.tangent.K_mat, T=T_d, free_dofs=free, auto_spc=struct.auto_spc)
-    mm = deflected_motion_map(rb.sections.motion_map, eq.config.R)
+    mm = deformed_motion_map(rb.sections.motion_map, eq.config.R)
     if steady is not None:
         sections = dataclasses.replace(steady.sections, motion_map=mm)
     else:
