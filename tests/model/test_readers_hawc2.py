@@ -128,3 +128,27 @@ def test_blade_frequencies_with_the_data_differences_traced(turbine):
     matched = _blade_modes(dataclasses.replace(h, blade=dataclasses.replace(h.blade, beam=bp)))
     np.testing.assert_allclose(matched, w, rtol=0.02)
     assert np.max(np.abs(matched / w - 1)) < 0.01
+
+
+def test_continue_in_file_is_relative_to_the_model_folder(tmp_path):
+    """HAWC2 runs from the model folder (the parent of ``htc/``): a ``continue_in_file
+    ./data/x.htc`` in ``htc/model.htc`` names ``model/data/x.htc``, as every other file name does
+    (the IEA 15 MW model's layout).  The aero block moved into such an include reads the same
+    turbine as the single file."""
+    import shutil
+
+    from windflutter.model import load_turbine
+
+    d = tmp_path / "model"
+    shutil.copytree(H2, d)
+    for f in H2.parent.glob("NREL5MW_hawc2*"):  # the operational data file the htc names
+        shutil.copy(f, tmp_path)
+    htc = d / "htc" / "NREL_5MW.htc"
+    text = htc.read_text()
+    i, j = text.index("begin aero"), text.index("end aero")
+    j = text.index(";", j) + 1
+    (d / "data" / "aero_block.htc").write_text(text[i:j] + "\nexit;\n")
+    htc.write_text(text[:i] + "continue_in_file ./data/aero_block.htc ;\n" + text[j:])
+    a, b = load_turbine(H2 / "htc" / "NREL_5MW.htc", validate=False), load_turbine(htc, validate=False)
+    np.testing.assert_array_equal(a.blade.chord, b.blade.chord)
+    assert a.n_blades == b.n_blades and sorted(a.airfoils) == sorted(b.airfoils)

@@ -42,7 +42,7 @@ def test_uniform_load_cantilever():
     cl, cd, cm = 1.0, 0.1, -0.08
     bl = straight_blade(n=40, a=a, theta=theta, chord=c, polar=constant_polar(cl, cd, cm),
                         EI_flap=5e10, EI_edge=2e11, GJ=2e8)
-    s, _ = _run(bl, V, 0.0, rho)
+    s, _ = _run(bl, V, 0.0, rho, corotational=True)
     q = 0.5 * rho * V**2
     b = 0.5 * c
     flap = q * c * cd * bl.L**4 / (8 * bl.EI_flap)
@@ -69,7 +69,7 @@ def test_small_loads_on_a_rotating_blade_equal_the_linear_solution():
     # m Omega^2 r), the spin softening of prestress.spin_softening, a dense solve.
     om, V, rho = 1.0, 8.0, 1e-3
     bl = straight_blade(n=30, a=-0.3, theta=math.radians(6.0), polar=linear_polar(cd=0.012, cm=-0.06))
-    s, st = _run(bl, V, om, rho)
+    s, st = _run(bl, V, om, rho, corotational=True)
     sec = bl.sections
     flow = section_flow(sec, OperatingPoint(V, om, rho, ROTOR, induction=(s.bem.a, s.bem.ap)))
     p = sec.polars[0]
@@ -127,7 +127,7 @@ def test_second_order_torsion_and_shortening():
     bl = straight_blade(n=40, a=-0.5, theta=math.radians(80.0), polar=constant_polar(1.6, 0.5, 0.0),
                         EI_flap=EIf, EI_edge=EIe, GJ=GJ, L=L)
     V, rho, c = 30.0, 1.225, 2.0
-    s, _ = _run(bl, V, 0.0, rho)
+    s, _ = _run(bl, V, 0.0, rho, corotational=True)
     q = 0.5 * rho * V**2
     fx, fy = q * c * 0.5, -q * c * 1.6
     dx = lambda x: fx / EIf * _shape(x, L)[0]  # noqa: E731

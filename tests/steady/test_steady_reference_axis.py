@@ -5,7 +5,7 @@ Independent check (tests/reference_axis.py, written here): the same straight bla
 and parallel and the model is the same blade -- described about 0.375, 0.5 and 0.25 of its chord
 by rigid transfers of its 6x6.  10 m/s, 7.1 RPM, pitch 0 (about the IEA 15 MW's 10 m/s point).
 
-Measured (2 Dec 2026): the co-rotational steady state (the default for beams) gives a thrust of
+Measured (2 Dec 2026): the co-rotational steady state (``corotational=True``) gives a thrust of
 2105 / 2116 / 2095 kN (spread 1.0 %) and a tip twist of -5.93 / -5.83 / -6.02 deg; the linear structure with
 second-order load corrections (``corotational=False``) 2114 / 2154 / 2079 kN and -5.79 / -5.21 /
 -6.27 deg.  What is left (1 % in thrust) is the aerodynamics, not the structure: the inflow is
@@ -61,7 +61,7 @@ def test_corotational_steady_state_is_independent_of_the_reference_line(blades):
     # tolerances: thrust spread 1.25 % (1.0 % measured, the inflow point of the module docstring:
     # the undeformed strips alone spread by 0.5 %); twist spread 0.3 deg (0.19 deg measured).
     # The linear structure's spreads are 3.6 % and 1.06 deg.
-    exact = _states(blades)
+    exact = _states(blades, corotational=True)
     T = np.array([e[0] for e in exact])
     tw = np.array([e[1] for e in exact])
     assert all(e[2].configuration is not None and e[2].converged for e in exact)

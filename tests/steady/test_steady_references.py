@@ -169,7 +169,7 @@ def test_iea22mw_vs_hawc2_and_openfast_4_to_25(iea22):
         for V, r in sorted(_iea22_refs(source).items()):
             if not 4.0 <= V <= 25.0:
                 continue
-            s = _solve(iea22, V, r["rotor_speed_rpm"], r["pitch_deg"])
+            s = _solve(iea22, V, r["rotor_speed_rpm"], r["pitch_deg"], corotational=True)
             if source == "hawc2":
                 tol = (0.05, 0.05, 0.10, 0.10)
             else:
@@ -230,12 +230,12 @@ def test_iea15mw_vs_hawcstab2_and_wisdem():
     h = np.loadtxt(DATA_DIR / "iea15mw" / "IEA_15MW_RWT_Onshore_hawc2.opt", skiprows=1)
     rows, worst_windio = [], 0.0
     for V, pitch, rpm, p_kw, t_kn in h[h[:, 0] >= 3]:
-        s = _solve(c2, V, rpm, pitch)
+        s = _solve(c2, V, rpm, pitch, corotational=True)
         dp, dt = s.power / (1e3 * p_kw) - 1, s.thrust / (1e3 * t_kn) - 1
         if V >= 7:
             assert abs(dp) <= 0.05, ("power", V, dp)
         assert abs(dt) <= 0.05, ("thrust", V, dt)
-        w = _solve(t, V, rpm, pitch)
+        w = _solve(t, V, rpm, pitch, corotational=True)
         dpw, dtw = w.power / (1e3 * p_kw) - 1, w.thrust / (1e3 * t_kn) - 1
         if V >= 7:
             assert max(abs(dpw), abs(dtw)) <= IEA15_WINDIO_BOUND, ("windIO", V, dpw, dtw)
@@ -262,7 +262,7 @@ def test_iea15mw_steady_state_is_the_corotational_beams_equilibrium():
     """The steady state of a beam blade is an equilibrium of the co-rotational beam (the default,
     steady/exact.py): a Newton iteration from it under its own loads (system/deflected.py, the
     method-p linearization) stops after one step at the same configuration (1e-9 m).  The linear
-    structure with second-order corrections (``corotational=False``), the former default, lands
+    structure with second-order corrections (``corotational=False``), the default, lands
     near it on this blade (IEA 15 MW, 13 m/s; its mass centres lie 0.1-0.2 chord aft of the pitch
     axis): measured tip flap 8.82 against 8.98 m, twist -4.36 against -4.24 deg (last strip),
     thrust -1.0 %; held to 3 %, 0.3 deg and 2 % (two theories of one beam; the linear one is
@@ -273,7 +273,7 @@ def test_iea15mw_steady_state_is_the_corotational_beams_equilibrium():
     t = load_turbine("iea15mw", validate=False)
     V, pitch, rpm = 13.0, 6.052129, 7.559987  # the HAWCStab2 operating point (bundled .opt)
     fe, struct, sec, g = _model(t, pitch, part="rotor_blade")
-    s = steady_state(fe, struct, sec, g, V, rpm * RPM, n_blades=3)
+    s = steady_state(fe, struct, sec, g, V, rpm * RPM, n_blades=3, options=SteadyOptions(corotational=True))
     assert s.configuration is not None
     rb = RotorBlade(fe, struct, sec, np.asarray(g.hub_center, float), np.asarray(g.shaft_axis, float))
     d = deflected_blade(rb, s, rpm * RPM)
