@@ -125,6 +125,16 @@ def configuration_displacement(fe, config: BeamConfiguration) -> np.ndarray:
     return u
 
 
+def aitken(w: float, r: np.ndarray, r_prev: np.ndarray | None) -> float:
+    """Aitken's update of the relaxation factor ``w`` of a fixed point from its last two residuals
+    (clipped to [0.05, 1.5]; unchanged on the first step or when they are equal)."""
+    if r_prev is None:
+        return w
+    dr = r - r_prev
+    den = float(dr @ dr)
+    return float(np.clip(-w * float(r_prev @ dr) / den, 0.05, 1.5)) if den > 0 else w
+
+
 def _change(new: np.ndarray, old: np.ndarray, floor) -> float:
     """Largest change of (ns, 6) arrays relative to their largest translation / rotation (force / moment)."""
     d = np.abs(new - old)
@@ -180,10 +190,6 @@ def iterate_corotational(fe, struct, sections, config: BeamConfiguration, aero_a
         if res <= tol:
             return config, aero, f, it, res, True
         r = nodal(new, config) - f  # Aitken-relaxed fixed point on the nodal aerodynamic loads
-        if r_prev is not None:
-            dr = r - r_prev
-            den = float(dr @ dr)
-            if den > 0:
-                w = float(np.clip(-w * float(r_prev @ dr) / den, 0.05, 1.5))
+        w = aitken(w, r, r_prev)
         f, r_prev = f + w * r, r
     return config, aero, f, max_iterations, res, False

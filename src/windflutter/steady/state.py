@@ -320,11 +320,7 @@ def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, o
     for it in range(1, options.max_iterations + 1):
         u_new = static.solve(static.f_cf + nodal_loads(sections, aero.loads.loads + aero.extra))
         r = u_new - u
-        if r_prev is not None:
-            dr = r - r_prev
-            den = float(dr @ dr)
-            if den > 0:
-                w = float(np.clip(-w * float(r_prev @ dr) / den, 0.05, 1.5))
+        w = ex.aitken(w, r, r_prev)
         u, r_prev = u + w * r, r
         # the inflow angles need not be exact while the geometry still moves: BEM bisection to a
         # thousandth of the last relative change (1e-5 .. 1e-12 rad; about 1e-9 rad at the end)
