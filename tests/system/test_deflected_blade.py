@@ -12,7 +12,8 @@ import scipy.linalg as sla
 
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew
-from windflutter.system.deflected import deflected_blade, deflected_motion_map
+from windflutter.steady.exact import deformed_motion_map
+from windflutter.system.deflected import deflected_blade
 from windflutter.system.operational import OperationalModel, OperationalOptions
 
 RATED = 12.1 * np.pi / 30
@@ -62,7 +63,7 @@ def test_motion_map_lever_arms_turn_with_the_nodes(nrel_rotor_blade):
     rb = nrel_rotor_blade
     rng = np.random.default_rng(3)
     R = np.array([sla.expm(skew(v)) for v in 0.3 * rng.normal(size=(rb.fe.n_nodes, 3))])
-    mm = deflected_motion_map(rb.sections.motion_map, R)
+    mm = deformed_motion_map(rb.sections.motion_map, R)
     X = np.asarray(rb.fe.nodes)
     conn = np.asarray(rb.fe.beam_conn)
     p = np.asarray(rb.sections.origin)

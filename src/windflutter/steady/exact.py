@@ -10,8 +10,9 @@ co-rotational beam under the same loads gives -6.37 deg for all three (0.01 deg)
 is described about its pitch axis, a HAWC2 blade about its half chord; for the IEA 15 MW the two
 steady states differed by 6 % in thrust.
 
-So for beam-only models the steady state is the equilibrium of the co-rotational beam
-(:mod:`windflutter.structure.corotational`, geometrically exact rigid sections):
+With ``SteadyOptions(corotational=True)`` (beam-only models; not yet the default, see
+:class:`~windflutter.steady.SteadyOptions`) the steady state is the equilibrium of the co-rotational
+beam (:mod:`windflutter.structure.corotational`, geometrically exact rigid sections):
 
 1. start from the linear steady state (:func:`windflutter.steady.state.steady_state`'s iteration);
 2. the strips of the current configuration (:func:`configuration_deflection`: each strip carried
@@ -34,6 +35,7 @@ import scipy.sparse as sp
 
 from windflutter.rotor.rotating import rotating_nodes
 from windflutter.rotor.spin import spin_terms
+from windflutter.steady.fixedpoint import aitken, strip_change
 from windflutter.steady.geometry import Deflection, _inner_edges, blade_strips, rotation_matrices, rotation_vectors
 from windflutter.structure.assembly import assemble_matrices
 from windflutter.structure.corotational import BeamConfiguration, deformed_model, reference_configuration
@@ -125,24 +127,6 @@ def configuration_displacement(fe, config: BeamConfiguration) -> np.ndarray:
     return u
 
 
-def aitken(w: float, r: np.ndarray, r_prev: np.ndarray | None) -> float:
-    """Aitken's update of the relaxation factor ``w`` of a fixed point from its last two residuals
-    (clipped to [0.05, 1.5]; unchanged on the first step or when they are equal)."""
-    if r_prev is None:
-        return w
-    dr = r - r_prev
-    den = float(dr @ dr)
-    return float(np.clip(-w * float(r_prev @ dr) / den, 0.05, 1.5)) if den > 0 else w
-
-
-def _change(new: np.ndarray, old: np.ndarray, floor) -> float:
-    """Largest change of (ns, 6) arrays relative to their largest translation / rotation (force / moment)."""
-    d = np.abs(new - old)
-    ref = np.maximum(np.abs(new), np.abs(old))
-    return max(float(d[:, c].max(initial=0.0)) / max(float(ref[:, c].max(initial=0.0)), fl)
-               for c, fl in zip((slice(0, 3), slice(3, 6)), floor))
-
-
 def iterate_corotational(fe, struct, sections, config: BeamConfiguration, aero_at: Callable, centrifugal: Callable,
                          tol: float, max_iterations: int, relaxation: float = 1.0):
     """Fixed point of the co-rotational equilibrium and the strip loads (module docstring).
@@ -164,9 +148,6 @@ def iterate_corotational(fe, struct, sections, config: BeamConfiguration, aero_a
     """
     from windflutter.structure.corotational import solve_equilibrium
 
-    radius = float(np.max(sections.radius)) + float(np.max(sections.width))
-    floor_u = (1e-9 * radius, 1e-9)
-
     def nodal(a, c):
         return deformed_motion_map(sections.motion_map, c.R).T @ a.loads.loads.reshape(-1)
 
@@ -183,9 +164,7 @@ def iterate_corotational(fe, struct, sections, config: BeamConfiguration, aero_a
         eq_tol = float(np.clip(1e-3 * res, EQUILIBRIUM_TOL, 1e-5))
         config = solve_equilibrium(fe, struct.T, external, start=config, tol=eq_tol).config
         new = aero_at(configuration_deflection(sections, fe, config), float(np.clip(1e-3 * res, 1e-12, 1e-5)))
-        floor_f = 1e-9 * max(float(np.abs(aero.loads.loads).max(initial=0.0)), 1e-6)
-        res = max(_change(new.defl.motion, aero.defl.motion, floor_u),
-                  _change(new.loads.loads, aero.loads.loads, (floor_f,) * 2))
+        res = strip_change(new, aero, sections)
         aero = new
         if res <= tol:
             return config, aero, f, it, res, True

@@ -52,6 +52,7 @@ from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import centrifugal_load, rotating_nodes
 from windflutter.rotor.spin import spin_terms
 from windflutter.steady import exact as ex
+from windflutter.steady.fixedpoint import aitken, strip_change
 from windflutter.steady.geometry import (Deflection, deflected_sections, deflection, pitching_frames, strip_motion,
                                          tip_motion)
 from windflutter.steady.loads import (StripLoads, nodal_loads, rotor_totals, second_order_moments,
@@ -298,29 +299,17 @@ def _aero_at(u, sections, rotor, V, omega, n_blades, rho, pitch, options: Steady
     return _Aero(defl=defl, sections=sec, bem=bem, loads=sl, extra=extra)
 
 
-def _change(new: np.ndarray, old: np.ndarray, floor: np.ndarray) -> float:
-    """Largest change of (ns, 6) arrays relative to their largest translation / rotation (force / moment)."""
-    d = np.abs(new - old)
-    ref = np.maximum(np.abs(new), np.abs(old))
-    out = 0.0
-    for c, fl in zip((slice(0, 3), slice(3, 6)), floor):
-        scale = max(float(ref[:, c].max(initial=0.0)), fl)
-        out = max(out, float(d[:, c].max(initial=0.0)) / scale)
-    return out
-
-
 def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, options: SteadyOptions, u0=None):
     """Aitken-relaxed fixed point ``u = S^-1 (F_cf + F_aero(u))`` from ``u0`` (default: the centrifugal
     displacement); (u, aero, iterations, residual, converged)."""
     radius = float(np.max(sections.radius)) + float(np.max(sections.width))
-    floor_u = (1e-9 * radius, 1e-9)
     u = static.u_cf if u0 is None else np.asarray(u0, float)
     aero = _aero_at(u, sections, rotor, V, omega, n_blades, rho, pitch, options, True)
     r_prev, w, res = None, options.relaxation, 1.0
     for it in range(1, options.max_iterations + 1):
         u_new = static.solve(static.f_cf + nodal_loads(sections, aero.loads.loads + aero.extra))
         r = u_new - u
-        w = ex.aitken(w, r, r_prev)
+        w = aitken(w, r, r_prev)
         u, r_prev = u + w * r, r
         # the inflow angles need not be exact while the geometry still moves: BEM bisection to a
         # thousandth of the last relative change (1e-5 .. 1e-12 rad; about 1e-9 rad at the end)
@@ -330,9 +319,7 @@ def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, o
             raise ModelError(f"no steady state at V = {V:.4g} m/s, Omega = {omega:.4g} rad/s: the blade deflection "
                              f"grows beyond {options.max_deflection:g} x the rotor radius after {it} iterations "
                              "(static aeroelastic divergence or an unstable rotating structure)")
-        floor_f = 1e-9 * max(float(np.abs(aero.loads.loads).max(initial=0.0)), 1e-6)
-        res = max(_change(new.defl.motion, aero.defl.motion, floor_u),
-                  _change(new.loads.loads, aero.loads.loads, (floor_f,) * 2))
+        res = strip_change(new, aero, sections)
         aero = new
         if res <= options.tol:
             return u, aero, it, res, True
@@ -381,16 +368,15 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
     if options.deflection:
         u, aero, iterations, residual, converged = _iterate(static, sections, rotor_geometry, V, om, n_blades, rho,
                                                             pitch, options, u0=initial)
-        load_aero, f_cf = nodal_loads(sections, aero.loads.loads), static.f_cf
-        if converged and options.corotational and len(fe.shell_conn) == 0:
-            config, aero, load_aero, f_cf, it, residual, converged = _exact(
-                fe, struct, sections, rotor_geometry, u, (V, om, n_blades, rho, pitch), options)
-            iterations += it
-            u = ex.configuration_displacement(fe, config)
     else:
         u, iterations, residual, converged = static.u_cf, 0, 0.0, True
         aero = _aero_at(u, sections, rotor_geometry, V, om, n_blades, rho, pitch, options, False)
-        load_aero, f_cf = nodal_loads(sections, aero.loads.loads), static.f_cf
+    load_aero, f_cf = nodal_loads(sections, aero.loads.loads), static.f_cf
+    if options.deflection and converged and options.corotational and len(fe.shell_conn) == 0:
+        config, aero, load_aero, f_cf, it, residual, converged = _exact(
+            fe, struct, sections, rotor_geometry, u, (V, om, n_blades, rho, pitch), options)
+        iterations += it
+        u = ex.configuration_displacement(fe, config)
     frames = pitching_frames(sections, rotor_geometry)
     tip_d, tip_r = tip_motion(sections, aero.defl, frames)
     thrust, torque, power = rotor_totals(aero.sections, rotor_geometry, aero.loads.loads, om, n_blades)

@@ -48,10 +48,7 @@ from windflutter.structure.corotational import (Equilibrium, chained_configurati
                                                  reference_configuration, solve_equilibrium)
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 
-__all__ = ["DeflectedBlade", "deflected_blade", "deflected_motion_map"]
-
-#: the deformed blade's strip motion map (:func:`windflutter.steady.exact.deformed_motion_map`)
-deflected_motion_map = deformed_motion_map
+__all__ = ["DeflectedBlade", "deflected_blade"]
 
 #: Newton tolerance of the equilibrium (largest increment: m over the blade size, rad)
 EQUILIBRIUM_TOL = 1e-10
