@@ -149,6 +149,11 @@ class SteadyState:
         (:class:`~windflutter.structure.corotational.BeamConfiguration`) when it gave the state,
         else None; ``u`` is then its node translations and rotation vectors, ``load_aero`` the
         nodal loads of that equilibrium (lever arms of the deformed blade).
+    f_internal : (n_dof,) the structure's internal nodal forces (N, N m) at the state: ``K u``, or
+        the co-rotational beams' ``f_int``; ``f_internal - load`` is the reaction of the supports
+        and links (the hub links' geometric stiffness, :func:`~windflutter.system.blade.
+        link_geometric_stiffness`).  ``Ksigma`` is the axial-force geometric stiffness of the same
+        stress, on the undeformed geometry.
     """
 
     u: np.ndarray
@@ -176,6 +181,7 @@ class SteadyState:
     air_density: float
     pitch: float
     configuration: object = None
+    f_internal: np.ndarray | None = None
 
     @property
     def load(self) -> np.ndarray:
@@ -377,16 +383,31 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
             fe, struct, sections, rotor_geometry, u, (V, om, n_blades, rho, pitch), options)
         iterations += it
         u = ex.configuration_displacement(fe, config)
+    f_internal, Ksigma = _stress(fe, struct, u, config)
     frames = pitching_frames(sections, rotor_geometry)
     tip_d, tip_r = tip_motion(sections, aero.defl, frames)
     thrust, torque, power = rotor_totals(aero.sections, rotor_geometry, aero.loads.loads, om, n_blades)
     return SteadyState(
         u=u, sections=aero.sections, bem=aero.bem, flow=aero.loads.flow, cl=aero.loads.cl, cd=aero.loads.cd,
         cm=aero.loads.cm, strip_loads=aero.loads.loads, load_aero=load_aero,
-        load_centrifugal=f_cf, Ksigma=geometric_stiffness(fe, u), thrust=thrust, torque=torque,
+        load_centrifugal=f_cf, Ksigma=Ksigma, f_internal=f_internal, thrust=thrust, torque=torque,
         power=power, iterations=iterations, converged=converged, residual=residual, tip_deflection=tip_d,
         tip_rotation=tip_r, frames=frames, wind_speed=V, omega=om, air_density=rho, pitch=pitch,
         configuration=config)
+
+
+def _stress(fe, struct, u, config):
+    """(internal nodal forces (n_dof,), axial-force geometric stiffness Ksigma) of the steady state:
+    ``K u`` and the linear elements' axial forces for the linear structure; for a co-rotational
+    equilibrium ``config`` its beams' internal forces and axial forces (the linear ones of its
+    large-rotation ``u`` would not be its stress)."""
+    if config is None:
+        return struct.K @ u, geometric_stiffness(fe, u)
+    from windflutter.structure.corotational import beam_tangent, internal_forces
+    from windflutter.structure.prestress import axial_geometric_stiffness
+
+    tan = beam_tangent(fe, config)
+    return internal_forces(fe, config, tan), axial_geometric_stiffness(fe, tan.resultants[:, 6])
 
 
 def _exact(fe, struct, sections, rotor, u, point, options: SteadyOptions):

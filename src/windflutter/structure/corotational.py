@@ -60,7 +60,8 @@ from windflutter.structure.fem import FEModel
 
 __all__ = ["BeamConfiguration", "BeamTangent", "reference_configuration", "linear_configuration",
            "chained_configuration", "displaced",
-           "deformed_model", "beam_tangent", "linear_resultants", "solve_equilibrium", "Equilibrium"]
+           "deformed_model", "beam_tangent", "linear_resultants", "internal_forces", "solve_equilibrium",
+           "Equilibrium"]
 
 #: central-difference steps: rotations (rad) and translations (fraction of the element length)
 STEP_ROTATION = 1e-4
@@ -371,21 +372,14 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     size = max(float(np.ptp(np.asarray(fe.nodes, float), axis=0).max()), 1.0)
     K_spring = _spring_stiffness(fe)
     chain = _is_chain(fe)
-    X = np.asarray(fe.nodes, float)
     total = 0
     for step in range(1, load_steps + 1):
         factor = step / load_steps
         for it in range(1, max_iterations + 1):
             tan = beam_tangent(fe, config)
             f_ext, K_ext = external(config, factor)
-            K = tan.K
-            f_int = tan.f_int
-            if K_spring is not None:
-                u_s = np.zeros(fe.n_dof)
-                u_s.reshape(-1, 6)[:, :3] = config.x - X
-                u_s.reshape(-1, 6)[:, 3:] = _logm(config.R)
-                f_int = f_int + K_spring @ u_s
-                K = K + K_spring
+            K = tan.K if K_spring is None else tan.K + K_spring
+            f_int = internal_forces(fe, config, tan, K_spring)
             A = T.T @ ((K - K_ext) if K_ext is not None else K) @ T
             r = T.T @ (np.asarray(f_ext, float) - f_int)
             dq = spla.spsolve(sp.csc_matrix(A), r) if sp.issparse(A) else np.linalg.solve(A, r)
@@ -407,6 +401,20 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     f_ext, K_ext = external(config, 1.0)
     return Equilibrium(config=config, tangent=tan, f_ext=np.asarray(f_ext, float), K_ext=K_ext, iterations=total,
                        increment=inc)
+
+
+def internal_forces(fe: FEModel, config: BeamConfiguration, tangent: BeamTangent | None = None,
+                    K_spring: sp.spmatrix | None = None) -> np.ndarray:
+    """(n_dof,) internal nodal forces (N, N m, global axes) of the model at ``config``: its beams'
+    (``tangent.f_int``, computed when not given) and its springs' (linear in the nodal motion)."""
+    tangent = tangent if tangent is not None else beam_tangent(fe, config)
+    K_spring = K_spring if K_spring is not None else _spring_stiffness(fe)
+    if K_spring is None:
+        return tangent.f_int
+    u_s = np.zeros(fe.n_dof)
+    u_s.reshape(-1, 6)[:, :3] = config.x - np.asarray(fe.nodes, float)
+    u_s.reshape(-1, 6)[:, 3:] = _logm(config.R)
+    return tangent.f_int + K_spring @ u_s
 
 
 def _spring_stiffness(fe: FEModel) -> sp.csr_matrix | None:

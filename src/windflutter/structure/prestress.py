@@ -80,14 +80,12 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> s
             cols.append(KG.col)
             vals.append(KG.data)
         else:
-            from windflutter.structure.beam import beam_axial_force, beam_geometric_matrices
+            from windflutter.structure.beam import beam_axial_force
 
-            N = beam_axial_force(fe, u0)
-            KG, d = beam_geometric_matrices(fe, N)
-            k = d.shape[1]
-            rows.append(np.repeat(d, k, axis=1).ravel())
-            cols.append(np.tile(d, (1, k)).ravel())
-            vals.append(KG.ravel())
+            KG = axial_geometric_stiffness(fe, beam_axial_force(fe, u0)).tocoo()
+            rows.append(KG.row)
+            cols.append(KG.col)
+            vals.append(KG.data)
     if len(fe.shell_conn):
         from windflutter.structure.shell import shell_membrane_kg
 
@@ -98,6 +96,27 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> s
     if not rows:
         return sp.csr_matrix((n, n))
     A = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
+    return ((A + A.T) * 0.5).tocsr()
+
+
+def axial_geometric_stiffness(fe: FEModel, axial_force: np.ndarray) -> sp.csr_matrix:
+    """Geometric stiffness (full numbering, CSR, symmetric) of the beams' axial forces alone.
+
+    ``axial_force`` : (n_beams,) axial force (N, tension positive) of each beam element, e.g. the
+    co-rotational beam's ``BeamTangent.resultants[:, 6]`` at a deflected equilibrium, acting on
+    the elements of ``fe``'s (undeformed) geometry.
+    """
+    from windflutter.structure.beam import beam_geometric_matrices
+
+    N = np.asarray(axial_force, dtype=float)
+    if N.shape != (len(fe.beam_conn),) or not np.all(np.isfinite(N)):
+        raise InputError("axial_force", N.shape, f"finite axial forces of the {len(fe.beam_conn)} beam elements")
+    n = fe.n_dof
+    if not len(N):
+        return sp.csr_matrix((n, n))
+    KG, d = beam_geometric_matrices(fe, N)
+    k = d.shape[1]
+    A = sp.coo_matrix((KG.ravel(), (np.repeat(d, k, axis=1).ravel(), np.tile(d, (1, k)).ravel())), shape=(n, n)).tocsr()
     return ((A + A.T) * 0.5).tocsr()
 
 

@@ -49,16 +49,17 @@ def axis_skew_translations(n_nodes: int, axis: np.ndarray) -> sp.csr_matrix:
     return sp.kron(sp.identity(n_nodes, format="csr"), sp.csr_matrix(blk), format="csr")
 
 
-def link_geometric_stiffness(fe, struct, u0: np.ndarray, load: np.ndarray, hub_node: int) -> np.ndarray:
+def link_geometric_stiffness(fe, link_forces: np.ndarray, hub_node: int) -> np.ndarray:
     """(3, 3) geometric stiffness (N m/rad) of the rigid hub links for rotations of the hub.
 
-    The link forces on the blade-root nodes follow from the static state: ``f = K u0 - F`` at each
-    dependent node ``B``.  A rigid link from the hub ``A`` to ``B`` carrying them rotates with the
+    ``link_forces`` (n_dof,): the structure's internal nodal forces minus the loads of the static
+    state, nonzero only where the links act: ``K u0 - F`` of a linear solution, ``f_int - f_ext``
+    of a co-rotational equilibrium; ``f`` below is its force at each dependent node ``B``.  A rigid link from the hub ``A`` to ``B`` carrying them rotates with the
     hub; its second-order (tensioned-bar) energy is ``1/2 theta^T (tr(S) I - S) theta`` with the
     virial ``S = -sum_B sym(d_B f_B^T)``, ``d_B = x_B - x_A`` (``T L (I - e e^T)`` for a tension
     ``T`` along ``e``).  The links' transmitted moments are not included.
     """
-    r = np.asarray(struct.K @ u0 - load).reshape(-1, 6)
+    r = np.asarray(link_forces, float).reshape(-1, 6)
     xa = np.asarray(fe.nodes[hub_node], float)
     S = np.zeros((3, 3))
     for link in fe.rigid_links:
@@ -131,7 +132,7 @@ class RotorBlade:
 
         u0 = static_solve(self.struct, load) if self.struct.nq else np.zeros(self.fe.n_dof)
         Kg = geometric_stiffness(self.fe, u0)
-        Kl = link_geometric_stiffness(self.fe, self.struct, u0, load, self.hub_node)
+        Kl = link_geometric_stiffness(self.fe, self.struct.K @ u0 - load, self.hub_node)
         return Kg, Kl, u0
 
     def unit_prestress(self):

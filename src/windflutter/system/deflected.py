@@ -35,8 +35,6 @@ from __future__ import annotations
 
 import dataclasses
 from dataclasses import dataclass
-from types import SimpleNamespace
-
 import numpy as np
 import scipy.sparse as sp
 
@@ -45,7 +43,7 @@ from windflutter.steady.exact import centrifugal_loads, deformed_motion_map
 from windflutter.structure.assembly import Structural, assemble_matrices
 from windflutter.structure.constraints import constraint_map
 from windflutter.structure.corotational import (Equilibrium, chained_configuration, deformed_model,
-                                                 reference_configuration, solve_equilibrium)
+                                                 internal_forces, reference_configuration, solve_equilibrium)
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 
 __all__ = ["DeflectedBlade", "deflected_blade"]
@@ -137,10 +135,7 @@ def _linearized(rb: RotorBlade, steady, eq: Equilibrium, mu) -> DeflectedBlade:
     else:
         sections = dataclasses.replace(rb.sections, motion_map=mm)
     blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe_d, mu))
-    # the link forces are the beams' internal forces minus the loads at the root (K u0 - F of the
-    # linear structure): an identity "stiffness" hands them to the linear routine
-    forces = SimpleNamespace(K=sp.identity(fe.n_dof, format="csr"))
-    klink = link_geometric_stiffness(fe_d, forces, eq.tangent.f_int, eq.f_ext, rb.hub_node)
+    klink = link_geometric_stiffness(fe_d, internal_forces(fe, eq.config, eq.tangent) - eq.f_ext, rb.hub_node)
     ksigma = eq.tangent.K_geo
     st_out = dataclasses.replace(steady, sections=sections, Ksigma=ksigma) if steady is not None else None
     return DeflectedBlade(blade=blade, steady=st_out, ksigma=ksigma, klink=klink, equilibrium=eq,

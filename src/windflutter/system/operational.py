@@ -359,7 +359,7 @@ class OperationalModel:
             return Kg1 * omega**2, Kl1 * omega**2
         from windflutter.system.blade import link_geometric_stiffness
 
-        return st.Ksigma, link_geometric_stiffness(rb.fe, rb.struct, st.u, st.load, rb.hub_node)
+        return st.Ksigma, link_geometric_stiffness(rb.fe, st.f_internal - st.load, rb.hub_node)
 
     def _aero_blocks(self, rb: RotorBlade, st, wind_speed: float, omega: float):
         """(StripBlocks, section map P) of the blade's strips about the steady state, or (None, None)."""
