@@ -3,8 +3,9 @@
 One beam blade (root clamped, global geometry), HAWC2 operating points at 9 m/s (largest
 deflection) and 18 m/s (pitch 14.4 deg), 15 / 30 / 60 beam elements; the time of one
 ``steady_state`` call (model building and assembly excluded, printed separately), its iterations
-and where the time goes (BEM share).  Target (issue 14, H4 brief): a beam IEA 22 MW point in well
-under a second.
+and where the time goes (BEM share), for the co-rotational steady state (the default) and, as the
+baseline of the same run, the linear structure (``corotational=False``).  Target (issue 14, H4
+brief): a beam IEA 22 MW point in well under a second.
 
 Run: ``.venv/bin/python benchmarks/bench_steady_state.py`` (``--quick``: 30 elements only).
 """
@@ -20,7 +21,7 @@ from _benchutil import QUICK, header, table
 from windflutter.mesh.settings import MeshSettings
 from windflutter.mesh.turbine import build_model, rotor_geometry
 from windflutter.model.windio import load_turbine
-from windflutter.steady import steady_state
+from windflutter.steady import SteadyOptions, steady_state
 from windflutter.structure.assembly import assemble
 
 POINTS = ((9.0, 5.5399, -1.3268), (18.0, 7.0611, 14.4215))  # wind (m/s), rpm, pitch (deg): HAWC2
@@ -53,16 +54,19 @@ def main() -> None:
                                                       pitch=math.radians(pitch)))
                 st = assemble(fe)
                 t_build = time.perf_counter() - t0
-                bem_time[0] = 0.0
-                t0 = time.perf_counter()
-                s = steady_state(fe, st, sec, g, V, rpm * math.pi / 30, n_blades=3)
-                t_ss = time.perf_counter() - t0
-                rows.append(dict(n_span=n_span, V=V, build_s=t_build, steady_s=t_ss, iterations=s.iterations,
-                                 bem_share=bem_time[0] / t_ss, power_MW=s.power / 1e6, flap_m=s.tip_flap,
-                                 twist_deg=math.degrees(s.tip_twist)))
+                for corot in (False, True):
+                    bem_time[0] = 0.0
+                    t0 = time.perf_counter()
+                    s = steady_state(fe, st, sec, g, V, rpm * math.pi / 30, n_blades=3,
+                                     options=SteadyOptions(corotational=corot))
+                    t_ss = time.perf_counter() - t0
+                    rows.append(dict(n_span=n_span, V=V, structure="co-rotational" if corot else "linear",
+                                     build_s=t_build, steady_s=t_ss, iterations=s.iterations,
+                                     bem_share=bem_time[0] / t_ss, power_MW=s.power / 1e6, flap_m=s.tip_flap,
+                                     twist_deg=math.degrees(s.tip_twist)))
     finally:
         state.sections_induction = orig
-    table(rows, ["n_span", "V", "build_s", "steady_s", "iterations", "bem_share", "power_MW", "flap_m", "twist_deg"])
+    table(rows, ["n_span", "V", "structure", "build_s", "steady_s", "iterations", "bem_share", "power_MW", "flap_m", "twist_deg"])
 
 
 if __name__ == "__main__":

@@ -216,6 +216,7 @@ SOLVER_FLAGS = (
     Flag("--mean-loads", "solver.mean_loads"),
     Flag("--induction", "solver.induction"),
     Flag("--deflection", "solver.deflection"),
+    Flag("--corotational", "solver.corotational"),
     Flag("--structure", "solver.structure"),
     Flag("--circulation", "solver.circulation"),
     Flag("--dynamic-stall", "solver.dynamic_stall"),

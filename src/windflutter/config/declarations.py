@@ -187,6 +187,9 @@ class SolverConfig:
     deflection: bool = opt(True, "bool", "method p: linearize about the deflected steady state (BEM, centrifugal "
                            "and aerodynamic loads, elastic twist); false: the undeformed blade (pk and thesis "
                            "always)")
+    corotational: bool = opt(True, "bool", "method p, beam blades: the deflected steady state on the "
+                             "co-rotational beam (exact for any reference line of the sections); false: the "
+                             "linear structure with second-order load corrections (shell blades always)")
     structure: str = opt("auto", "choice", "method p: the blade structure the stability problem is linearized "
                          "about: deflected (beam blades: the co-rotational beam re-equilibrated under the steady "
                          "loads, the geometric stiffness of every steady stress resultant), undeformed (the "

@@ -10,8 +10,8 @@ co-rotational beam under the same loads gives -6.37 deg for all three (0.01 deg)
 is described about its pitch axis, a HAWC2 blade about its half chord; for the IEA 15 MW the two
 steady states differed by 6 % in thrust.
 
-With ``SteadyOptions(corotational=True)`` (beam-only models; not yet the default, see
-:class:`~windflutter.steady.SteadyOptions`) the steady state is the equilibrium of the co-rotational
+With ``SteadyOptions(corotational=True)`` (the default for beam-only models; config
+``solver.corotational``) the steady state is the equilibrium of the co-rotational
 beam (:mod:`windflutter.structure.corotational`, geometrically exact rigid sections):
 
 1. start from the linear steady state (:func:`windflutter.steady.state.steady_state`'s iteration);
@@ -159,14 +159,15 @@ def iterate_corotational(fe, struct, sections, config: BeamConfiguration, aero_a
             fc, K = centrifugal(c)
             return factor * (fc + f), (None if K is None else factor * K)
 
-        # each equilibrium to a thousandth of the last change of the loads (1e-5 .. 1e-10): no exact
-        # equilibrium of loads that are still moving
-        eq_tol = float(np.clip(1e-3 * res, EQUILIBRIUM_TOL, 1e-5))
-        config = solve_equilibrium(fe, struct.T, external, start=config, tol=eq_tol).config
+        # one Newton step per update of the loads (no exact equilibrium of loads that are still
+        # moving); the converged loads get their exact equilibrium
+        config = solve_equilibrium(fe, struct.T, external, start=config, tol=np.inf, max_iterations=1,
+                                   final=False).config
         new = aero_at(configuration_deflection(sections, fe, config), float(np.clip(1e-3 * res, 1e-12, 1e-5)))
         res = strip_change(new, aero, sections)
         aero = new
         if res <= tol:
+            config = solve_equilibrium(fe, struct.T, external, start=config, tol=EQUILIBRIUM_TOL, final=False).config
             return config, aero, f, it, res, True
         r = nodal(new, config) - f  # Aitken-relaxed fixed point on the nodal aerodynamic loads
         w = aitken(w, r, r_prev)

@@ -81,13 +81,11 @@ class SteadyOptions:
     relaxation : initial relaxation factor of the displacement update (then Aitken's).
     max_deflection : a strip translation beyond this fraction of the rotor radius is taken as
         divergence (no steady state).
-    corotational : beam-only models: the equilibrium of the co-rotational beam
+    corotational : beam-only models (default): the equilibrium of the co-rotational beam
         (:mod:`windflutter.steady.exact`, exact for any reference line of the sections), started
-        from the linear one; False (default, and always for shells): the linear structure with
-        second-order load corrections.  Not yet the default: the operating-point linearization
-        (``system``) still reads the linear equilibrium (the hub link's forces ``K u - F``,
-        ``Ksigma`` of ``u``), and fed the co-rotational state it finds a spurious unstable
-        1st flap FW mode on the NREL 5 MW at 6 m/s.
+        from the linear one; False (and always for shells): the linear structure with
+        second-order load corrections.  The state's ``f_internal`` and ``Ksigma`` are then the
+        co-rotational beams' internal forces and axial forces.
     rotating_group : node group of the rotating part (centrifugal load, spin softening).
     strict : raise :class:`~windflutter.errors.ModelError` when the iteration does not converge
         (default); False returns the last iterate with ``converged=False``.
@@ -103,7 +101,7 @@ class SteadyOptions:
     max_iterations: int = 60
     relaxation: float = 1.0
     max_deflection: float = 0.5
-    corotational: bool = False
+    corotational: bool = True
     rotating_group: str = "rotor"
     strict: bool = True
     bem: dict | None = None

@@ -294,7 +294,8 @@ def _check_config(fe: FEModel, config: BeamConfiguration) -> None:
                                                               f"({fe.n_nodes}, 3, 3)")
 
 
-def beam_tangent(fe: FEModel, config: BeamConfiguration, resultants: np.ndarray | None = None) -> BeamTangent:
+def beam_tangent(fe: FEModel, config: BeamConfiguration, resultants: np.ndarray | None = None,
+                 elements: _Elements | None = None) -> BeamTangent:
     """Internal forces, material and geometric stiffness of the beams of ``fe`` at ``config``.
 
     Parameters
@@ -304,9 +305,10 @@ def beam_tangent(fe: FEModel, config: BeamConfiguration, resultants: np.ndarray 
     resultants : optional (nb, 12) local end loads to build ``K_geo`` (and ``f_int``) with in place
         of the configuration's own ``K_loc d``: e.g. :func:`linear_resultants` of a linear solution
         at the reference configuration (the classical initial-stress matrix).
+    elements : the model's reference element data (an iteration passes it; built when None).
     """
     _check_config(fe, config)
-    el = _Elements(fe)
+    el = elements if elements is not None else _Elements(fe)
     if resultants is not None:
         resultants = np.asarray(resultants, float)
         if resultants.shape != (len(el.l0), 12) or not np.all(np.isfinite(resultants)):
@@ -347,7 +349,8 @@ class Equilibrium:
 
 
 def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: BeamConfiguration | None = None,
-                      tol: float = 1e-10, max_iterations: int = 40, load_steps: int = 1) -> Equilibrium:
+                      tol: float = 1e-10, max_iterations: int = 40, load_steps: int = 1,
+                      final: bool = True) -> Equilibrium:
     """Newton iteration to ``f_int(config) = f_ext(config)`` on the free DOFs ``u = T q``.
 
     Parameters
@@ -362,6 +365,9 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     tol : stop when the largest translation increment is below ``tol`` x the model size and the
         largest rotation increment below ``tol`` rad.
     load_steps : equal load increments (each solved to ``tol``).
+    final : evaluate the tangent and the loads at the converged configuration; False leaves
+        ``tangent``, ``f_ext`` and ``K_ext`` None (an outer iteration that needs the configuration
+        alone saves one tangent and one load evaluation).
 
     Raises
     ------
@@ -372,11 +378,12 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     size = max(float(np.ptp(np.asarray(fe.nodes, float), axis=0).max()), 1.0)
     K_spring = _spring_stiffness(fe)
     chain = _is_chain(fe)
+    el = _Elements(fe)
     total = 0
     for step in range(1, load_steps + 1):
         factor = step / load_steps
         for it in range(1, max_iterations + 1):
-            tan = beam_tangent(fe, config)
+            tan = beam_tangent(fe, config, elements=el)
             f_ext, K_ext = external(config, factor)
             K = tan.K if K_spring is None else tan.K + K_spring
             f_int = internal_forces(fe, config, tan, K_spring)
@@ -397,7 +404,9 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
             raise ModelError(f"the co-rotational static iteration did not converge at load factor {factor:.3g} "
                              f"({max_iterations} iterations): no equilibrium near the start, or a limit point; "
                              "use more load steps")
-    tan = beam_tangent(fe, config)
+    if not final:
+        return Equilibrium(config=config, tangent=None, f_ext=None, K_ext=None, iterations=total, increment=inc)
+    tan = beam_tangent(fe, config, elements=el)
     f_ext, K_ext = external(config, 1.0)
     return Equilibrium(config=config, tangent=tan, f_ext=np.asarray(f_ext, float), K_ext=K_ext, iterations=total,
                        increment=inc)

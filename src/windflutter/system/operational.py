@@ -72,6 +72,9 @@ class OperationalOptions:
         the state-space model; :class:`~windflutter.aero.strip.AeroOptions` for the thesis's
         quasi-steady strips), ``None`` for no aerodynamics.
     deflection : linearize about the deflected steady state (False: the undeformed blade).
+    corotational : beam blades: the steady state on the co-rotational beam (exact for any reference
+        line of the sections, :mod:`windflutter.steady.exact`); False: the linear structure with
+        second-order load corrections (shell blades always).
     structure : ``"undeformed"`` (the beam on its undeformed axis with the axial-force geometric
         stiffness of the steady stress) or ``"deflected"`` (beam blades: the co-rotational beam
         re-equilibrated and linearized about the deflected shape, with the initial-stress matrix of
@@ -93,6 +96,7 @@ class OperationalOptions:
     drivetrain: str = "flexible"
     aero: object = "default"
     deflection: bool = True
+    corotational: bool = True
     structure: str = "undeformed"
     induction: bool = True
     damping: str = "file"
@@ -284,7 +288,9 @@ class OperationalModel:
             fa = ss = np.array([float(o.tower_damping)])
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
-                "steady_state": "deflected (BEM, centrifugal + aero loads)" if o.deflection else "undeformed",
+                "steady_state": (("deflected (BEM, centrifugal + aero loads; " + ("co-rotational beam)" if (
+                    o.corotational and o.model == "beam") else "linear structure, second-order loads)"))
+                                 if o.deflection else "undeformed"),
                 "structure": ("linearized about the deflected shape (co-rotational beam, all stress resultants)"
                               if o.structure == "deflected" else "undeformed axis, axial-force geometric stiffness"),
                 "induction": "steady BEM" if o.induction else "none",
@@ -313,8 +319,9 @@ class OperationalModel:
         key = (id(rb), round(float(wind_speed), 9))
         prev = self._last_steady.get(key)
         initial = None if prev is None else prev.u * (omega / prev.omega) ** 2 if prev.omega > 0 else prev.u
+        so = SteadyOptions(deflection=o.deflection, corotational=bool(o.corotational), tol=STEADY_TOL)
         st = steady_state(rb.fe, rb.struct, rb.sections, self.rotor, wind_speed, omega, n_blades=self.n_blades,
-                          air_density=o.air_density, options=SteadyOptions(deflection=o.deflection, tol=STEADY_TOL), initial=initial)
+                          air_density=o.air_density, options=so, initial=initial)
         self._last_steady[key] = st  # a warm start for the next rotor speed at this wind speed and pitch
         return st
 
