@@ -169,7 +169,10 @@ def test_iea22mw_vs_hawc2_and_openfast_4_to_25(iea22):
         for V, r in sorted(_iea22_refs(source).items()):
             if not 4.0 <= V <= 25.0:
                 continue
-            s = _solve(iea22, V, r["rotor_speed_rpm"], r["pitch_deg"], corotational=True)
+            # each reference with its code's thrust-induction relation (aero/momentum.py; the
+            # difference is <= 1.1 point here, the IEA 22 MW runs below C_T = 0.85)
+            s = _solve(iea22, V, r["rotor_speed_rpm"], r["pitch_deg"],
+                       bem={"high_thrust": "madsen" if source == "hawc2" else "buhl"})
             if source == "hawc2":
                 tol = (0.05, 0.05, 0.10, 0.10)
             else:
@@ -210,12 +213,13 @@ IEA15_WINDIO_BOUND = 0.10
 @pytest.mark.slow
 def test_iea15mw_vs_hawcstab2_and_wisdem():
     # HAWCStab2 operating points of the onshore HAWC2 model (aero power, thrust): the blade as the
-    # HAWC2 model describes it (moved_reference(.., 0.5), the comment above): 5 % on power at
-    # 7-25 m/s and on thrust at 3-25 m/s (issue 14).  Out of it (printed, documented in
-    # docs/steady_state.md): power at 3 m/s (95 kW) and 5 m/s (1.65 MW, tip-speed ratio 12.6), a
-    # small difference of driving and dragging strips (-24 %, -8 %).  The windIO description: within
-    # IEA15_WINDIO_BOUND, and more than 5 % off near rated (the description matters: the check can
-    # fail).
+    # HAWC2 model describes it (moved_reference(.., 0.5), the comment above) with HAWC2's
+    # thrust-induction relation (Madsen et al. 2020): 5 % on power and thrust at 3-25 m/s (issue 14;
+    # measured -1.6 ... +1.3 %).  With Buhl's relation (the default) power at 3 and 5 m/s is -24 and
+    # -8 % (tip-speed ratio 21 and 12.6, local C_T above 0.85, where the relations part): held
+    # below -10 % at 3 m/s, so that the check can fail, and to 5 % from 7 m/s.  The windIO
+    # description: within IEA15_WINDIO_BOUND, and more than 5 % off near rated (the description
+    # matters: the check can fail).
     # WISDEM: rigid CCBlade (no deflection) with its own pitch schedule, so our undeformed state
     # (deflection=False, coned BEM as CCBlade's): thrust 5 %; power 7 % (we are 2-6 % above it;
     # CCBlade in WISDEM runs with the 6 deg shaft tilt, not modelled here, and its own BEM details).
@@ -229,22 +233,29 @@ def test_iea15mw_vs_hawcstab2_and_wisdem():
     c2 = moved_reference(t, 0.5)
     h = np.loadtxt(DATA_DIR / "iea15mw" / "IEA_15MW_RWT_Onshore_hawc2.opt", skiprows=1)
     rows, worst_windio = [], 0.0
+    hawc2 = {"high_thrust": "madsen"}  # HAWCStab2's thrust-induction relation (aero/momentum.py)
     for V, pitch, rpm, p_kw, t_kn in h[h[:, 0] >= 3]:
-        s = _solve(c2, V, rpm, pitch, corotational=True)
+        s = _solve(c2, V, rpm, pitch, bem=hawc2)
         dp, dt = s.power / (1e3 * p_kw) - 1, s.thrust / (1e3 * t_kn) - 1
-        if V >= 7:
-            assert abs(dp) <= 0.05, ("power", V, dp)
+        assert abs(dp) <= 0.05, ("power", V, dp)
         assert abs(dt) <= 0.05, ("thrust", V, dt)
-        w = _solve(t, V, rpm, pitch, corotational=True)
+        b = _solve(c2, V, rpm, pitch)  # Buhl's relation (the default, AeroDyn's)
+        dpb = b.power / (1e3 * p_kw) - 1
+        if V >= 7:
+            assert abs(dpb) <= 0.05, ("power, Buhl", V, dpb)
+        elif V == 3:
+            assert dpb < -0.10, ("power, Buhl", V, dpb)  # the relation matters at C_T > 0.85
+        w = _solve(t, V, rpm, pitch, bem=hawc2)
         dpw, dtw = w.power / (1e3 * p_kw) - 1, w.thrust / (1e3 * t_kn) - 1
         if V >= 7:
             assert max(abs(dpw), abs(dtw)) <= IEA15_WINDIO_BOUND, ("windIO", V, dpw, dtw)
         if 10 <= V <= 13:
             worst_windio = max(worst_windio, abs(dtw))
         rows.append((V, s.power / 1e6, 100 * dp, s.thrust / 1e3, 100 * dt, s.tip_flap, math.degrees(s.tip_twist),
-                     100 * dpw, 100 * dtw))
+                     100 * dpb, 100 * dpw, 100 * dtw))
     assert worst_windio > 0.05
-    _table(rows, "IEA 15 MW (half-chord description) vs HAWCStab2: V  P(MW) dP%  T(kN) dT%  flap twist | windIO dP% dT%")
+    _table(rows, "IEA 15 MW (half-chord description, HAWC2's induction) vs HAWCStab2: V  P(MW) dP%  T(kN) dT%  "
+                 "flap twist | Buhl dP% | windIO dP% dT%")
     rows = []
     w = _iea15_wisdem()
     for V, pitch, _, _, _, rpm, _, T_MN, _, Q_MNm in w[::3, :10]:

@@ -15,10 +15,12 @@ Method (annular momentum balance = blade-element loads, one annulus per strip):
   plane), ``ct = Cl sin phi - Cd cos phi`` (in the plane, driving);
 * ``k = sigma' cn / (4 F sin^2 phi)``, ``k' = sigma' ct / (4 F sin phi cos phi)`` with the local
   solidity ``sigma' = B c / (2 pi r)``;
-* axial: momentum ``a = k / (1 + k)`` while ``a <= 0.4`` (``k <= 2/3``); above, Buhl's (2005)
-  empirical thrust ``C_T = 8/9 + (4F - 40/9) a + (50/9 - 4F) a^2`` (equal to the momentum
+* axial: by the thrust--induction relation ``high_thrust`` (:mod:`windflutter.aero.momentum`):
+  by default momentum ``a = k / (1 + k)`` while ``a <= 0.4`` (``k <= 2/3``) and Buhl's (2005)
+  empirical thrust ``C_T = 8/9 + (4F - 40/9) a + (50/9 - 4F) a^2`` above (equal to the momentum
   ``4 F a (1 - a)`` in value and slope at ``a = 0.4``), solved for ``a`` in the stable form
-  :func:`buhl_axial`; tangential ``a' = k' / (1 - k')``;
+  :func:`~windflutter.aero.momentum.buhl_axial`; or HAWC2's cubic ``a(C_T)`` (Madsen et al.
+  2020); tangential ``a' = k' / (1 - k')``;
 * Prandtl's tip and hub loss ``F = F_tip F_hub``,
   ``F_tip = 2/pi acos(exp(-B (R - r) / (2 r sin phi)))``,
   ``F_hub = 2/pi acos(exp(-B (r - R_hub) / (2 R_hub sin phi)))``;
@@ -46,13 +48,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from windflutter.aero.momentum import axial_from_k, buhl_axial, high_thrust_model
 from windflutter.aero.sections import AeroSections, Polar, RotorGeometry
 from windflutter.errors import InputError, ValidityWarning
 
 __all__ = ["BEMResult", "prandtl_factor", "buhl_axial", "axial_from_k", "bem_induction",
            "sections_induction", "theta_from_geometry", "rotor_extent"]
 
-_A_SWITCH = 0.4  # momentum / Buhl switch (a); k = a / (1 - a) = 2/3 there
 _PHI_EPS = 1e-7  # rad, bracket end close to phi = 0
 
 
@@ -117,35 +119,6 @@ def prandtl_factor(r, phi, n_blades: int, r_tip: float, r_hub: float | None = No
     return F
 
 
-def buhl_axial(k, F) -> np.ndarray:
-    """Axial induction in Buhl's high-thrust region, from ``k = sigma' cn / (4 F sin^2 phi)``.
-
-    Equating the blade-element thrust ``4 F k (1 - a)^2`` with Buhl's
-    ``8/9 + (4F - 40/9) a + (50/9 - 4F) a^2`` gives a quadratic in ``a``; its physical root,
-    written without the cancellation of the textbook ``(g1 - sqrt(g2)) / g3`` form, is
-    ``a = (2 F k - 4/9) / (g1 + sqrt(g2))``, ``g1 = 2 F k + F - 10/9``,
-    ``g2 = 2 F k - F (4/3 - F)`` (no special case where ``g3 = 2 F k + 2 F - 25/9`` vanishes).
-    """
-    k = np.asarray(k, float)
-    F = np.asarray(F, float)
-    g1 = 2.0 * F * k + F - 10.0 / 9.0
-    g2 = np.maximum(2.0 * F * k - F * (4.0 / 3.0 - F), 0.0)
-    return (2.0 * F * k - 4.0 / 9.0) / (g1 + np.sqrt(g2))
-
-
-def axial_from_k(k, F, high_thrust: bool = True) -> np.ndarray:
-    """Axial induction ``a`` (-) of the windmill state: momentum ``k / (1 + k)`` up to ``a = 0.4``,
-    Buhl above (``high_thrust``; else momentum everywhere)."""
-    k = np.asarray(k, float)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        a = k / (1.0 + k)
-        if high_thrust:
-            hi = k > _A_SWITCH / (1.0 - _A_SWITCH)
-            if np.any(hi):
-                a = np.where(hi, buhl_axial(np.where(hi, k, 1.0), np.broadcast_to(F, k.shape)), a)
-    return a
-
-
 class _PolarTable:
     """Static Cl, Cd of every element from its polar (linear interpolation, alpha wrapped to +-pi).
 
@@ -201,7 +174,7 @@ def _state(phi, sel, r, chord, theta, lam, sig, polar, n_blades, r_tip, r_hub, t
 
 def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: float, omega: float,
                   n_blades: int, r_tip: float, r_hub: float = 0.0, dr=None, air_density: float = 1.225,
-                  tip_loss: bool = True, hub_loss: bool = True, high_thrust: bool = True,
+                  tip_loss: bool = True, hub_loss: bool = True, high_thrust="buhl",
                   xtol: float = 1e-12, normal_factor=None) -> BEMResult:
     """Steady BEM induction of every element (vectorized across elements).
 
@@ -217,7 +190,9 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
     dr : (n,) radial length each element stands for in the rotor totals (m); for the elements of
         one blade its strip widths, for the elements of all B blades the widths / B.  None: no
         totals (zeros).
-    air_density : kg/m^3.  tip_loss, hub_loss, high_thrust : corrections on/off.
+    air_density : kg/m^3.  tip_loss, hub_loss : corrections on/off.
+    high_thrust : the thrust--induction relation, ``"buhl"`` (default), ``"madsen"`` (HAWC2's) or
+        ``"momentum"`` (:mod:`windflutter.aero.momentum`; True / False: buhl / momentum).
     xtol : bisection tolerance on ``phi`` (rad).
     normal_factor : optional (n,) fraction in (0, 1] of the normal wind that each element sees in
         its own plane, the cosine of its local cone angle (coned BEM: ``V_j = V cos gamma_j`` in
@@ -234,7 +209,7 @@ def bem_induction(r, chord, theta, polars: list[Polar], airfoil, wind_speed: flo
                                                           n_blades, r_tip, normal_factor)
     polar = _PolarTable(polars, idx)
     phi, a, ap, conv = _solve_inflow(r, chord, theta, polar, Vj, Om, V, n_blades, r_tip, r_hub,
-                                     (tip_loss, hub_loss, high_thrust), xtol)
+                                     (tip_loss, hub_loss, high_thrust_model(high_thrust)), xtol)
     alpha = phi - theta
     cl, cd = polar(alpha)
     F = prandtl_factor(r, phi, n_blades, r_tip, r_hub, tip_loss, hub_loss)

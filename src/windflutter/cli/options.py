@@ -215,6 +215,7 @@ SOLVER_FLAGS = (
     Flag("--aero-distribution", "solver.aero_distribution"),
     Flag("--mean-loads", "solver.mean_loads"),
     Flag("--induction", "solver.induction"),
+    Flag("--high-thrust", "solver.high_thrust"),
     Flag("--deflection", "solver.deflection"),
     Flag("--corotational", "solver.corotational"),
     Flag("--structure", "solver.structure"),

@@ -10,6 +10,7 @@ from collections.abc import Iterator
 from dataclasses import Field, asdict, dataclass, field, fields
 from typing import Any
 
+from windflutter.aero.momentum import HIGH_THRUST
 from windflutter.backends import check_backend_name
 from windflutter.errors import InputError
 from windflutter.schema import Spec, check_keys, is_number
@@ -181,6 +182,10 @@ class SolverConfig:
                                "initial stress.  Method p always has the full terms")
     induction: bool = opt(True, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
                           "the stability problem; false is the thesis's inflow V, Omega r")
+    high_thrust: str = opt("buhl", "choice", "method p: the BEM's thrust-induction relation: buhl (momentum to "
+                           "a = 0.4, Buhl's turbulent-wake thrust above; OpenFAST AeroDyn's), madsen (HAWC2's and "
+                           "HAWCStab2's cubic a(CT), Madsen et al. 2020) or momentum (no high-thrust correction)",
+                           choices=HIGH_THRUST)
     mean_loads: bool = opt(True, "bool", "the mean-load terms: the quasi-steady force of the mean lift, drag "
                            "and moment (polars at each strip's steady angle of attack) under section motion -- "
                            "the edgewise aerodynamic damping; false is the thesis's model")

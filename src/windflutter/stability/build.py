@@ -59,7 +59,8 @@ def operational_options(config, aero: str):
                               blade_modes=None if s.reduction == "none" else s.basis_modes,
                               corrections=s.reduction == "mta", correction_tol=max(s.correction_tol, 1e-10),
                               drivetrain=m.drivetrain, aero=unsteady_options(config, aero),
-                              deflection=bool(s.deflection), corotational=bool(s.corotational), structure=structure, induction=bool(s.induction), damping=config.damping.model,
+                              deflection=bool(s.deflection), corotational=bool(s.corotational), structure=structure, induction=bool(s.induction),
+                              high_thrust=s.high_thrust, damping=config.damping.model,
                               tower_damping=config.damping.tower_ratio,
                               air_density=config.air_density)
 

@@ -80,6 +80,8 @@ class OperationalOptions:
         re-equilibrated and linearized about the deflected shape, with the initial-stress matrix of
         all its stress resultants, :mod:`windflutter.system.deflected`).
     induction : steady BEM induction in the inflow.
+    high_thrust : its thrust--induction relation (:mod:`windflutter.aero.momentum`): ``"buhl"``
+        (OpenFAST AeroDyn's), ``"madsen"`` (HAWC2's and HAWCStab2's) or ``"momentum"``.
     damping : ``"file"`` (the turbine files' structural damping) or ``"none"``.
     tower_damping : modal damping ratio (-) of every tower mode in place of the files' ratios
         (``None``: the files'; e.g. to match another code's tower model).
@@ -99,6 +101,7 @@ class OperationalOptions:
     corotational: bool = True
     structure: str = "undeformed"
     induction: bool = True
+    high_thrust: str = "buhl"
     damping: str = "file"
     tower_damping: float | None = None
     air_density: float = 1.225
@@ -111,6 +114,9 @@ class OperationalOptions:
         check_choice("drivetrain", self.drivetrain, DRIVETRAINS)
         check_choice("damping", self.damping, ("file", "none"))
         check_choice("structure", self.structure, ("undeformed", "deflected"))
+        from windflutter.aero.momentum import HIGH_THRUST
+
+        check_choice("high_thrust", self.high_thrust, HIGH_THRUST)
         if self.structure == "deflected" and (self.model != "beam" or not self.deflection):
             raise InputError("structure", self.structure, "'undeformed' unless the blades are beams (model: beam) "
                                                           "linearized about the deflected steady state (deflection on)")
@@ -293,7 +299,7 @@ class OperationalModel:
                                  if o.deflection else "undeformed"),
                 "structure": ("linearized about the deflected shape (co-rotational beam, all stress resultants)"
                               if o.structure == "deflected" else "undeformed axis, axial-force geometric stiffness"),
-                "induction": "steady BEM" if o.induction else "none",
+                "induction": f"steady BEM ({o.high_thrust} thrust-induction relation)" if o.induction else "none",
                 "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
                 "tower_damping": ("modal: fore-aft " + ", ".join(f"{100 * x:.2g} %" for x in fa) + "; side-side "
                                   + ", ".join(f"{100 * x:.2g} %" for x in ss)) if (fa.size or ss.size) else "none",
@@ -319,7 +325,8 @@ class OperationalModel:
         key = (id(rb), round(float(wind_speed), 9))
         prev = self._last_steady.get(key)
         initial = None if prev is None else prev.u * (omega / prev.omega) ** 2 if prev.omega > 0 else prev.u
-        so = SteadyOptions(deflection=o.deflection, corotational=bool(o.corotational), tol=STEADY_TOL)
+        so = SteadyOptions(deflection=o.deflection, corotational=bool(o.corotational), tol=STEADY_TOL,
+                           bem={"high_thrust": o.high_thrust})
         st = steady_state(rb.fe, rb.struct, rb.sections, self.rotor, wind_speed, omega, n_blades=self.n_blades,
                           air_density=o.air_density, options=so, initial=initial)
         self._last_steady[key] = st  # a warm start for the next rotor speed at this wind speed and pitch
