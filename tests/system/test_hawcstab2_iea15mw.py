@@ -50,20 +50,43 @@ def matches(f_ref, z_ref, f, z, df=0.05, dz_abs=0.01, dz_rel=0.40) -> int:
     return int(ok[rows, cols].sum())
 
 
-@pytest.fixture(scope="module")
-def windflutter_points():
-    from windflutter.model import load_turbine
+def _points(turbine, winds=WINDS, **options):
+    """Our modes (not rigid, < 8.1 Hz) at HAWCStab2's operating points, by wind speed."""
     from windflutter.system.modes import point_modes
     from windflutter.system.operational import OperationalModel, OperationalOptions
 
-    om = OperationalModel(load_turbine("iea15mw"), OperationalOptions(mesh={"n_span": 20}, tower_damping=0.001,
-                                                              structure="deflected"))  # the default of the config (auto)
+    om = OperationalModel(turbine, OperationalOptions(mesh={"n_span": 20}, tower_damping=0.001,
+                                                      structure="deflected", **options))  # (config auto: deflected)
     out = {}
-    for v in WINDS:
+    for v in winds:
         rpm, pitch = operating_point(v)
         ps = om.at(v, rpm=rpm, pitch=np.radians(pitch))
         out[v] = [m for m in point_modes(ps, max_hz=8.1) if not m.rigid]  # (the tests below use < 2.2 and < 8 Hz)
     return out
+
+
+@pytest.fixture(scope="module")
+def windflutter_points():
+    """The IEA 15 MW of its windIO file with our defaults."""
+    from windflutter.model import load_turbine
+
+    return _points(load_turbine("iea15mw"))
+
+
+@pytest.fixture(scope="module")
+def hawcstab2_configuration_points():
+    """The IEA 15 MW as HAWCStab2 ran it: the blade described as its HAWC2 model describes it (about
+    the half-chord line, sections normal to it: tests/reference_axis.py::moved_reference, the
+    steady-state comparison's configuration, tests/steady/test_steady_references.py) and HAWC2's
+    thrust-induction relation (aero/momentum.py, ``high_thrust="madsen"``)."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from reference_axis import moved_reference
+
+    from windflutter.model import load_turbine
+
+    return _points(moved_reference(load_turbine("iea15mw", validate=False), 0.5), high_thrust="madsen")
 
 
 def hawcstab2_structural(wind: float, max_hz: float):
@@ -166,13 +189,34 @@ FAMILY_PAIRS = {("BW edge", 1): "1st edge BW", ("FW edge", 1): "1st edge FW", ("
 KNOWN_MISSES = {("1st edge BW", 10.0), ("1st edge collective", 25.0)}
 
 
+#: in HAWCStab2's configuration (the fixture hawcstab2_configuration_points) every pair passes; the
+#: closest is the 1st edge BW at rated wind, by the 1-point rule: zeta 2.33 % against 1.55 % (0.78
+#: point), decay-rate ratio 1.49 (with the windIO description 3.01 %, ratio 1.91: a miss).
+KNOWN_MISSES_HAWCSTAB2_CONFIGURATION: set = set()
+
+
 def test_iea15mw_damping_family_by_family_against_hawcstab2(windflutter_points):
     """Issue 14's criterion, mode by mode: the decay rate sigma = -Re(lambda) of the 1st edge modes
     within 35 % of HAWCStab2's or the damping ratio within 1 point; the 1st flap modes' damping ratio
     within 25 % (where it is below 0.6).  HAWCStab2's modes named by their own amplitudes.  Every pair
     passes except KNOWN_MISSES, which must still miss (so the list cannot go stale)."""
+    _family_by_family(windflutter_points, KNOWN_MISSES)
+
+
+def test_iea15mw_damping_in_hawcstab2s_configuration(hawcstab2_configuration_points):
+    """The same criterion with the blade and the induction as HAWCStab2 had them (the fixture):
+    measured, all 30 pairs pass: the 1st flap damping within 5 % of HAWCStab2's from 10 m/s on (+19 %
+    at 5 m/s), the 1st edge collective at 25 m/s at its frequency (1.223 Hz) and inside the bound
+    (ratio 0.79), the 1st edge BW at 10 m/s within 1 point (0.78).  The modes below 2.2 Hz match
+    as in the default configuration (>= 85 %)."""
+    _family_by_family(hawcstab2_configuration_points, KNOWN_MISSES_HAWCSTAB2_CONFIGURATION)
+    hit, total, lines = _matched(hawcstab2_configuration_points, 2.2, ours_below=2.3)
+    assert hit >= 0.85 * total, lines
+
+
+def _family_by_family(points, known_misses):
     fails, lines = set(), []
-    for v, modes in windflutter_points.items():
+    for v, modes in points.items():
         ours = {m.name: m for m in modes}
         ref = hawcstab2_labelled(v)
         for key, name in FAMILY_PAIRS.items():
@@ -191,4 +235,4 @@ def test_iea15mw_damping_family_by_family_against_hawcstab2(windflutter_points):
             if not ok:
                 fails.add((name, v))
     print("\n".join(lines))
-    assert fails == KNOWN_MISSES, "\n".join(lines)
+    assert fails == known_misses, "\n".join(lines)
