@@ -20,7 +20,11 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
-__all__ = ["Polar", "RotorGeometry", "AeroSections"]
+__all__ = ["Polar", "RotorGeometry", "AeroSections", "HIGH_THRUST"]
+
+#: the names of the BEM's thrust--induction relations (:mod:`windflutter.aero.momentum`; here, in the
+#: bottom layer, so that the config can offer them as choices)
+HIGH_THRUST = ("buhl", "madsen", "momentum")
 
 
 @dataclass(frozen=True)

@@ -24,12 +24,10 @@ from __future__ import annotations
 
 import numpy as np
 
+from windflutter.aero_types import HIGH_THRUST
 from windflutter.errors import InputError
 
 __all__ = ["HIGH_THRUST", "high_thrust_model", "buhl_axial", "madsen_axial", "axial_from_k"]
-
-#: the names of the thrust--induction relations
-HIGH_THRUST = ("buhl", "madsen", "momentum")
 
 _A_SWITCH = 0.4  # momentum / Buhl switch (a); k = a / (1 - a) = 2/3 there
 #: Madsen et al. (2020): a = k1 C_T + k2 C_T^2 + k3 C_T^3

@@ -10,7 +10,7 @@ from collections.abc import Iterator
 from dataclasses import Field, asdict, dataclass, field, fields
 from typing import Any
 
-from windflutter.aero.momentum import HIGH_THRUST
+from windflutter.aero_types import HIGH_THRUST
 from windflutter.backends import check_backend_name
 from windflutter.errors import InputError
 from windflutter.schema import Spec, check_keys, is_number
