@@ -236,3 +236,36 @@ def _family_by_family(points, known_misses):
                 fails.add((name, v))
     print("\n".join(lines))
     assert fails == known_misses, "\n".join(lines)
+
+
+#: the 2nd flap family: HAWCStab2's 2nd mode of each flap label against ours of that name
+SECOND_FLAP = {("BW flap", 2): "2nd flap BW", ("FW flap", 2): "2nd flap FW", ("Sym flap", 2): "2nd flap collective"}
+
+
+@pytest.mark.parametrize("points, min_identified", [("windflutter_points", 8), ("hawcstab2_configuration_points", 11)])
+def test_iea15mw_2nd_flap_decay_rates_where_identified(request, points, min_identified):
+    """Issue 14's 35 % band on the decay rate of the 2nd flap modes (zeta 4-50 %, so both codes'
+    roots are far from neutral).  The 2nd flap modes of either code cross the 2nd edge, 2nd tower and
+    3rd flap modes along the operating curve, so the ordinal names do not always name the same mode:
+    a pair is taken as identified where the frequencies agree within 10 % (measured: identified
+    pairs within 4.7 %, the others 12-37 % apart).  Measured: every identified pair inside the band
+    (decay-rate ratios 0.74-1.07; 8 of 15 pairs identified with the windIO description, 11 of 15 in
+    HAWCStab2's configuration, which is required, so that the test cannot pass on fewer)."""
+    pts = request.getfixturevalue(points)
+    identified, lines = 0, []
+    for v, modes in pts.items():
+        ours = {m.name: m for m in modes}
+        ref = hawcstab2_labelled(v)
+        for key, name in SECOND_FLAP.items():
+            f, z = ref[key]
+            m = ours[name]
+            if abs(m.frequency_hz / f - 1) > 0.10:
+                lines.append(f"{v:4.0f} m/s {name}: {m.frequency_hz:.3f} Hz against {f:.3f} Hz, not identified")
+                continue
+            identified += 1
+            ratio = -m.eigenvalue.real / (z * 2 * np.pi * f / np.sqrt(1 - z**2))
+            lines.append(f"{v:4.0f} m/s {name}: zeta {100 * m.damping_ratio:.1f} % against {100 * z:.1f} %, "
+                         f"decay-rate ratio {ratio:.3f}")
+            assert abs(ratio - 1) <= 0.35, "\n".join(lines)
+    print("\n".join(lines))
+    assert identified >= min_identified, "\n".join(lines)
