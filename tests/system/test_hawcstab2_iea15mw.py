@@ -242,15 +242,18 @@ def _family_by_family(points, known_misses):
 SECOND_FLAP = {("BW flap", 2): "2nd flap BW", ("FW flap", 2): "2nd flap FW", ("Sym flap", 2): "2nd flap collective"}
 
 
-@pytest.mark.parametrize("points, min_identified", [("windflutter_points", 8), ("hawcstab2_configuration_points", 11)])
+@pytest.mark.parametrize("points, min_identified", [("windflutter_points", 8), ("hawcstab2_configuration_points", 10)])
 def test_iea15mw_2nd_flap_decay_rates_where_identified(request, points, min_identified):
     """Issue 14's 35 % band on the decay rate of the 2nd flap modes (zeta 4-50 %, so both codes'
     roots are far from neutral).  The 2nd flap modes of either code cross the 2nd edge, 2nd tower and
     3rd flap modes along the operating curve, so the ordinal names do not always name the same mode:
     a pair is taken as identified where the frequencies agree within 10 % (measured: identified
     pairs within 4.7 %, the others 12-37 % apart).  Measured: every identified pair inside the band
-    (decay-rate ratios 0.74-1.07; 8 of 15 pairs identified with the windIO description, 11 of 15 in
-    HAWCStab2's configuration, which is required, so that the test cannot pass on fewer)."""
+    (decay-rate ratios 0.74-1.16; 8 of 15 pairs identified with the windIO description, 10 of 15 in
+    HAWCStab2's configuration, which is required, so that the test cannot pass on fewer).  (At
+    10 m/s the "2nd flap BW" is a 2.1 Hz flap BW mode coupled with the tower, 12-13 % damped, which
+    HAWCStab2's file labels "BW edge"; before the tower names were limited to the support's modes
+    it was called a tower mode and the 2.6 Hz mode took the name.)"""
     pts = request.getfixturevalue(points)
     identified, lines = 0, []
     for v, modes in pts.items():
@@ -269,3 +272,19 @@ def test_iea15mw_2nd_flap_decay_rates_where_identified(request, points, min_iden
             assert abs(ratio - 1) <= 0.35, "\n".join(lines)
     print("\n".join(lines))
     assert identified >= min_identified, "\n".join(lines)
+
+
+def test_tower_names_are_limited_to_the_supports_modes(windflutter_points):
+    """A blade mode coupled with the tower is named by its blade motion when the support has no
+    structural mode left for it (system/modes.py::one_mode_per_tower_mode).  The IEA 15 MW support
+    alone has its 2nd fore-aft and side-side modes at 1.97 and 2.00 Hz and its 3rd side-side at 5.8
+    Hz; at 10 m/s four modes at 1.76-2.13 Hz carry most of their energy in the tower, and were named
+    the 2nd fore-aft and the 2nd, "3rd" and "4th" side-side modes, with "2nd edge BW" on the blade's
+    3rd edge at 4.35 Hz.  Now: no "3rd tower side-side" below 4 Hz at any wind speed, one 2nd side-
+    side mode, and the 2nd edge BW between the 1st edge collective and 2.5 Hz at 10 m/s."""
+    for v, modes in windflutter_points.items():
+        names = [m.name for m in modes if m.frequency_hz < 4.0]
+        assert "3rd tower side-side" not in names and "4th tower side-side" not in names, (v, names)
+        assert names.count("2nd tower side-side") <= 1, (v, names)
+    by = {m.name: m for m in windflutter_points[10.0]}
+    assert by["1st edge collective"].frequency_hz < by["2nd edge BW"].frequency_hz < 2.5

@@ -54,6 +54,7 @@ class ModeRecord:
     energy: dict = field(default_factory=dict)
     rigid: bool = False
     signature: np.ndarray | None = field(default=None, repr=False)
+    blade_family: tuple | None = field(default=None, repr=False)
 
     @property
     def frequency_hz(self) -> float:
@@ -157,21 +158,68 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     comps = _blade_components(ps, [q[s] for s in coords]) if m else None
     sig = mode_signature(ps, q, energy, comps)
     rec = {"shape": shape, "energy": energy, "signature": sig}
+    blade = None
+    if comps is not None:
+        whirl = "collective"
+        if len(coords) >= 3 and e_coord[0] < e_coord[1] + e_coord[2]:
+            Mc = mb.M[coords[1], coords[1]]
+            qc, qs = q[coords[1]], q[coords[2]]
+            fw = np.real(np.vdot(qc + 1j * qs, Mc @ (qc + 1j * qs)))
+            bw = np.real(np.vdot(qc - 1j * qs, Mc @ (qc - 1j * qs)))
+            whirl = "FW" if fw > bw else "BW"
+        blade = (_blade_family(comps, ps.blade.sections.width), whirl)
     if top == "support":
-        return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", **rec)
+        return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", blade_family=blade, **rec)
     if top == "drivetrain" and energy["blade"] < BLADE_SHARE_DRIVETRAIN:
         return ModeRecord(lam, "drivetrain", "none", rigid=_rigid_drivetrain(q, labels), **rec)
-    if comps is None:
+    if blade is None:
         return ModeRecord(lam, "other", "none", **rec)
-    fam = _blade_family(comps, ps.blade.sections.width)
-    whirl = "collective"
-    if len(coords) >= 3 and e_coord[0] < e_coord[1] + e_coord[2]:
-        Mc = mb.M[coords[1], coords[1]]
-        qc, qs = q[coords[1]], q[coords[2]]
-        fw = np.real(np.vdot(qc + 1j * qs, Mc @ (qc + 1j * qs)))
-        bw = np.real(np.vdot(qc - 1j * qs, Mc @ (qc - 1j * qs)))
-        whirl = "FW" if fw > bw else "BW"
-    return ModeRecord(lam, fam, whirl, **rec)
+    return ModeRecord(lam, blade[0], blade[1], **rec)
+
+
+#: a tower-named mode must share at least this MAC with the support structural mode it is given,
+#: and its frequency must lie within this factor of that mode's
+TOWER_MAC = 0.5
+TOWER_FREQUENCY_FACTOR = 1.5
+
+
+def one_mode_per_tower_mode(ps, modes: list[ModeRecord]) -> list[ModeRecord]:
+    """Tower names only for as many modes as the support has structural modes: in place.
+
+    A blade mode coupled with the tower (the 2nd edge BW near a 2nd tower mode) can carry most of
+    its energy in the tower and be classified as a tower mode, so that the support's one 2nd
+    side-side mode gave three "side-side" names.  The support's structural modes (the support
+    model alone, without the rotor) are assigned one to one to
+    the tower-classified modes by the largest product of MAC (support coordinates, mass-weighted)
+    and support energy share, among the pairs whose frequencies lie within
+    :data:`TOWER_FREQUENCY_FACTOR` of each other; a mode that gets no support mode with MAC >=
+    :data:`TOWER_MAC` takes the family and whirl of its blade motion (``blade_family``)."""
+    from scipy.optimize import linear_sum_assignment
+
+    cand = [i for i, m in enumerate(modes) if m.family in _TOWER_NAMES and m.blade_family is not None]
+    ns = sum(1 for lb in ps.labels if lb.startswith("support"))
+    if not cand or ps.support is None or ns == 0:
+        return modes
+    import scipy.linalg as sla
+
+    Ms = 0.5 * (ps.support.M + ps.support.M.T)  # the support alone: with the rotor carried rigidly, its
+    Ks = 0.5 * (ps.support.K + ps.support.K.T)  # rotary inertia put the 2nd tower modes at 0.8-1.3 Hz
+    w2, Phi = sla.eigh(Ks, Ms)
+    Q = np.stack([modes[i].shape[:ns] for i in cand], axis=1)
+    num = np.abs(Phi.T @ Ms @ Q) ** 2
+    den = np.real(np.einsum("ij,ik,kj->j", Q.conj(), Ms, Q))[None, :] * np.einsum("ij,ik,kj->j", Phi, Ms, Phi)[:, None]
+    mac = num / np.maximum(den, 1e-300)
+    share = np.array([modes[i].energy.get("support", 0.0) for i in cand])
+    f_s = np.sqrt(np.maximum(w2, 0.0))[:, None] / (2 * np.pi)
+    f_m = np.array([modes[i].frequency_hz for i in cand])[None, :]
+    near = (f_s <= TOWER_FREQUENCY_FACTOR * f_m) & (f_m <= TOWER_FREQUENCY_FACTOR * f_s)
+    mac = np.where(near, mac, 0.0)
+    rows, cols = linear_sum_assignment(-(mac * share[None, :]))
+    won = {int(c) for r, c in zip(rows, cols) if mac[r, c] >= TOWER_MAC}
+    for j, i in enumerate(cand):
+        if j not in won:
+            modes[i].family, modes[i].whirl = modes[i].blade_family
+    return modes
 
 
 def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8) -> list[ModeRecord]:
@@ -203,7 +251,7 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
     idx = np.where(keep)[0]
     idx = idx[np.argsort(np.abs(lam[idx]))]
     modes = [classify(ps, complex(lam[i]), X[:, i]) for i in idx]
-    return name_modes(modes)
+    return name_modes(one_mode_per_tower_mode(ps, modes))
 
 
 def name_modes(modes: list[ModeRecord]) -> list[ModeRecord]:
