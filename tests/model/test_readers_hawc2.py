@@ -152,3 +152,43 @@ def test_continue_in_file_is_relative_to_the_model_folder(tmp_path):
     a, b = load_turbine(H2 / "htc" / "NREL_5MW.htc", validate=False), load_turbine(htc, validate=False)
     np.testing.assert_array_equal(a.blade.chord, b.blade.chord)
     assert a.n_blades == b.n_blades and sorted(a.airfoils) == sorted(b.airfoils)
+
+
+def _model_with(tmp_path, old: str, new: str):
+    """A copy of the bundled HAWC2 model with one htc line replaced (its folder layout kept)."""
+    import shutil
+
+    d = tmp_path / "model"
+    shutil.copytree(H2, d)
+    for f in H2.parent.glob("NREL5MW_hawc2*"):
+        shutil.copy(f, tmp_path)
+    htc = d / "htc" / "NREL_5MW.htc"
+    text = htc.read_text()
+    assert old in text
+    htc.write_text(text.replace(old, new))
+    return htc
+
+
+def test_blade_damping_is_the_blade_bodys_damping_aniso(turbine, tmp_path):
+    """The blade body's ``damping_aniso`` (kx flapwise, ky edgewise, kz torsion: the IEA 15 MW HAWC2
+    model's comment says its 3.038e-3 / 2.167e-3 are "tuned to 3 % log dec flap/edge", and its
+    BeamDyn file has 2.99e-3 / 2.19e-3 for flap / edge bending) becomes the stiffness-proportional
+    mu of the same directions.  The bundled model's line holds the BeamDyn blade's values: its
+    torsion, edge and flap mu equal those the BeamDyn reader gives for the OpenFAST deck, exactly.
+    A ``damping_posdef`` or mass-proportional terms are not converted (no damping, said in the notes);
+    a malformed line is an error naming it."""
+    from windflutter.errors import InputError
+    from windflutter.model import load_turbine
+
+    h2, deck = turbine("nrel5mw_hawc2"), turbine("nrel5mw_openfast")
+    np.testing.assert_array_equal(h2.blade.damping.mu[3:], deck.blade.damping.mu[3:])
+    assert any("damping_aniso" in n for n in h2.notes)
+    line = "damping_aniso 0.0 0.0 0.0 2.2E-03 1.4E-03 2.2E-03"
+    t = load_turbine(_model_with(tmp_path / "a", line, "damping_posdef 0.0 0.0 0.0 2.2E-03 1.4E-03 2.2E-03"),
+                     validate=False)
+    assert t.blade.damping is None and any("not applied" in n for n in t.notes)
+    t = load_turbine(_model_with(tmp_path / "b", line, "damping_aniso 0.1 0.0 0.0 2.2E-03 1.4E-03 2.2E-03"),
+                     validate=False)
+    assert t.blade.damping is None
+    with pytest.raises(InputError, match="damping_aniso"):
+        load_turbine(_model_with(tmp_path / "c", line, "damping_aniso 0.0 0.0 0.0 2.2E-03 -1.4E-03"), validate=False)

@@ -16,7 +16,13 @@ between tower and shaft (towertop, connector) carry the nacelle.  What each part
   1); drivetrain stiffness: the shaft's torsional flexibility ``1 / integral(dl / G I_p)``;
 * geometry: tilt, precone, overhang, ``Twr2Shft``, hub radius and heights from the placed bodies;
 * operating curve: the ``hawcstab2`` block's ``operational_data_filename`` when present.
-Not read: damping_posdef, constraints (a standard turbine topology is assumed), controllers.
+* blade damping: the blade body's ``damping_aniso`` (stiffness-proportional per bending direction:
+  ``kx`` flapwise, ``ky`` edgewise, ``kz`` torsion) as the BeamSection-order ``mu``
+  ``[kz, kx, ky, kz, ky, kx]`` (axial with torsion, each shear with its bending, BeamDyn's own
+  pattern).  A blade ``damping_posdef`` (HAWC2 applies it per DOF direction, not per bending
+  direction) and mass-proportional terms are not converted: the turbine then has no blade
+  damping, and its notes say so.
+Not read: constraints (a standard turbine topology is assumed), controllers.
 """
 
 from __future__ import annotations
@@ -58,6 +64,7 @@ def load_hawc2(path: Path, validate: bool = True) -> Turbine:
     files = [src]
     geo = _geometry(parts, src)
     blade, foils, b_files = _blade(parts["blade"], aero, base, src, notes)
+    blade, damping_note = _blade_damping(blade, parts["blade"])
     tower, mat = _tower(parts["tower"], geo, src)
     hub, nac = _rotor_parts(parts, geo, src, notes)
     files += b_files + [str(parts["tower"].st_file)]
@@ -70,8 +77,8 @@ def load_hawc2(path: Path, validate: bool = True) -> Turbine:
         rated_rotor_speed=curve.rated_rotor_speed if curve is not None else float("nan"),
         blade=blade, tower=tower, hub=hub, nacelle=nac, airfoils=foils, materials={mat.name: mat},
         operating_curve=curve, source=src, source_format="HAWC2", warnings=tuple(notes.items),
-        notes=("hub_height, rotor_diameter: from the placed bodies", "not read from the htc: damping_posdef, "
-               "constraints (standard topology assumed), controller"),
+        notes=("hub_height, rotor_diameter: from the placed bodies", damping_note,
+               "not read from the htc: constraints (standard topology assumed), controller"),
     )
     supp, supp_source = find_supplement(None, path)
     t = apply_supplement(t, None, supp, base_dir=path.parent, source=supp_source or src)
@@ -154,6 +161,22 @@ def _blade(body: Body, aero: Block, base: Path, src: str, notes: pl.Notes):
                   relative_thickness=np.interp(s, s_ae, ae["tc"]), airfoil_positions=s_ae, airfoil_names=names,
                   beam=beam)
     return blade, foils, [str(body.st_file), str(ae_f), str(pc_f)]
+
+
+def _blade_damping(blade: Blade, body: Body) -> tuple[Blade, str]:
+    """The blade with the damping of its body's ``damping_aniso`` (module docstring), and a note."""
+    from dataclasses import replace
+
+    from windflutter.model.blade import BladeDamping
+
+    if body.damping is None:
+        return blade, f"blade damping: none in main_body {body.name} (no damping_aniso)"
+    key, (mx, my, mz, kx, ky, kz) = body.damping
+    line = f"main_body {body.name}.{key} {mx:g} {my:g} {mz:g} {kx:g} {ky:g} {kz:g}"
+    if key != "damping_aniso" or max(mx, my, mz) > 0:
+        return blade, f"blade damping: not applied ({line}: only damping_aniso without mass terms is converted)"
+    mu = np.array([kz, kx, ky, kz, ky, kx])
+    return replace(blade, damping=BladeDamping(mu=mu, source=line)), f"blade damping: {line} as mu {mu.tolist()}"
 
 
 def _check_st(st: dict, body: Body, notes: pl.Notes) -> None:

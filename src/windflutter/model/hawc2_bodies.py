@@ -32,6 +32,7 @@ class Body:
     st_file: Path | None
     st_set: tuple[int, int]
     masses: list[list[float]] = field(default_factory=list)
+    damping: tuple[str, list[float]] | None = None  # ("damping_aniso" | "damping_posdef", 6 values)
     origin: np.ndarray | None = None  # global (h2) position of the body frame origin
     frame: np.ndarray | None = None  # columns: body axes in global (h2) components
 
@@ -71,7 +72,7 @@ def read_bodies(struct: Block, base: Path, source: str) -> dict[str, Body]:
         if copy:
             src_body = _body(out, copy[0][0][0], f"{where} ({name}).copy_main_body", source)
             out[name] = Body(name=name, c2=src_body.c2.copy(), st_file=src_body.st_file, st_set=src_body.st_set,
-                             masses=[list(m) for m in src_body.masses])
+                             masses=[list(m) for m in src_body.masses], damping=src_body.damping)
             continue
         c2b = mb.child("c2_def", f"{where} ({name})", source)
         n = _int(c2b.values("nsec", f"{where}.c2_def", source)[0], f"{where}.c2_def.nsec", source)
@@ -97,8 +98,26 @@ def read_bodies(struct: Block, base: Path, source: str) -> dict[str, Body]:
                 masses.append([float(x) for x in vals[:8]] + [0.0] * max(0, 8 - len(vals)))
             except ValueError:
                 raise InputError(f"concentrated_mass ({at})", " ".join(vals), "node x y z mass Ixx Iyy Izz", source) from None
-        out[name] = Body(name=name, c2=c2, st_file=st_file, st_set=st_set, masses=masses)
+        out[name] = Body(name=name, c2=c2, st_file=st_file, st_set=st_set, masses=masses,
+                         damping=_damping(mb, f"{where} ({name})", source))
     return out
+
+
+def _damping(mb: Block, where: str, source: str) -> tuple[str, list[float]] | None:
+    """The body's ``damping_aniso`` or ``damping_posdef`` line: (keyword, its 6 coefficients)."""
+    for key in ("damping_aniso", "damping_posdef"):
+        lines = mb.all(key)
+        if lines:
+            vals, at = lines[0]
+            try:
+                c = [float(x) for x in vals[:6]]
+            except ValueError:
+                c = []
+            if len(c) != 6 or not all(np.isfinite(c)) or min(c) < 0:
+                raise InputError(f"{where}.{key} ({at})", " ".join(vals), "six non-negative numbers: mx my mz kx ky kz",
+                                 source)
+            return key, c
+    return None
 
 
 def _euler(lines: list[tuple[list[str], str]], source: str | None) -> np.ndarray:
