@@ -2,8 +2,11 @@
 
 * Blades: the stiffness-proportional damping of BeamDyn / windIO (``mu`` per direction,
   :class:`~windflutter.model.blade.BladeDamping`): each beam element's stiffness assembled with the
-  section matrix ``(diag(mu) S + S diag(mu)) / 2`` in place of ``S`` (symmetric; a mode of
-  frequency ``f`` dominated by one direction gets ``zeta ~ pi f mu``).  Shell blades: ``beta K``
+  section matrix ``sqrt(diag(mu)) S sqrt(diag(mu))`` in place of ``S`` (a congruence: positive
+  definite with ``S``, whatever the spread of ``mu``; the coupling terms get the geometric mean of
+  their two coefficients; a mode of frequency ``f`` dominated by one direction gets
+  ``zeta ~ pi f mu``).  Directions with ``mu = 0`` get :data:`MU_FLOOR` times the largest, so
+  that the section matrix stays invertible for the element (their damping is negligible).  Shell blades: ``beta K``
   with ``beta`` the larger of the two bending coefficients (the layup has no per-direction split).
 * Tower: modal ratios (ElastoDyn ``TwrFADmp``/``TwrSSDmp``) as stiffness-proportional damping
   ``beta = zeta_1 / (pi f_1)`` at the support's first mode.
@@ -32,6 +35,10 @@ def blade_mu(turbine) -> np.ndarray | None:
     return mu if np.any(mu > 0) else None
 
 
+#: the smallest coefficient of a direction, relative to the largest (module docstring)
+MU_FLOOR = 1e-6
+
+
 def blade_damping_matrix(fe, mu: np.ndarray | None) -> sp.csr_matrix | None:
     """Full-numbering damping matrix (N s/m) of the blade elements of ``fe`` for coefficients
     ``mu``; None without coefficients."""
@@ -39,8 +46,8 @@ def blade_damping_matrix(fe, mu: np.ndarray | None) -> sp.csr_matrix | None:
         return None
     mu = np.asarray(mu, float)
     if len(fe.beam_conn):
-        D = np.diag(mu)
-        secs = [BeamSection(stiffness=0.5 * (D @ s.stiffness + s.stiffness @ D), mass=s.mass, name=s.name)
+        r = np.sqrt(np.maximum(mu, MU_FLOOR * mu.max()))
+        secs = [BeamSection(stiffness=r[:, None] * s.stiffness * r[None, :], mass=s.mass, name=s.name)
                 for s in fe.beam_sections]
         _, K = assemble_matrices(replace(fe, beam_sections=secs, masses=[], springs=[]))
         return sp.csr_matrix(K)
