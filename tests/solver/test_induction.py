@@ -181,6 +181,11 @@ def test_bem_with_madsen_relation_holds_it_strip_by_strip(rotor30):
     np.testing.assert_allclose(res.a[ok], 0.2460 * C + 0.0586 * C**2 + 0.0883 * C**3, atol=1e-8)
     buhl = sections_induction(sec, am.rotor_geometry, V, 9.0 * RPM, air_density=rho)
     assert abs(buhl.power / res.power - 1) > 0.01  # the relation matters here
+    # the seed's methods get it from the config too (solver.high_thrust -> TurbineOptions)
+    ts = TurbineStability(rotor30.turbine, dataclasses.replace(rotor30.options, induction=True, high_thrust="madsen"))
+    seed = ts.model(0.0)[2].bem(V, 9.0 * RPM)
+    np.testing.assert_allclose(seed.a, sections_induction(sec, am.rotor_geometry, V, 9.0 * RPM,
+                                                          high_thrust="madsen").a, atol=1e-12)
 
 
 def test_bem_special_and_bad_inputs():

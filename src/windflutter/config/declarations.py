@@ -182,7 +182,7 @@ class SolverConfig:
                                "initial stress.  Method p always has the full terms")
     induction: bool = opt(True, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
                           "the stability problem; false is the thesis's inflow V, Omega r")
-    high_thrust: str = opt("buhl", "choice", "method p: the BEM's thrust-induction relation: buhl (momentum to "
+    high_thrust: str = opt("buhl", "choice", "the BEM's thrust-induction relation: buhl (momentum to "
                            "a = 0.4, Buhl's turbulent-wake thrust above; OpenFAST AeroDyn's), madsen (HAWC2's and "
                            "HAWCStab2's cubic a(CT), Madsen et al. 2020) or momentum (no high-thrust correction)",
                            choices=HIGH_THRUST)

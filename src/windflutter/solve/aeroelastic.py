@@ -90,6 +90,7 @@ class AeroelasticModel:
         the strips see ``U = sqrt((V (1 - a))^2 + (Omega r (1 + a'))^2)``; frozen in the linear
         problem (quasi-steady, no dynamic inflow).  False (default): the thesis's
         ``U = sqrt(V^2 + (Omega r)^2)``.
+    high_thrust : the BEM's thrust--induction relation (:mod:`windflutter.aero.momentum`).
     n_blades : blades of the rotor for the BEM (None: the blades present in ``sections``).
     """
 
@@ -103,6 +104,7 @@ class AeroelasticModel:
     omega_ref: tuple[float, ...] = (0.0,)
     pitch: float = 0.0
     induction: bool = False
+    high_thrust: str = "buhl"
     n_blades: int | None = None
 
     def __post_init__(self):
@@ -190,7 +192,7 @@ class AeroelasticModel:
 
             self._induction_cache[key] = sections_induction(
                 self.sections, self.rotor_geometry, wind_speed, omega_rot, n_blades=self.n_blades,
-                pitch=self.pitch, air_density=self.air_density)
+                pitch=self.pitch, air_density=self.air_density, high_thrust=self.high_thrust)
         return self._induction_cache[key]
 
     def operating_point(self, wind_speed: float, omega_rot: float) -> OperatingPoint:

@@ -80,7 +80,8 @@ class TurbineOptions:
         strips' steady angles of attack; :class:`~windflutter.aero.strip.AeroOptions`): the
         edgewise aerodynamic damping; ``False`` is the thesis's model.
     induction : steady BEM axial/tangential induction in the inflow (frozen in the stability
-        problem); ``False`` is the thesis's ``V, Omega r``.
+        problem); ``False`` is the thesis's ``V, Omega r``.  high_thrust : its thrust--induction
+        relation (:mod:`windflutter.aero.momentum`).
     damping : ``"file"`` (the turbine files' blade ``mu`` and tower ratios,
         :mod:`windflutter.system.damping`), ``"none"``, ``"stiffness"``, ``"rayleigh"`` or ``"modal"``; ``damping_ratio`` at
         ``damping_reference_hz`` (Rayleigh: and at 10x it; modal: in every non-rotating
@@ -108,6 +109,7 @@ class TurbineOptions:
     apparent_mass_scaling: bool = False
     aero_distribution: str = "spline"
     induction: bool = False
+    high_thrust: str = "buhl"
     mean_loads: bool = False
     damping: str = "none"
     damping_ratio: float = 0.0
@@ -233,7 +235,7 @@ class TurbineStability:
                   air_density=o.air_density, n_modes=None if o.reduction == "none" else o.basis_modes,
                   omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
         if o.induction:
-            kw["induction"] = True
+            kw["induction"], kw["high_thrust"] = True, o.high_thrust
         skin = None
         if o.aero_distribution == "skin":
             from windflutter.aero.skin import skin_distribution
@@ -398,7 +400,8 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
                           tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction,
                           basis_modes=s.basis_modes, correction_tol=s.correction_tol,
                           n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,
-                          induction=s.induction, mean_loads=s.mean_loads, damping=config.damping.model,
+                          induction=s.induction, high_thrust=s.high_thrust, mean_loads=s.mean_loads,
+                          damping=config.damping.model,
                           damping_ratio=config.damping.ratio,
                           damping_reference_hz=config.damping.reference_hz, mesh=mesh)
 
