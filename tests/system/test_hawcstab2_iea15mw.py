@@ -215,23 +215,28 @@ def test_iea15mw_damping_in_hawcstab2s_configuration(hawcstab2_configuration_poi
 
 
 def _pairs(points, pairs):
-    """(wind, our name, our mode, HAWCStab2 frequency Hz, damping ratio, decay-rate ratio) of the
-    name pairs ``pairs`` at every wind speed."""
+    """(wind, our name, our mode, HAWCStab2 natural frequency Hz, damping ratio, decay-rate ratio) of
+    the name pairs ``pairs`` at every wind speed.  HAWCStab2's frequencies are damped frequencies
+    (Im lambda / 2 pi): its natural frequency is ``f / sqrt(1 - zeta^2)`` and its decay rate
+    ``zeta 2 pi f / sqrt(1 - zeta^2)``.  (Measured: converted so, its 1st flap frequencies at
+    10-25 m/s are within 1.8 % of our |lambda| / 2 pi in HAWCStab2's configuration; as natural
+    frequencies they were 2.9-8.0 % below.)"""
     for v, modes in points.items():
         ours = {m.name: m for m in modes}
         ref = hawcstab2_labelled(v)
         for key, name in pairs.items():
             f, z = ref[key]
             m = ours[name]
-            yield v, name, m, f, z, -m.eigenvalue.real / (z * 2 * np.pi * f / np.sqrt(1 - z**2))
+            f_n = f / np.sqrt(1 - z**2)
+            yield v, name, m, f_n, z, -m.eigenvalue.real / (z * 2 * np.pi * f_n)
 
 
 def _family_by_family(points, known_misses):
     fails, lines = set(), []
     for v, name, m, f, z, ratio in _pairs(points, FAMILY_PAIRS):
-        # the same mode: 10 % in frequency; 20 % for the flap modes, whose |lambda| at 30-50 %
-        # damping moves with the aerodynamic lag (measured up to 15 % at 5 m/s)
-        assert abs(m.frequency_hz - f) <= (0.10 if "edge" in name else 0.20) * f, (v, name, m.frequency_hz, f)
+        # the same mode: 10 % in natural frequency (measured: the 1st flap at 5 m/s, 45-55 % damped,
+        # up to 7.8 % apart; everything else within 3 %)
+        assert abs(m.frequency_hz - f) <= 0.10 * f, (v, name, m.frequency_hz, f)
         if "edge" in name:
             ok = abs(ratio - 1) <= 0.35 or abs(m.damping_ratio - z) <= 0.01
         else:
@@ -248,15 +253,16 @@ def _family_by_family(points, known_misses):
 SECOND_FLAP = {("BW flap", 2): "2nd flap BW", ("FW flap", 2): "2nd flap FW", ("Sym flap", 2): "2nd flap collective"}
 
 
-@pytest.mark.parametrize("points, min_identified", [("windflutter_points", 8), ("hawcstab2_configuration_points", 10)])
+@pytest.mark.parametrize("points, min_identified", [("windflutter_points", 6), ("hawcstab2_configuration_points", 8)])
 def test_iea15mw_2nd_flap_decay_rates_where_identified(request, points, min_identified):
     """Issue 14's 35 % band on the decay rate of the 2nd flap modes (zeta 4-50 %, so both codes'
     roots are far from neutral).  The 2nd flap modes of either code cross the 2nd edge, 2nd tower and
     3rd flap modes along the operating curve, so the ordinal names do not always name the same mode:
-    a pair is taken as identified where the frequencies agree within 10 % (measured: identified
-    pairs within 4.7 %, the others 12-37 % apart).  Measured: every identified pair inside the band
-    (decay-rate ratios 0.74-1.16; 8 of 15 pairs identified with the windIO description, 10 of 15 in
-    HAWCStab2's configuration, which is required, so that the test cannot pass on fewer).  (At
+    a pair is taken as identified where the natural frequencies agree within 10 % (HAWCStab2's
+    converted, _pairs; the identified pairs within 5 %, the others 10-40 % apart, among them the
+    45-53 % damped 5 m/s modes).  Measured: every identified pair inside the band (decay-rate ratios
+    0.74-1.16; 6 of 15 pairs identified with the windIO description, 8 of 15 in HAWCStab2's
+    configuration, which is required, so that the test cannot pass on fewer).  (At
     10 m/s the "2nd flap BW" is a 2.1 Hz flap BW mode coupled with the tower, 12-13 % damped, which
     HAWCStab2's file labels "BW edge"; before the tower names were limited to the support's modes
     it was called a tower mode and the 2.6 Hz mode took the name.)"""
