@@ -5,7 +5,9 @@
   with ``repr`` so that reading gives the same numbers bit for bit.
 * :func:`write_cmb` / :func:`read_cmb` -- the layout of HAWCStab2's ``.cmb`` Campbell file: the
   first line ``# Wind [m/s]  1 2 ... N  1 2 ... N``, then per wind speed one row: the wind speed,
-  the N track frequencies (Hz), the N damping ratios (% of critical); ``NaN`` where a track has no
+  the N track frequencies (Hz; damped, ``Im lambda / 2 pi``, as HAWCStab2 writes them -- its
+  1st flap frequencies in operation match ours so, docs/campbell.md sec. 4), the N damping ratios
+  (% of critical); ``NaN`` where a track has no
   mode at that wind speed.  Comment lines after the first name the tracks (``# mode k: name``)
   and the frequency definition; numerical readers that skip ``#`` lines (``numpy.loadtxt``)
   read the table as it is.  :func:`read_cmb` also reads HAWCStab2's own files (two or three
@@ -121,13 +123,13 @@ class CmbData:
     names: list[str] = field(default_factory=list)
 
 
-def write_cmb(campbell, path, frequency: str = "undamped", field: str = "--cmb") -> Path:
+def write_cmb(campbell, path, frequency: str = "damped", field: str = "--cmb") -> Path:
     """Write the HAWCStab2-style ``.cmb`` (see the module docstring).
 
     Parameters
     ----------
-    frequency : ``"undamped"`` (``|lambda|/2 pi``, the JSON's ``frequency_hz``) or ``"damped"``
-        (``Im lambda / 2 pi``).
+    frequency : ``"damped"`` (``Im lambda / 2 pi``, HAWCStab2's; the default) or ``"undamped"``
+        (``|lambda|/2 pi``, the JSON's ``frequency_hz``).
     """
     if frequency not in _FREQUENCY_VARS:
         raise InputError("frequency", frequency, "'undamped' or 'damped'")
