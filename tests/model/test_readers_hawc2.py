@@ -135,15 +135,10 @@ def test_continue_in_file_is_relative_to_the_model_folder(tmp_path):
     ./data/x.htc`` in ``htc/model.htc`` names ``model/data/x.htc``, as every other file name does
     (the IEA 15 MW model's layout).  The aero block moved into such an include reads the same
     turbine as the single file."""
-    import shutil
-
     from windflutter.model import load_turbine
 
-    d = tmp_path / "model"
-    shutil.copytree(H2, d)
-    for f in H2.parent.glob("NREL5MW_hawc2*"):  # the operational data file the htc names
-        shutil.copy(f, tmp_path)
-    htc = d / "htc" / "NREL_5MW.htc"
+    htc = _model_copy(tmp_path)
+    d = htc.parent.parent
     text = htc.read_text()
     i, j = text.index("begin aero"), text.index("end aero")
     j = text.index(";", j) + 1
@@ -154,15 +149,20 @@ def test_continue_in_file_is_relative_to_the_model_folder(tmp_path):
     assert a.n_blades == b.n_blades and sorted(a.airfoils) == sorted(b.airfoils)
 
 
-def _model_with(tmp_path, old: str, new: str):
-    """A copy of the bundled HAWC2 model with one htc line replaced (its folder layout kept)."""
+def _model_copy(tmp_path):
+    """The htc of a copy of the bundled HAWC2 model in ``tmp_path/model`` (its folder layout kept,
+    the operational data file the htc names beside it)."""
     import shutil
 
-    d = tmp_path / "model"
-    shutil.copytree(H2, d)
+    shutil.copytree(H2, tmp_path / "model")
     for f in H2.parent.glob("NREL5MW_hawc2*"):
         shutil.copy(f, tmp_path)
-    htc = d / "htc" / "NREL_5MW.htc"
+    return tmp_path / "model" / "htc" / "NREL_5MW.htc"
+
+
+def _model_with(tmp_path, old: str, new: str):
+    """A copy of the bundled HAWC2 model with one htc line replaced."""
+    htc = _model_copy(tmp_path)
     text = htc.read_text()
     assert old in text
     htc.write_text(text.replace(old, new))

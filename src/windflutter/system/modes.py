@@ -204,11 +204,10 @@ def one_mode_per_tower_mode(ps, modes: list[ModeRecord]) -> list[ModeRecord]:
 
     Ms = 0.5 * (ps.support.M + ps.support.M.T)  # the support alone: with the rotor carried rigidly, its
     Ks = 0.5 * (ps.support.K + ps.support.K.T)  # rotary inertia put the 2nd tower modes at 0.8-1.3 Hz
-    w2, Phi = sla.eigh(Ks, Ms)
+    w2, Phi = sla.eigh(Ks, Ms)  # mass-normalized: Phi^T Ms Phi = I
     Q = np.stack([modes[i].shape[:ns] for i in cand], axis=1)
-    num = np.abs(Phi.T @ Ms @ Q) ** 2
-    den = np.real(np.einsum("ij,ik,kj->j", Q.conj(), Ms, Q))[None, :] * np.einsum("ij,ik,kj->j", Phi, Ms, Phi)[:, None]
-    mac = num / np.maximum(den, 1e-300)
+    q_norm = np.real(np.einsum("ij,ik,kj->j", Q.conj(), Ms, Q))
+    mac = np.abs(Phi.T @ Ms @ Q) ** 2 / np.maximum(q_norm, 1e-300)[None, :]
     share = np.array([modes[i].energy.get("support", 0.0) for i in cand])
     f_s = np.sqrt(np.maximum(w2, 0.0))[:, None] / (2 * np.pi)
     f_m = np.array([modes[i].frequency_hz for i in cand])[None, :]

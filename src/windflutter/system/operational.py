@@ -292,11 +292,13 @@ class OperationalModel:
         fa, ss = tower_ratios(self.turbine) if o.damping == "file" else (np.zeros(0), np.zeros(0))
         if o.damping == "file" and o.tower_damping is not None:
             fa = ss = np.array([float(o.tower_damping)])
+        steady = "undeformed"
+        if o.deflection:
+            beam = "co-rotational beam" if o.corotational and o.model == "beam" else "linear structure, second-order loads"
+            steady = f"deflected (BEM, centrifugal + aero loads; {beam})"
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
-                "steady_state": (("deflected (BEM, centrifugal + aero loads; " + ("co-rotational beam)" if (
-                    o.corotational and o.model == "beam") else "linear structure, second-order loads)"))
-                                 if o.deflection else "undeformed"),
+                "steady_state": steady,
                 "structure": ("linearized about the deflected shape (co-rotational beam, all stress resultants)"
                               if o.structure == "deflected" else "undeformed axis, axial-force geometric stiffness"),
                 "induction": f"steady BEM ({o.high_thrust} thrust-induction relation)" if o.induction else "none",
