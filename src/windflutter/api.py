@@ -28,6 +28,7 @@ Units as at the CLI: wind speed m/s, rotor speed RPM, angles in degrees, frequen
 
 from __future__ import annotations
 
+import dataclasses
 import re
 from pathlib import Path
 from typing import Any
@@ -41,7 +42,7 @@ MESH_PARTS = ("turbine", "blade", "tower", "rotor")
 #: the model every command builds unless told otherwise
 DEFAULT_MODEL = "beam"
 #: the options that only the shell model has
-SHELL_ONLY = ("n_chord", "tower_model")
+SHELL_ONLY = ("n_chord", "tower_model", "tip_closure")
 
 #: options of :func:`modes` and ``windflutter mesh`` (keyword -> check); the CLI flag of each is the
 #: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
@@ -56,9 +57,10 @@ MESH_OPTIONS: dict[str, Spec] = {
     "n_span": field_spec("model.n_aero_sections"),
     "tower_model": Spec("choice", choices=MESH_MODELS, nullable=True, doc="shell model: the tower as shell "
                         "(default) or beam"),
+    "tip_closure": dataclasses.replace(field_spec("model.tip_closure"), nullable=True),
 }
 MESH_DEFAULTS: dict[str, Any] = {"part": "turbine", "model": DEFAULT_MODEL, "pitch": 0.0, "azimuth": 0.0,
-                                 "n_chord": None, "n_span": None, "tower_model": None}
+                                 "n_chord": None, "n_span": None, "tower_model": None, "tip_closure": None}
 
 #: the options of :func:`modes` besides the mesh
 MODES_OPTIONS: dict[str, Spec] = {
@@ -189,13 +191,13 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
                                  "shell)")
     kw = dict(model=v["model"], part=v["part"], pitch=math.radians(v["pitch"]), azimuth=math.radians(v["azimuth"]),
               tower_model=v["tower_model"] or "shell")
-    kw.update({k: v[k] for k in ("n_chord", "n_span") if v[k] is not None})
+    kw.update({k: v[k] for k in ("n_chord", "n_span", "tip_closure") if v[k] is not None})
     return MeshSettings(**kw)
 
 
 def modes(turbine, *, rpm: float = 0.0, n: int = 10, part: str = "turbine", model: str = DEFAULT_MODEL,
           pitch: float = 0.0, azimuth: float = 0.0, n_chord: int | None = None, n_span: int | None = None,
-          tower_model: str | None = None):
+          tower_model: str | None = None, tip_closure: str | None = None):
     """Natural frequencies and labelled modes: ``windflutter modes``.
 
     Parameters
@@ -207,7 +209,8 @@ def modes(turbine, *, rpm: float = 0.0, n: int = 10, part: str = "turbine", mode
         ``"rotor"`` (hub clamped).
     model : ``"beam"`` (the default) or ``"shell"``.
     pitch, azimuth : blade pitch and rotor azimuth of blade 0 (deg).
-    n_chord, tower_model : shell model only: elements around a section, the tower as shell or beam.
+    n_chord, tower_model, tip_closure : shell model only: elements around a section, the tower as shell
+        or beam, the blade tips' closure (``"rib"``, ``"rigid"`` or ``"open"``).
     n_span : blade elements along the span.
 
     Returns
@@ -218,7 +221,7 @@ def modes(turbine, *, rpm: float = 0.0, n: int = 10, part: str = "turbine", mode
     from windflutter.mesh.analysis import turbine_modes  # noqa: PLC0415
 
     given = dict(rpm=rpm, n=n, part=part, model=model, pitch=pitch, azimuth=azimuth, n_chord=n_chord, n_span=n_span,
-                 tower_model=tower_model)
+                 tower_model=tower_model, tip_closure=tip_closure)
     specs = {**MODES_OPTIONS, **MESH_OPTIONS}
     values = {k: (None if v is None else specs[k].check(v, k)) for k, v in given.items()}
     settings = mesh_settings(values)  # every option checked before the turbine is read

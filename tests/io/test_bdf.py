@@ -426,6 +426,35 @@ def test_round_trip_bundled_nrel5mw_blade(tmp_path):
     _matrices_equal(fe, fe2)
 
 
+@pytest.mark.nastran
+@pytest.mark.skipif(not HAVE_PYNASTRAN, reason="pyNastran not installed: run `make test-nastran`")
+def test_diaphragm_mpcs_as_pynastran_reads_them(tmp_path):
+    """The shell blade's tip rib goes to NASTRAN as MPC equations: read by pyNastran (not by our
+    reader), every constrained motion of windflutter's map satisfies them, and they remove exactly
+    the DOFs the map removes."""
+    from windflutter.mesh.settings import MeshSettings
+    from windflutter.mesh.turbine import build_model
+    from windflutter.model.windio import load_turbine
+    from windflutter.structure.assembly import assemble
+    from windflutter.structure.bdf.read import load_deck
+
+    fe, _ = build_model(load_turbine("nrel5mw"), MeshSettings(model="shell", part="blade", n_chord=12, n_span=4))
+    assert len(fe.diaphragms) == 1
+    path = _write(fe, tmp_path / "blade.bdf", full_deck=True)
+    assert "MPC = 2" in Path(path).read_text()
+    deck = load_deck(Path(path))
+    eqs = [c for cards in deck.mpcs.values() for c in cards]
+    C = np.zeros((len(eqs), fe.n_dof))
+    for r, c in enumerate(eqs):
+        for nid, comp, a in zip(c.nodes, c.components, c.coefficients):
+            C[r, 6 * (nid - 1) + int(comp) - 1] += a
+    st = assemble(fe)
+    T = st.T.toarray()
+    assert np.abs(C @ T).max() < 1e-12 * np.abs(C).max()
+    n_spc = sum(len(v) for v in fe.spc.values()) + len(st.auto_spc)
+    assert T.shape[1] == fe.n_dof - len(eqs) - n_spc == fe.n_dof - np.linalg.matrix_rank(C) - n_spc
+
+
 # ---------------------------------------------------------------------------------------------
 # the card tables
 # ---------------------------------------------------------------------------------------------

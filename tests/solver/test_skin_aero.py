@@ -46,7 +46,8 @@ def shell_wing(n_span=4, n_chord=12, t=0.003, te_mass=20.0, length=10.0, chord=1
     trib[:-1] += 0.5 * dz
     trib[1:] += 0.5 * dz
     fe.masses.extend(LumpedMass(int(n), te_mass * L) for n, L in zip(te, trib))
-    if rigid_rings:
+    if rigid_rings:  # every station a rigid ring (in place of the mesher's tip rib)
+        fe.diaphragms = []
         station = np.round((z - z.min()) / (length / n_span)).astype(int)
         for k in np.unique(station)[1:]:
             ring = np.where(station == k)[0]

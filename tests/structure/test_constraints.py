@@ -6,7 +6,7 @@ import pytest
 from windflutter.errors import InputError, ModelError
 from windflutter.structure import assemble, damping_matrix, modes
 from windflutter.structure.damping import rayleigh_coefficients
-from windflutter.structure.fem import FEModel, LumpedMass, RigidLink, Spring
+from windflutter.structure.fem import Diaphragm, FEModel, LumpedMass, RigidLink, Spring
 
 
 def block_on_springs(h=0.0, with_nodes=True):
@@ -80,6 +80,62 @@ def test_rigid_link_kinematics_and_chain():
     fe.rigid_links.append(RigidLink(2, np.array([0])))
     with pytest.raises(ModelError):
         assemble(fe)
+
+
+def _plane_frame(seed=3):
+    """A random orthonormal frame (e1, e2, n): the diaphragm's plane is not aligned with the axes."""
+    Q, _ = np.linalg.qr(np.random.default_rng(seed).normal(size=(3, 3)))
+    return Q[:, 0], Q[:, 1], Q[:, 2]
+
+
+def test_diaphragm_kinematics():
+    """Every constrained motion keeps the section's shape in its plane; rigid-body motions and
+    out-of-plane (warping) motion of any node remain possible; two DOFs removed per dependent node."""
+    e1, e2, n = _plane_frame()
+    pts = np.random.default_rng(1).normal(size=(6, 2))
+    x = pts[:, :1] * e1 + pts[:, 1:] * e2 + np.array([1.0, 2.0, 3.0])
+    fe = FEModel(nodes=x, diaphragms=[Diaphragm(0, np.arange(1, 6), n)])
+    from windflutter.structure.constraints import constraint_map
+
+    T, free = constraint_map(fe)
+    assert T.shape == (36, 36 - 2 * 5)
+    u = (T @ np.random.default_rng(2).normal(size=T.shape[1])).reshape(-1, 6)
+    E = np.vstack([e1, e2])
+    rel = u[1:, :3] - u[0, :3] - np.cross(u[0, 3:], x[1:] - x[0])
+    np.testing.assert_allclose(rel @ E.T, 0.0, atol=1e-13)
+    th, a = np.array([0.3, -0.1, 0.2]), np.array([0.5, 0.7, -0.4])
+    rigid = np.hstack([a + np.cross(th, x - x[0]), np.tile(th, (6, 1))]).ravel()
+    warp = np.zeros((6, 6))
+    warp[3, :3] = n
+    for target in (rigid, warp.ravel()):
+        q = np.linalg.lstsq(T.toarray(), target, rcond=None)[0]
+        np.testing.assert_allclose(T @ q, target, atol=1e-12)
+
+
+def test_diaphragm_masses_on_springs():
+    """Four masses on springs tied in a tilted plane: exact frequencies from a hand-built 3-DOF
+    in-plane rigid system (master translation in the plane, rotation about the normal) and
+    independent out-of-plane and rotational oscillators; tolerance 1e-9 (no discretisation)."""
+    e1, e2, n = _plane_frame()
+    r = np.array([[0.0, 0.0], [2.0, 0.3], [1.5, 1.2], [-0.4, 0.9]])
+    x = r[:, :1] * e1 + r[:, 1:] * e2
+    m, j, k_in, kz, kr = 3.0, 0.2, 4e4, 9e3, 700.0
+    Kt = k_in * (np.outer(e1, e1) + np.outer(e2, e2)) + kz * np.outer(n, n)
+    K6 = np.zeros((6, 6))
+    K6[:3, :3], K6[3:, 3:] = Kt, kr * np.eye(3)
+    fe = FEModel(nodes=x, masses=[LumpedMass(i, m, inertia=j * np.eye(3)) for i in range(4)],
+                 springs=[Spring(i, K6) for i in range(4)], diaphragms=[Diaphragm(0, np.arange(1, 4), n)])
+    st = assemble(fe)
+    assert st.nq == 24 - 6
+    # in-plane: node i moves a1 e1 + a2 e2 + psi n x r_i
+    B = [np.column_stack([e1, e2, np.cross(n, xi)]) for xi in x]
+    M3 = sum(m * b.T @ b for b in B) + np.diag([0.0, 0.0, j])
+    K3 = sum(k_in * b.T @ b for b in B) + np.diag([0.0, 0.0, kr])
+    import scipy.linalg as sla
+
+    w_in = np.sqrt(sla.eigh(K3, M3, eigvals_only=True))
+    expect = np.sort(np.concatenate([w_in, np.full(4, np.sqrt(kz / m)), np.full(11, np.sqrt(kr / j))])) / (2 * np.pi)
+    np.testing.assert_allclose(np.sort(modes(st, n=18).freq), expect, rtol=1e-9)
 
 
 def test_spc_on_dependent_dof_is_an_error():

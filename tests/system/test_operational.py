@@ -31,6 +31,11 @@ def test_pitch_rotation_equals_the_model_built_at_that_pitch(nrel5mw_turbine, mo
         assert abs(a - b).max() <= 1e-12 * abs(b).max()
     for k in ("origin", "e_chord", "e_span", "radius"):
         assert np.allclose(getattr(s2, k), getattr(s1, k), atol=1e-12)
+    # the constraints too (the shell tip's rib): both maps span the same motions
+    assert len(fe1.diaphragms) == (model == "shell")
+    T1, T2 = st1.T.toarray(), st2.T.toarray()
+    assert T1.shape == T2.shape
+    np.testing.assert_allclose(T1 @ np.linalg.lstsq(T1, T2, rcond=None)[0], T2, atol=1e-10)
 
 
 @pytest.fixture(scope="module")

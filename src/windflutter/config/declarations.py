@@ -19,6 +19,7 @@ AERO_VARIANTS = ("potential", "viscous")
 SEARCH_METHODS = ("p", "pk", "thesis")
 MODEL_TYPES = ("shell", "beam", "section")
 MODEL_PARTS = ("turbine", "rotor")
+TIP_CLOSURES = ("rib", "rigid", "open")
 DAMPING_MODELS = ("file", "none", "stiffness", "rayleigh", "modal")
 DRIVETRAINS = ("flexible", "rigid", "locked")
 CIRCULATIONS = ("jones", "rfa", "quasi_steady")
@@ -130,6 +131,10 @@ class ModelConfig:
                               lower=0.1, upper=4.0, unit="-")
     n_aero_sections: int = opt(30, "int", "blade elements along the span, one aerodynamic strip each (at "
                                "mesh_density 1)", lower=4, upper=MAX_BLADE_ELEMENTS)
+    tip_closure: str = opt("rib", "choice", "shell models: how each blade's end section is closed -- rib (a thin "
+                           "rib: the section keeps its shape in its plane, warping free), rigid (a rigid section) or "
+                           "open (the skin's free edge; it buckles locally under the steady compression at overspeed, "
+                           "docs/mesh.md)", choices=TIP_CLOSURES)
     drivetrain: str = opt("flexible", "choice", "method p: flexible (shaft spring and generator inertia of the "
                           "turbine file), rigid (one rotor azimuth freedom) or locked (the rotor locked to the "
                           "nacelle, as the seed's model; pk and thesis always lock it)", choices=DRIVETRAINS)

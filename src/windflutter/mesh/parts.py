@@ -20,7 +20,7 @@ from windflutter.mesh.blade_shell import blade_shell_mesh
 from windflutter.mesh.frames import blade_placement, rot_y
 from windflutter.mesh.loft import chord_frame
 from windflutter.mesh.tower import tower_beam_mesh, tower_shell_mesh
-from windflutter.structure.fem import FEModel, LumpedMass
+from windflutter.structure.fem import Diaphragm, FEModel, LumpedMass, RigidLink
 
 _STRIP_KEYS = ("blade", "radius", "width", "chord", "ea", "origin", "ec", "es", "af", "twist")
 
@@ -38,6 +38,7 @@ class ModelBuilder:
     region_names: list = field(default_factory=list)
     masses: list = field(default_factory=list)
     links: list = field(default_factory=list)
+    diaphragms: list = field(default_factory=list)
     spc: dict = field(default_factory=dict)
     groups: dict = field(default_factory=dict)
     strips: dict = field(default_factory=lambda: {k: [] for k in _STRIP_KEYS})
@@ -83,7 +84,7 @@ class ModelBuilder:
             shell_matdir=cat(s["orient"], (0, 3), float), shell_properties=self.properties["shell"],
             beam_conn=cat(b["conn"], (0, 2), np.int64), beam_section=cat(b["prop"], (0,), np.int64),
             beam_orient=cat(b["orient"], (0, 3), float), beam_sections=self.properties["beam"],
-            masses=self.masses, rigid_links=self.links, spc=self.spc, node_groups=self.groups,
+            masses=self.masses, rigid_links=self.links, diaphragms=self.diaphragms, spc=self.spc, node_groups=self.groups,
             element_regions={"shell": cat(s["region"], (0,), np.int64), "beam": cat(b["region"], (0,), np.int64)},
             region_names=self.region_names,
         )
@@ -172,6 +173,7 @@ def add_blades(b: ModelBuilder, turbine, st, blade_ids) -> list[np.ndarray]:
             rid = np.array([b.region(f"blade{k}:{nm}") for nm in bm.region_names])
             b.add_elements("shell", bm.conn + off, bm.prop + pstart, bm.matdir @ R.T, rid[bm.region])
             roots.append(bm.station_nodes[0] + off)
+            _close_tip(b, bm.station_nodes[-1] + off, R[:, 2], st.tip_closure, f"blade{k} tip")
         else:
             b.add_elements("beam", bm.conn + off, np.arange(len(bm.sections)) + pstart, bm.orient @ R.T,
                            np.full(len(bm.conn), b.region(f"blade{k}")))
@@ -180,6 +182,16 @@ def add_blades(b: ModelBuilder, turbine, st, blade_ids) -> list[np.ndarray]:
         o = _add_blade_strips(b, turbine, k, R, origin, geo)
         _strip_rows(b, bm, st, b.nodes[-1], off, o)
     return roots
+
+
+def _close_tip(b: ModelBuilder, tip: np.ndarray, normal: np.ndarray, closure: str, name: str) -> None:
+    """Close a shell blade's end section (skin nodes ``tip``, plane normal ``normal``): a rib
+    (:class:`Diaphragm`), a rigid section (:class:`RigidLink`) or nothing (``"open"``)."""
+    tip = np.asarray(tip, dtype=np.int64)
+    if closure == "rib":
+        b.diaphragms.append(Diaphragm(int(tip[0]), tip[1:], np.asarray(normal, float), name=f"{name} rib"))
+    elif closure == "rigid":
+        b.links.append(RigidLink(int(tip[0]), tip[1:], name=f"{name} rigid section"))
 
 
 def add_tower(b: ModelBuilder, turbine, st) -> tuple[int, list]:

@@ -8,6 +8,7 @@ from windflutter.errors import InputError, check_choice
 
 PARTS = ("turbine", "blade", "tower", "rotor", "rotor_blade", "support")
 MODELS = ("shell", "beam")
+TIP_CLOSURES = ("rib", "rigid", "open")
 
 
 @dataclass(frozen=True)
@@ -34,6 +35,11 @@ class MeshSettings:
     pitch : collective blade pitch (rad), positive towards feather.
     azimuth : rotor azimuth (rad) of blade 0, 0 = pointing up, increasing with the rotation.
     span_clustering : 0 = uniform stations along the span; 1 = cosine clustering at root and tip.
+    tip_closure : how a shell blade's end section is closed: ``"rib"`` (default; a thin rib, a
+        :class:`~windflutter.structure.fem.Diaphragm` keeping the section's shape in its plane, warping
+        free), ``"rigid"`` (the whole section a rigid body, warping restrained) or ``"open"`` (no
+        closure: the skin's free edge, whose thin, nearly flat tip section buckles locally under the
+        steady compression at overspeed; docs/mesh.md).
     """
 
     model: str = "shell"
@@ -47,11 +53,13 @@ class MeshSettings:
     pitch: float = 0.0
     azimuth: float = 0.0
     span_clustering: float = 0.0
+    tip_closure: str = "rib"
 
     def __post_init__(self) -> None:
         check_choice("mesh.model", self.model, MODELS)
         check_choice("mesh.part", self.part, PARTS)
         check_choice("mesh.tower_model", self.tower_model, MODELS)
+        check_choice("mesh.tip_closure", self.tip_closure, TIP_CLOSURES)
         for name, lo in (("n_chord", 8), ("n_span", 2), ("n_web", 1), ("n_tower_circ", 8), ("n_tower_axial", 2)):
             v = getattr(self, name)
             if not isinstance(v, int) or v < lo:

@@ -23,9 +23,11 @@ from windflutter.errors import InputError
 def mesh_settings(config) -> dict:
     """Mesh-setting overrides from ``model.part``, ``model.mesh_density`` and ``model.n_aero_sections``: blade
     elements (= strips) along the span ``n_aero_sections * density``; for shells also the elements
-    around a section (default 40, kept even) and along / around the tower."""
+    around a section (default 40, kept even) and along / around the tower, and ``model.tip_closure``."""
     d = config.model.mesh_density
     out = {"part": config.model.part, "n_span": max(4, int(round(config.model.n_aero_sections * d)))}
+    if config.model.type == "shell":
+        out["tip_closure"] = config.model.tip_closure
     if config.model.type == "shell" and d != 1.0:
         out["n_chord"] = max(8, 2 * int(round(20 * d)))
         out["n_tower_circ"] = max(8, int(round(20 * d)))

@@ -63,6 +63,10 @@ def rigid_link_rows(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
             cols.append(6 * i + nz[1])
             vals.append(g[nz])
             deps.append(6 * dep + c)
+    for k, dia in enumerate(getattr(fe, "diaphragms", [])):
+        for part in diaphragm_rows(x, dia, k):
+            for lst, v in zip((rows, cols, vals, deps), part):
+                lst.append(v)
     if not deps:
         e = np.zeros(0, dtype=np.int64)
         return e, e, e, np.zeros(0)
@@ -72,6 +76,43 @@ def rigid_link_rows(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
         d = int(uniq[counts > 1][0])
         raise ModelError(f"DOF {d % 6} of node {d // 6} is dependent in more than one rigid link")
     return uniq, np.concatenate(rows), np.concatenate(cols), np.concatenate(vals)
+
+
+def diaphragm_rows(x: np.ndarray, dia, k: int):
+    """Relation rows of one :class:`~windflutter.structure.fem.Diaphragm` (see
+    :func:`rigid_link_rows`).
+
+    With an in-plane basis ``E`` (2 x 3) of the plane normal to ``n``, every dependent node obeys
+    ``E u_d = E (u_i + theta_i x r)``, ``r = x_d - x_i``.  The two global components eliminated
+    are those other than ``c = argmax |n_c|`` (the determinant of ``E`` on them is ``+-n_c``, the
+    largest possible), so ``u_d[ab] = E_ab^-1 E (u_i - S(r) theta_i) - E_ab^-1 E_c u_d[c]``.
+    Yields ``(rows, cols, vals, deps)`` arrays.
+    """
+    dep = np.atleast_1d(np.asarray(dia.dependent, dtype=np.int64))
+    i = int(dia.independent)
+    if np.any(dep == i):
+        raise InputError(f"diaphragms[{k}].dependent", i, "nodes other than the independent node")
+    n = np.asarray(dia.normal, float)
+    n = n / np.linalg.norm(n)
+    e1 = np.cross(n, np.eye(3)[int(np.argmin(np.abs(n)))])
+    e1 /= np.linalg.norm(e1)
+    E = np.vstack([e1, np.cross(n, e1)])  # (2, 3)
+    c = int(np.argmax(np.abs(n)))
+    ab = [j for j in range(3) if j != c]
+    Einv = np.linalg.inv(E[:, ab])  # (2, 2)
+    r = x[dep] - x[i]
+    # coefficients on the independent node's 6 DOFs and on the dependent node's own component c
+    on_i = np.concatenate([np.broadcast_to(Einv @ E, (dep.size, 2, 3)), -np.einsum("ab,bk,nkl->nal", Einv, E, skew(r))],
+                          axis=2)  # (nd, 2, 6)
+    on_c = -(Einv @ E[:, c])  # (2,)
+    for q, comp in enumerate(ab):
+        g = on_i[:, q, :]
+        nz = np.nonzero(np.abs(g) > 1e-14)
+        rows = np.concatenate([6 * dep[nz[0]] + comp, 6 * dep + comp])
+        cols = np.concatenate([6 * i + nz[1], 6 * dep + c])
+        vals = np.concatenate([g[nz], np.full(dep.size, on_c[q])])
+        keep = np.abs(vals) > 1e-14
+        yield rows[keep], cols[keep], vals[keep], 6 * dep + comp
 
 
 def constraint_map(fe: FEModel, extra_fixed: np.ndarray | None = None) -> tuple[sp.csr_matrix, np.ndarray]:

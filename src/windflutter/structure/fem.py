@@ -205,6 +205,22 @@ class RigidLink:
 
 
 @dataclass(frozen=True)
+class Diaphragm:
+    """In-plane rigid tie (a rib): the dependent nodes follow the independent node's rigid motion
+    *in the plane normal to* ``normal`` -- the two in-plane translations and the rotation about
+    ``normal`` -- and keep their out-of-plane translation and rotations free.
+
+    This is the assumption of thin-walled beam theory for a cross-section (its shape is kept in its
+    plane, warping is free), imposed on a shell blade's end section as a thin closing rib would.
+    """
+
+    independent: int
+    dependent: np.ndarray
+    normal: np.ndarray
+    name: str = ""
+
+
+@dataclass(frozen=True)
 class Spring:
     """Linear spring (6x6 stiffness) between two nodes, or from a node to ground (node_b None)."""
 
@@ -229,7 +245,7 @@ class FEModel:
     beam_section : (nb,) int, index into ``beam_sections``.
     beam_orient : (nb, 3) float, section y-axis reference vector per element.
     beam_sections : list of :class:`BeamSection`.
-    masses, rigid_links, springs : lists of the corresponding items.
+    masses, rigid_links, diaphragms, springs : lists of the corresponding items.
     spc : dict node -> tuple of constrained components (0..5), value 0.
     node_groups : named node sets, e.g. ``"blade1"``, ``"tower"``, ``"rotor"`` (the rotating
         part, used for Coriolis/centrifugal terms).
@@ -248,6 +264,7 @@ class FEModel:
     beam_sections: list[BeamSection] = field(default_factory=list)
     masses: list[LumpedMass] = field(default_factory=list)
     rigid_links: list[RigidLink] = field(default_factory=list)
+    diaphragms: list[Diaphragm] = field(default_factory=list)
     springs: list[Spring] = field(default_factory=list)
     spc: dict[int, tuple[int, ...]] = field(default_factory=dict)
     node_groups: dict[str, np.ndarray] = field(default_factory=dict)
@@ -297,6 +314,13 @@ class FEModel:
             dep = np.asarray(r.dependent)
             if not 0 <= r.independent < n or (dep.size and (dep.min() < 0 or dep.max() >= n)):
                 raise InputError(f"rigid_links[{i}]", r.name or i, f"node indices in 0..{n - 1}")
+        for i, r in enumerate(self.diaphragms):
+            dep = np.asarray(r.dependent)
+            if not 0 <= r.independent < n or (dep.size and (dep.min() < 0 or dep.max() >= n)):
+                raise InputError(f"diaphragms[{i}]", r.name or i, f"node indices in 0..{n - 1}")
+            nv = np.asarray(r.normal, float)
+            if nv.shape != (3,) or not np.all(np.isfinite(nv)) or np.linalg.norm(nv) == 0:
+                raise InputError(f"diaphragms[{i}].normal", r.normal, "a non-zero 3-vector")
         for node in self.spc:
             if not 0 <= node < n:
                 raise InputError("spc", node, f"a node index in 0..{n - 1}")

@@ -94,7 +94,7 @@ def read_bdf(path: str | Path) -> FEModel:
 
     Supported: GRID (any CP), CQUAD4 (THETA or MCID, ZOFFS) with PSHELL/PCOMP and MAT1/MAT8,
     CBEAM with PBEAM (constant section) and CBAR with PBAR, CONM2 (CID 0/-1), RBE2, SPC1/SPC
-    (all sets), CELAS1/CELAS2 between like components.  Node indices follow ascending GRID id;
+    (all sets), the MPC cards of windflutter's diaphragms (from the ``$WF`` data), CELAS1/CELAS2 between like components.  Node indices follow ascending GRID id;
     elements ascending element id.  Anything else raises :class:`InputError` naming the cards.
     Decks written by :func:`write_bdf` are restored exactly (names, regions, node groups and
     the full 6x6 beam sections from the ``$WF`` comments).
@@ -117,7 +117,8 @@ def read_bdf(path: str | Path) -> FEModel:
         nodes=grids.xyz, shell_conn=shell_conn, shell_prop=shell_prop, shell_matdir=shell_matdir,
         shell_properties=shell_properties, beam_conn=beam_conn, beam_section=beam_section,
         beam_orient=beam_orient, beam_sections=beam_sections, masses=_read.masses(model, meta, grids),
-        rigid_links=_read.rigid_links(model, meta, grids), springs=_read.springs(model, meta, grids),
+        rigid_links=_read.rigid_links(model, meta, grids), diaphragms=_read.diaphragms(model, meta, source),
+        springs=_read.springs(model, meta, grids),
         spc=_read.spcs(model, grids), node_groups=groups, element_regions=regions,
         region_names=region_names,
     )

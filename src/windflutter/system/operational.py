@@ -296,7 +296,10 @@ class OperationalModel:
         if o.deflection:
             beam = "co-rotational beam" if o.corotational and o.model == "beam" else "linear structure, second-order loads"
             steady = f"deflected (BEM, centrifugal + aero loads; {beam})"
-        return {"frame": "ground-fixed (multi-blade coordinates)", "model": o.model, "part": o.part,
+        model = o.model
+        if o.model == "shell":
+            model = f"shell (blade tips: {(o.mesh or {}).get('tip_closure', 'rib')})"
+        return {"frame": "ground-fixed (multi-blade coordinates)", "model": model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
                 "steady_state": steady,
                 "structure": ("linearized about the deflected shape (co-rotational beam, all stress resultants)"

@@ -47,7 +47,8 @@ def rotate_blade(fe, struct: Structural, sections, R: np.ndarray, point: np.ndar
     fe2 = replace(fe, nodes=nodes, shell_matdir=np.asarray(fe.shell_matdir) @ R.T,
                   beam_orient=np.asarray(fe.beam_orient) @ R.T,
                   masses=[replace(m, inertia=R @ np.asarray(m.inertia) @ R.T, offset=R @ np.asarray(m.offset))
-                          for m in fe.masses])
+                          for m in fe.masses],
+                  diaphragms=[replace(d, normal=R @ np.asarray(d.normal, float)) for d in fe.diaphragms])
     st2 = Structural(fe=fe2, M=(TR @ struct.M @ TR.T).tocsr(), K=(TR @ struct.K @ TR.T).tocsr(),
                      T=(TR @ struct.T).tocsr(), free_dofs=struct.free_dofs, auto_spc=struct.auto_spc)
     st2.__dict__["Kr"], st2.__dict__["Mr"] = struct.Kr, struct.Mr  # unchanged (same coordinates)

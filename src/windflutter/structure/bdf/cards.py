@@ -228,5 +228,8 @@ CARDS = {c.name: c for c in (
     Card("CELAS1", _f("EID:I:eid PID:I:pid G1:I:node_ids[0] C1:I:c1:0 G2:I:node_ids[1] C2:I:c2:0")),
     Card("CELAS2", _f("EID:I:eid K:R:k G1:I:node_ids[0] C1:I:c1:0 G2:I:node_ids[1] C2:I:c2:0")),
     Card("SPC1", _f("SID:I C:C:components"), repeat=_f("G:I:node_ids")),
+    # two (grid, component, coefficient) terms per line, the last field and the continuation's first
+    # blank: the repeated group spans one small-field line (the card is written, not read)
+    Card("MPC", _f("SID:I"), repeat=_f("G1:I C1:I A1:R G2:I C2:I A2:R B1:I B2:I")),
     Card("SPC", _f("SID:I"), repeat=_f("G:I:node_ids C:C:components D:R:enforced")),
 )}

@@ -294,6 +294,17 @@ def rigid_links(model: Any, meta: dict, grids: Grids) -> list[fem.RigidLink]:
     return out
 
 
+def diaphragms(model: Any, meta: dict, source: str) -> list[fem.Diaphragm]:
+    """The diaphragms of a deck written by windflutter (its MPC cards, restored from the ``$WF``
+    data); MPC cards of any other deck are refused (no general MPC support)."""
+    saved = meta.get("diaphragms", [])
+    if getattr(model, "mpcs", None) and not saved:
+        raise InputError("MPC", sorted(model.mpcs), "no MPC cards (only RBE2 ties are read), or a deck "
+                         "written by windflutter", source=source)
+    return [fem.Diaphragm(int(d["independent"]), np.asarray(d["dependent"], np.int64),
+                          np.asarray(d["normal"], float), name=d.get("name", "")) for d in saved]
+
+
 def spcs(model: Any, grids: Grids) -> dict[int, tuple[int, ...]]:
     """Union of all SPC1 / SPC sets (zero enforced values only)."""
     spc: dict[int, set[int]] = {}

@@ -14,6 +14,8 @@ from windflutter.structure.bdf.cards import CARDS, BdfApproximationWarning
 from windflutter.structure.fem import FEModel, IsotropicMaterial, OrthotropicMaterial
 
 META_TAG = "$WF "
+#: the MPC set of the diaphragms
+MPC_SET = 2
 META_WIDTH = 72
 
 
@@ -25,7 +27,7 @@ def bdf_text(fe: FEModel, title: str, full_deck: bool, n_modes: int) -> str:
         deck.case_control(title, n_modes)
     deck.out.append("$ written by windflutter.structure.io_bdf; SI units (m, kg, s, N)\n"
                     f"$ {fe.n_nodes} GRID, {len(fe.shell_conn)} CQUAD4, {len(fe.beam_conn)} CBEAM, "
-                    f"{len(fe.masses)} CONM2, {len(fe.rigid_links)} RBE2\n")
+                    f"{len(fe.masses)} CONM2, {len(fe.rigid_links)} RBE2, {len(fe.diaphragms)} diaphragms (MPC)\n")
     deck.grids()
     deck.shell_properties()
     deck.beam_properties()
@@ -34,6 +36,7 @@ def bdf_text(fe: FEModel, title: str, full_deck: bool, n_modes: int) -> str:
     deck.beams()
     deck.masses()
     deck.rigid_links()
+    deck.diaphragms()
     deck.springs()
     deck.spcs()
     return deck.finish()
@@ -74,6 +77,8 @@ class _Deck:
         self.out.append(f"TITLE = {title[:60]}\nECHO = NONE\n")
         if self.fe.spc:
             self.out.append("SPC = 1\n")
+        if self.fe.diaphragms:
+            self.out.append(f"MPC = {MPC_SET}\n")
         self.out.append("METHOD = 1\nDISPLACEMENT(PLOT) = ALL\nBEGIN BULK\n")
         self.out.append("PARAM,COUPMASS,1\nPARAM,GRDPNT,0\nPARAM,WTMASS,1.0\n")
         self.card("EIGRL", SID=1, V1=None, V2=None, ND=int(n_modes))
@@ -192,6 +197,26 @@ class _Deck:
             rows = [(g,) for g in (np.asarray(r.dependent, np.int64) + 1).tolist()]
             self.card("RBE2", rows, EID=self.next_eid(), GN=r.independent + 1, CM=comps)
         self.meta["rigid_links"] = [r.name for r in self.fe.rigid_links]
+
+    def diaphragms(self) -> None:
+        """One MPC (set :data:`MPC_SET`) per eliminated DOF of every diaphragm: ``u_dep - sum a u = 0``
+        (the relation :mod:`windflutter.structure.constraints` imposes); the diaphragms themselves in
+        the ``$WF`` data."""
+        from windflutter.structure.constraints import diaphragm_rows
+
+        x = np.asarray(self.fe.nodes, float)
+        for k, dia in enumerate(self.fe.diaphragms):
+            for rows, cols, vals, deps in diaphragm_rows(x, dia, k):
+                for d in deps:
+                    on = rows == d
+                    terms = [(int(d) // 6 + 1, int(d) % 6 + 1, 1.0)]
+                    terms += [(int(c) // 6 + 1, int(c) % 6 + 1, -float(v)) for c, v in zip(cols[on], vals[on])]
+                    terms += [(None, None, None)] * (len(terms) % 2)
+                    lines = [terms[i] + terms[i + 1] + (None, None) for i in range(0, len(terms), 2)]
+                    self.card("MPC", lines, SID=MPC_SET)
+        self.meta["diaphragms"] = [{"name": d.name, "independent": int(d.independent),
+                                    "dependent": np.asarray(d.dependent, np.int64).tolist(),
+                                    "normal": np.asarray(d.normal, float).tolist()} for d in self.fe.diaphragms]
 
     def springs(self) -> None:
         """CELAS2 per non-zero diagonal entry (off-diagonal terms: warning, kept in $WF)."""
