@@ -295,3 +295,73 @@ def test_tower_names_are_limited_to_the_supports_modes(windflutter_points):
         assert names.count("2nd tower side-side") <= 1, (v, names)
     by = {m.name: m for m in windflutter_points[10.0]}
     assert by["1st edge collective"].frequency_hz < by["2nd edge BW"].frequency_hz < 2.5
+
+
+# ------------------------------------------------------------------ the 1st torsion region by shape
+#: HAWCStab2's tip amplitudes (its .amp file, modes.csv) and ours (ModeRecord.multiblade_amplitudes):
+#: the same quantities, blade tip flap / edge (m) and torsion (rad) in multi-blade components
+TIP_AMPLITUDES = {f"{w}_{d}": f"{w}_{d}" for d in ("edge", "flap", "tors") for w in ("sym", "bw", "fw")}
+
+
+def _shape_pairs(points, min_hz=6.0, max_hz=8.2, df=0.10, min_cos=0.8):
+    """HAWCStab2's torsion modes (its largest tip amplitude a torsion one, ``min_hz``-``max_hz``) paired
+    one to one (maximum total similarity) with our blade modes (less than half their kinetic energy in
+    the support) within ``df`` in natural frequency whose tip amplitudes are alike: cosine of the two
+    9-vectors of magnitudes (sym / BW / FW x edge / flap / torsion) at least ``min_cos``.  Yields
+    (wind, HAWCStab2 label, natural frequency, zeta, our mode or None, cosine)."""
+    import csv
+
+    from scipy.optimize import linear_sum_assignment
+
+    rows = list(csv.DictReader(open(DATA / "modes.csv")))
+    keys = list(TIP_AMPLITUDES)
+    for v, modes in points.items():
+        ref = [r for r in rows if float(r["wind_speed"]) == v and min_hz < float(r["frequency_hz"]) < max_hz
+               and float(r["damping_pct"]) < 99.0 and r["blade_label"].endswith("tors")]
+        ours = [m for m in modes if m.energy.get("support", 0.0) < 0.5 and m.tip is not None]
+        if not ref or not ours:
+            continue
+        A = np.array([[float(r[k]) for k in keys] for r in ref])
+        B = np.array([[m.multiblade_amplitudes()[TIP_AMPLITUDES[k]] for k in keys] for m in ours])
+        cos = (A / np.linalg.norm(A, axis=1, keepdims=True)) @ (B / np.linalg.norm(B, axis=1, keepdims=True)).T
+        z = np.array([float(r["damping_pct"]) / 100.0 for r in ref])
+        fn = np.array([float(r["frequency_hz"]) for r in ref]) / np.sqrt(1 - z**2)
+        f = np.array([m.frequency_hz for m in ours])
+        ok = (np.abs(f[None, :] / fn[:, None] - 1) <= df) & (cos >= min_cos)
+        rr, cc = linear_sum_assignment(-np.where(ok, cos, -1.0))
+        paired = {int(i): int(j) for i, j in zip(rr, cc) if ok[i, j]}
+        for i, r in enumerate(ref):
+            j = paired.get(i)
+            yield v, r["blade_label"], fn[i], z[i], (ours[j] if j is not None else None), (cos[i, j] if j is not None else 0.0)
+
+
+@pytest.mark.parametrize("points, min_identified", [("windflutter_points", 7), ("hawcstab2_configuration_points", 8)])
+def test_iea15mw_1st_torsion_decay_rates_by_mode_shape(request, points, min_identified):
+    """Issue 14's 35 % band on the 1st torsion modes' decay rate.  HAWCStab2 names none of its modes;
+    its amplitude file gives each mode's blade-tip motion (flap, edge, torsion in symmetric, BW and FW
+    components), and ours gives the same quantities, so the torsion modes are paired by that shape, not
+    by frequency alone (between 6.5 and 8 Hz both codes have 3-5 edge-torsion-flap modes per wind
+    speed within a few per cent).  Measured (2 Dec 2026; HAWCStab2's torsion-labelled modes: 3, 1, 3, 1
+    and 1 at 5-25 m/s): with the windIO description 7 of the 9 paired, decay-rate ratios 0.81-1.05,
+    tip shapes alike to cosines 0.87-0.98; in HAWCStab2's configuration 8 of 9, ratios 0.85-1.05,
+    cosines 0.88-1.00; both counts required.  Our natural frequencies are 5-7 % below HAWCStab2's,
+    hence the 10 % window (the collective torsion modes lie 5.5-6.5 % apart).  The 5 m/s BW torsion
+    mode (a mix of BW and FW flap, edge and torsion) has no counterpart in either configuration, the
+    15 m/s one none with the windIO description.  Ours are named "1st torsion ..." or, where the
+    torsion couples with flap, "n-th flap ..." (the largest strip-motion energy): the names are not
+    used.  Without the support-share rule the windIO description's 15 m/s BW torsion mode paired with
+    our 4th tower fore-aft mode (6.58 Hz, 65 % of its energy in the tower, 2.6 % damped: ratio 0.31),
+    whose tip moves alike; HAWCStab2's tower top moves 0.2 % of its blade tip in that mode."""
+    pts = request.getfixturevalue(points)
+    identified, lines = 0, []
+    for v, label, f, z, m, cos in _shape_pairs(pts):
+        if m is None:
+            lines.append(f"{v:4.0f} m/s HAWCStab2 {label} {f:.3f} Hz: no mode of ours with its tip shape")
+            continue
+        identified += 1
+        ratio = -m.eigenvalue.real / (z * 2 * np.pi * f)
+        lines.append(f"{v:4.0f} m/s HAWCStab2 {label} {f:.3f} Hz zeta {100 * z:.2f} % <- {m.name} "
+                     f"{m.frequency_hz:.3f} Hz zeta {100 * m.damping_ratio:.2f} % (cos {cos:.2f}): ratio {ratio:.2f}")
+        assert abs(ratio - 1) <= 0.35, "\n".join(lines)
+    print("\n".join(lines))
+    assert identified >= min_identified, "\n".join(lines)

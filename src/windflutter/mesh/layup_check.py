@@ -16,7 +16,9 @@ when a file has no 6x6) at the file's own 6x6 stations and compares, station by 
   of the bending block condensed about the tension centre (the Schur complement of EA), which is
   independent of the reference point and of the section frame's twist, so a diagonal 6x6 given at
   the elastic axis (BeamDyn NREL 5 MW) and a coupled one at the pitch axis compare alike;
-* torsion stiffness ``GJ`` (N m^2);
+* torsion stiffness ``GJ`` (N m^2) about the shear centre: the torsion entry condensed over the
+  shear strains (the Schur complement of the shear block, where it is given), so a 6x6 at the
+  pitch axis with shear-torsion couplings and one without compare alike;
 * axial stiffness ``EA`` (N), shown but not judged (it hardly moves the lowest modes).
 
 The verdict of each judged quantity is its *span median*: the median of the station ratios
@@ -239,6 +241,19 @@ def principal_bending(K: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return ev[:, 0], ev[:, 1]
 
 
+def torsion_stiffness(K: np.ndarray) -> np.ndarray:
+    """(n,) torsion stiffness (N m^2) about the shear centre of (n, 6, 6) section stiffnesses:
+    ``K33 - k^T GA^-1 k`` with ``GA = K[1:3, 1:3]`` and ``k = K[1:3, 3]``; ``K33`` where the shear
+    block is not positive definite (tables without shear stiffness)."""
+    K = np.asarray(K, float)
+    GA, k = K[:, 1:3, 1:3], K[:, 1:3, 3]
+    out = K[:, 3, 3].copy()
+    ok = (np.linalg.det(GA) > 0) & (GA[:, 0, 0] > 0)
+    if np.any(ok):
+        out[ok] -= np.einsum("ni,ni->n", k[ok], np.linalg.solve(GA[ok], k[ok][:, :, None])[:, :, 0])
+    return out
+
+
 def _quantities(layup_bp, file_bp, w: np.ndarray) -> tuple[QuantityCheck, ...]:
     lf, le = principal_bending(layup_bp.stiffness)
     ff, fe = principal_bending(file_bp.stiffness)
@@ -246,7 +261,8 @@ def _quantities(layup_bp, file_bp, w: np.ndarray) -> tuple[QuantityCheck, ...]:
         ("mass", "mass", "kg/m", layup_bp.mass[:, 0, 0], file_bp.mass[:, 0, 0], MASS_TOLERANCE),
         ("EI_flap", "flap EI", "N m^2", lf, ff, STIFFNESS_TOLERANCE),
         ("EI_edge", "edge EI", "N m^2", le, fe, STIFFNESS_TOLERANCE),
-        ("GJ", "GJ", "N m^2", layup_bp.stiffness[:, 3, 3], file_bp.stiffness[:, 3, 3], STIFFNESS_TOLERANCE),
+        ("GJ", "GJ", "N m^2", torsion_stiffness(layup_bp.stiffness), torsion_stiffness(file_bp.stiffness),
+         STIFFNESS_TOLERANCE),
         ("EA", "EA", "N", layup_bp.stiffness[:, 0, 0], file_bp.stiffness[:, 0, 0], None),
     )
     return tuple(QuantityCheck(n, lab, u, np.asarray(a, float), np.asarray(b, float), w, tol)

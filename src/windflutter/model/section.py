@@ -12,7 +12,10 @@ offset of the tension centre):
   webs about the reference (pitch) axis;
 * torsion stiffness from multi-cell Bredt-Batho shear flow (cells separated by the webs);
 * shear stiffness ``GA`` from the wall shear rigidity projected on each direction (no shear
-  correction), adequate for slender blades where shear deformation is minor.
+  correction), adequate for slender blades where shear deformation is minor;
+* the shear centre from the shear flow of a bending-moment gradient with no twist in any cell
+  (:func:`shear_centre`): the shear and torsion stiffness act there, which couples shear and
+  torsion about the reference axis (``K13 = -GA_y z_s``, ``K23 = GA_z y_s``).
 
 Frame and order follow :class:`windflutter.model.turbine.BeamProperties` (section y flapwise
 towards the suction side, z chordwise towards the TE, both in the twisted chord frame; order
@@ -74,6 +77,7 @@ def thin_wall_properties(
     skin_Gt: np.ndarray,
     skin_mt: np.ndarray,
     webs: list[tuple[int, int, float, float, float]] = (),
+    with_shear_centre: bool = True,
 ) -> tuple[np.ndarray, np.ndarray]:
     """6x6 stiffness and mass of a closed thin-walled section (BeamSection order).
 
@@ -85,6 +89,8 @@ def thin_wall_properties(
     webs : (i_suction, i_pressure, E t, G t, rho t) straight walls between polygon vertices;
         ``i_suction < i_pressure``; listed from the leading edge to the trailing edge (the
         suction-side index decreasing).
+    with_shear_centre : put the shear and torsion stiffness at the shear centre (default); False:
+        at the reference axis, no shear-torsion coupling (the calculator until Dec 2026).
     """
     p0, p1 = skin_yz[:-1], skin_yz[1:]
     segs = [(p0, p1, skin_Et, skin_Gt, skin_mt)]
@@ -115,7 +121,15 @@ def thin_wall_properties(
     cy, cz = d[:, 0] / np.where(L > 0, L, 1), d[:, 1] / np.where(L > 0, L, 1)
     K[1, 1] = np.sum(Gt * L * cy * cy)
     K[2, 2] = np.sum(Gt * L * cz * cz)
-    K[3, 3] = _bredt_batho(skin_yz, skin_Gt, webs)
+    gj = _bredt_batho(skin_yz, skin_Gt, webs)
+    if with_shear_centre:
+        # shear and torsion act at the shear centre: gamma_y(s) = gamma_y - z_s kappa_x,
+        # gamma_z(s) = gamma_z + y_s kappa_x (strains about the reference axis)
+        ys, zs = shear_centre(skin_yz, skin_Et, skin_Gt, webs, K)
+        K[1, 3] = K[3, 1] = -K[1, 1] * zs
+        K[2, 3] = K[3, 2] = K[2, 2] * ys
+        gj += K[1, 1] * zs * zs + K[2, 2] * ys * ys
+    K[3, 3] = gj
     M = np.zeros((6, 6))
     m = np.sum(mt * L)
     M[0, 0] = M[1, 1] = M[2, 2] = m
@@ -130,6 +144,56 @@ def thin_wall_properties(
     M[5, 5] = Jyy
     M[4, 5] = M[5, 4] = -Jyz
     return K, M
+
+
+def shear_centre(skin_yz: np.ndarray, skin_Et: np.ndarray, skin_Gt: np.ndarray, webs=(),
+                 K: np.ndarray | None = None) -> tuple[float, float]:
+    """Shear centre ``(y_s, z_s)`` (m, about the reference axis) of a closed multi-cell thin wall.
+
+    For a unit gradient of each bending moment (no axial force) the axial stress resultant changes
+    along the span by ``E t (eps0' + z kappa_y' - y kappa_z')``; lumped on the polygon's vertices it is
+    what the wall shear flows carry off each vertex (``dq/ds = -dn_x/dx``).  The flows ``q`` (one per
+    skin segment and web) follow from that balance at every vertex and from zero twist in every
+    closed loop of a cycle basis (the skin ring, and per web the skin between its feet closed by the
+    web: ``sum q L / (G t) = 0``).  The shear centre is the point about which the two flows' resultant
+    forces have the moments the flows have.  Arguments as :func:`thin_wall_properties`; ``K`` its
+    stiffness (the axial-bending block is used), computed if not given.
+    """
+    n = skin_yz.shape[0] - 1
+    P = skin_yz[:-1]
+    a = np.concatenate([np.arange(n), [int(w[0]) for w in webs]]).astype(np.int64)
+    b = np.concatenate([(np.arange(n) + 1) % n, [int(w[1]) for w in webs]]).astype(np.int64)
+    Et = np.concatenate([skin_Et, [w[2] for w in webs]])
+    Gt = np.concatenate([skin_Gt, [w[3] for w in webs]])
+    P0, P1 = P[a], P[b]
+    L = np.hypot(*(P1 - P0).T)
+    mid = 0.5 * (P0 + P1)
+    ne, nw = a.size, len(webs)
+    if K is None:
+        K, _ = thin_wall_properties(skin_yz, skin_Et, skin_Gt, np.zeros(n), webs, with_shear_centre=False)
+    C = np.linalg.inv(K[np.ix_([0, 4, 5], [0, 4, 5])])
+    balance = np.zeros((n, ne))
+    balance[a, np.arange(ne)] += 1.0  # a flow leaves its first vertex
+    balance[b, np.arange(ne)] -= 1.0  # and enters its second
+    loops = np.zeros((1 + nw, ne))
+    loops[0, :n] = 1.0
+    for k, w in enumerate(webs):
+        loops[1 + k, int(w[0]):int(w[1])] = 1.0
+        loops[1 + k, n + k] = -1.0
+    A = np.vstack([balance, loops * (L / np.maximum(Gt, 1e-30))[None, :]])
+    rows, rhs = [], []
+    for load in ((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)):
+        e0, ky, kz = C @ np.array(load)
+        dn = Et * (e0 + mid[:, 1] * ky - mid[:, 0] * kz) * L  # axial force gradient of each wall
+        f = np.zeros(n)
+        np.add.at(f, a, 0.5 * dn)
+        np.add.at(f, b, 0.5 * dn)
+        q = np.linalg.lstsq(A, np.concatenate([f, np.zeros(1 + nw)]), rcond=None)[0]
+        F = q @ (P1 - P0)
+        rows.append([F[1], -F[0]])  # moment = y_s F_z - z_s F_y
+        rhs.append(float(q @ (P0[:, 0] * P1[:, 1] - P0[:, 1] * P1[:, 0])))
+    ys, zs = np.linalg.solve(np.array(rows), np.array(rhs))
+    return float(ys), float(zs)
 
 
 def _polygon_area(yz: np.ndarray) -> float:

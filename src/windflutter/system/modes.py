@@ -43,6 +43,10 @@ class ModeRecord:
     eigenvalue : lambda (1/s).  frequency_hz : undamped ``|lambda| / 2 pi``; damped_frequency_hz :
     ``Im lambda / 2 pi``; damping_ratio : ``-Re lambda / |lambda|``.  shape : the mode's ``q``
     (multi-blade coordinates), unit norm, for tracking.  energy : kinetic-energy shares by group.
+    tip : (3, N) complex flap (m), edge (m) and torsion (rad) of the blades' outermost strip in each
+    multi-blade coordinate (collective, cosine, sine, ...), for the mode's ``shape`` (None without
+    blades): what HAWCStab2's amplitude files give for the blade tip.  tower_top : (3,) complex
+    translation (m) of the tower-top node for the same shape (None without a support).
     """
 
     eigenvalue: complex
@@ -55,6 +59,8 @@ class ModeRecord:
     rigid: bool = False
     signature: np.ndarray | None = field(default=None, repr=False)
     blade_family: tuple | None = field(default=None, repr=False)
+    tip: np.ndarray | None = field(default=None, repr=False)
+    tower_top: np.ndarray | None = field(default=None, repr=False)
 
     @property
     def frequency_hz(self) -> float:
@@ -68,6 +74,25 @@ class ModeRecord:
     def damping_ratio(self) -> float:
         a = abs(self.eigenvalue)
         return float(-self.eigenvalue.real / a) if a > 0 else 0.0
+
+    def multiblade_amplitudes(self) -> dict[str, float] | None:
+        """Magnitudes of the tip motion in HAWCStab2's multi-blade components: ``sym_edge``,
+        ``bw_edge``, ``fw_edge``, ``sym_flap``, ... ``fw_tors`` (m; torsion rad) and of the tower top
+        along and across the wind, ``tower_fa``, ``tower_ss`` (m, with a support; HAWCStab2's TWR y
+        and TWR x): the collective
+        ``|a_0|`` and the whirling parts ``|a_c -+ i a_s| / 2`` of the first cyclic pair (FW: ``a_c + i
+        a_s``, as :func:`classify` names the whirl).  None without blades or with fewer than 3."""
+        if self.tip is None or self.tip.shape[1] < 3:
+            return None
+        a0, ac, as_ = self.tip[:, 0], self.tip[:, 1], self.tip[:, 2]
+        out = {}
+        if self.tower_top is not None:
+            out["tower_fa"], out["tower_ss"] = (float(abs(x)) for x in self.tower_top[:2])
+        for k, dof in enumerate(("flap", "edge", "tors")):
+            out[f"sym_{dof}"] = float(abs(a0[k]))
+            out[f"bw_{dof}"] = float(0.5 * abs(ac[k] - 1j * as_[k]))
+            out[f"fw_{dof}"] = float(0.5 * abs(ac[k] + 1j * as_[k]))
+        return out
 
     def as_dict(self) -> dict:
         return {"name": self.name, "family": self.family, "order": int(self.order), "whirl": self.whirl,
@@ -138,6 +163,20 @@ def _rigid_drivetrain(q: np.ndarray, labels: list) -> bool:
     return bool(abs(a - g) < 0.5 * max(abs(a), abs(g), 1e-300))
 
 
+def _amplitudes(ps, q: np.ndarray, comps: np.ndarray | None, ns: int) -> dict:
+    """``tip`` and ``tower_top`` of :class:`ModeRecord` for the mode ``q`` scaled to unit norm."""
+    scale = 1.0 / max(np.linalg.norm(q), 1e-300)
+    out = {}
+    if comps is not None:
+        quarter_chord = 0.25 * ps.blade.sections.chord[-1]
+        out["tip"] = comps[:, -1, :] * scale / np.array([1.0, 1.0, quarter_chord])[:, None]  # torsion in rad
+    sm = ps.support
+    if sm is not None and sm.fe is not None and "tower_top" in sm.fe.node_groups:
+        i_top = int(sm.fe.node_groups["tower_top"][0])
+        out["tower_top"] = np.asarray(sm.expand[6 * i_top: 6 * i_top + 3] @ q[:ns]).ravel() * scale
+    return out
+
+
 def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     """Family, whirl and energy shares of one eigenpair of ``ps.mbc`` (a :class:`PointSystem`)."""
     mb = ps.mbc
@@ -157,7 +196,7 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     shape = q / max(np.linalg.norm(q), 1e-300)
     comps = _blade_components(ps, [q[s] for s in coords]) if m else None
     sig = mode_signature(ps, q, energy, comps)
-    rec = {"shape": shape, "energy": energy, "signature": sig}
+    rec = {"shape": shape, "energy": energy, "signature": sig, **_amplitudes(ps, q, comps, ns)}
     blade = None
     if comps is not None:
         whirl = "collective"
