@@ -303,26 +303,32 @@ def test_tower_names_are_limited_to_the_supports_modes(windflutter_points):
 TIP_AMPLITUDES = {f"{w}_{d}": f"{w}_{d}" for d in ("edge", "flap", "tors") for w in ("sym", "bw", "fw")}
 
 
-def _shape_pairs(points, min_hz=6.0, max_hz=8.2, df=0.10, min_cos=0.8):
-    """HAWCStab2's torsion modes (its largest tip amplitude a torsion one, ``min_hz``-``max_hz``) paired
-    one to one (maximum total similarity) with our blade modes (less than half their kinetic energy in
-    the support) within ``df`` in natural frequency whose tip amplitudes are alike: cosine of the two
-    9-vectors of magnitudes (sym / BW / FW x edge / flap / torsion) at least ``min_cos``.  Yields
-    (wind, HAWCStab2 label, natural frequency, zeta, our mode or None, cosine)."""
+#: the tower top's motion along and across the wind: HAWCStab2's TWR y and TWR x
+TOWER_AMPLITUDES = {"twr_y": "tower_fa", "twr_x": "tower_ss"}
+
+
+def _shape_pairs(points, min_hz=6.0, max_hz=8.2, kind="tors", df=0.10, min_cos=0.8, max_support=0.5, tower=False):
+    """HAWCStab2's modes whose largest tip amplitude is of ``kind`` (``min_hz``-``max_hz``) paired one
+    to one (maximum total similarity) with our modes (less than ``max_support`` of their kinetic energy
+    in the support) within ``df`` in natural frequency whose amplitudes are alike: cosine of the two
+    vectors of magnitudes (sym / BW / FW x edge / flap / torsion at the tip, with ``tower`` also the
+    tower top's two translations) at least ``min_cos``.  Yields (wind, HAWCStab2 label, natural
+    frequency, zeta, our mode or None, cosine)."""
     import csv
 
     from scipy.optimize import linear_sum_assignment
 
     rows = list(csv.DictReader(open(DATA / "modes.csv")))
-    keys = list(TIP_AMPLITUDES)
+    names = {**TIP_AMPLITUDES, **(TOWER_AMPLITUDES if tower else {})}
+    keys = list(names)
     for v, modes in points.items():
         ref = [r for r in rows if float(r["wind_speed"]) == v and min_hz < float(r["frequency_hz"]) < max_hz
-               and float(r["damping_pct"]) < 99.0 and r["blade_label"].endswith("tors")]
-        ours = [m for m in modes if m.energy.get("support", 0.0) < 0.5 and m.tip is not None]
+               and float(r["damping_pct"]) < 99.0 and r["blade_label"].endswith(kind)]
+        ours = [m for m in modes if m.energy.get("support", 0.0) < max_support and m.tip is not None]
         if not ref or not ours:
             continue
         A = np.array([[float(r[k]) for k in keys] for r in ref])
-        B = np.array([[m.multiblade_amplitudes()[TIP_AMPLITUDES[k]] for k in keys] for m in ours])
+        B = np.array([[m.multiblade_amplitudes()[names[k]] for k in keys] for m in ours])
         cos = (A / np.linalg.norm(A, axis=1, keepdims=True)) @ (B / np.linalg.norm(B, axis=1, keepdims=True)).T
         z = np.array([float(r["damping_pct"]) / 100.0 for r in ref])
         fn = np.array([float(r["frequency_hz"]) for r in ref]) / np.sqrt(1 - z**2)
@@ -365,3 +371,42 @@ def test_iea15mw_1st_torsion_decay_rates_by_mode_shape(request, points, min_iden
         assert abs(ratio - 1) <= 0.35, "\n".join(lines)
     print("\n".join(lines))
     assert identified >= min_identified, "\n".join(lines)
+
+
+#: HAWCStab2's 2nd-edge-region modes (wind speed, natural frequency Hz rounded to 0.01) that miss the
+#: criterion, by configuration; each must still miss, so the lists cannot go stale
+SECOND_EDGE_MISSES = {
+    "windflutter_points": {(5.0, 2.03), (10.0, 2.0), (10.0, 2.08), (25.0, 1.91)},
+    "hawcstab2_configuration_points": {(5.0, 2.03), (10.0, 2.0), (10.0, 2.08)},
+}
+
+
+@pytest.mark.parametrize("points", ["windflutter_points", "hawcstab2_configuration_points"])
+def test_iea15mw_2nd_edge_damping_by_mode_shape(request, points):
+    """Issue 14's edge criterion (decay rate within 35 % or the damping ratio within 1 point) for the
+    2nd edge region: HAWCStab2's 1.6-2.45 Hz modes whose largest tip amplitude is an edge one (4-5 per
+    wind speed, all labelled "BW edge" or "FW edge" there: 2nd edge, 2nd tower and coupled flap modes
+    mixed), paired by tip and tower-top shape as the torsion modes (any share of support energy: the
+    2nd tower modes of both codes are among them).  Measured (2 Dec 2026): all 20 paired, shape cosines
+    0.90-1.00 (ours named 2nd tower fore-aft / side-side, 2nd edge BW / FW, 2nd / 3rd flap BW / FW);
+    16 pass with the windIO description, 17 in HAWCStab2's configuration.  The misses (SECOND_EDGE_
+    MISSES) are the 2.0-2.1 Hz BW modes at 5 and 10 m/s where our 2nd tower side-side and 2nd edge BW
+    modes couple (ours 4.2-6.8 % damped against HAWCStab2's 1.75-3.4 %: a tower-edge coupling that the
+    two codes' towers place differently), and with the windIO description the 25 m/s FW mode at 1.91
+    Hz (0.79 % against 1.87 %; 1.57 % in HAWCStab2's configuration)."""
+    pts = request.getfixturevalue(points)
+    lines, misses, n = [], set(), 0
+    for v, label, f, z, m, cos in _shape_pairs(pts, 1.6, 2.45, kind="edge", max_support=1.01, tower=True):
+        assert m is not None, f"{v} m/s HAWCStab2 {label} {f:.3f} Hz has no mode of ours with its shape"
+        n += 1
+        ratio = -m.eigenvalue.real / (z * 2 * np.pi * f)
+        dz = m.damping_ratio - z
+        ok = abs(ratio - 1) <= 0.35 or abs(dz) <= 0.01
+        lines.append(f"{v:4.0f} m/s HAWCStab2 {label} {f:.3f} Hz zeta {100 * z:.2f} % <- {m.name} {m.frequency_hz:.3f} Hz "
+                     f"zeta {100 * m.damping_ratio:.2f} % (cos {cos:.2f}): ratio {ratio:.2f}, {100 * dz:+.2f} point"
+                     + ("" if ok else "  MISS"))
+        if not ok:
+            misses.add((v, round(float(f), 2)))
+    print("\n".join(lines))
+    assert n == 20, "\n".join(lines)
+    assert misses == SECOND_EDGE_MISSES[points], "\n".join(lines)
