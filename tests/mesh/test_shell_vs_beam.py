@@ -132,13 +132,14 @@ def test_seed5mw_rotor_onsets_shell_vs_beam(capsys):
 
     Measured (2 Dec 2026): beam flutter 20.43 RPM at 3.93 Hz, divergence 25.63 RPM (20.40 / 25.60
     with 90 elements); shell 40x30 flutter 23.22 RPM at 4.49 Hz, divergence 27.98 RPM (+13.7 % /
-    +9.2 %).  The convergence study (docs/verification.md section 11, item 4) refines the shell along
-    the span with one strip per element: 40x60 21.88 / 27.12, 40x90 21.59 / 26.84 RPM; extrapolated
-    (second order) 21.4 / 26.6 RPM, +5 % / +4 % against the converged beam.  Two causes of the former
-    disagreement were found: the open tip section (tip_closure: open gave the shell 16.99 / 25.90 at
-    40x30, its local buckling driving the onsets) and the beam sections' shear centre on the
-    reference axis (the thin-walled beam then gave 20.57 / 23.97).  This test pins the coarse mesh's
-    gaps (flutter +5 ... +20 %, divergence +3 ... +15 %) so that a change to either model shows."""
+    +9.2 %).  The convergence study (docs/verification.md section 11, item 4; docs/scripts/
+    shell_vs_beam_onsets.py) traces the gap: along the span 40x60 21.88 / 27.12, 40x90 21.59 / 26.84,
+    40x120 21.65 / 26.91 RPM; with the skin on the laminate midsurface (the beam's wall midline)
+    40x90 gives 20.25 / 25.11, within 2 % of the beam.  Two former causes were fixed: the open tip
+    section (tip_closure: open gave the shell 16.99 / 25.90 at 40x30, its local buckling driving the
+    onsets) and the beam sections' shear centre on the reference axis (the beam then gave 20.57 /
+    23.97).  This test pins the default mesh's gaps (flutter +5 ... +20 %, divergence +3 ... +15 %)
+    so that a change to either model shows."""
     beam, shell = _onset("beam", capsys), _onset("shell", capsys)
     print("beam", beam, "shell", shell)
     assert 0.03 < shell["divergence_rpm"] / beam["divergence_rpm"] - 1 < 0.15

@@ -209,6 +209,7 @@ SOLVER_FLAGS = (
     Flag("--n-span", "model.n_aero_sections", metavar="N", help="blade elements (one aerodynamic strip each) "
          "along the span"),
     Flag("--part", "model.part"),
+    Flag("--tip-closure", "model.tip_closure"),
     Flag("--reduction", "solver.reduction"),
     Flag("--basis-modes", "solver.basis_modes", metavar="N"),
     Flag("--n-tracked", "solver.n_tracked", metavar="N"),
