@@ -20,6 +20,7 @@ no frequency matching is needed (the p-method; the seed's p-k and 8-k searches r
 from __future__ import annotations
 
 import math
+from collections import OrderedDict
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,6 +34,9 @@ from windflutter.stability.turbine import PointSummary
 from windflutter.system.modes import point_modes
 
 RPM = math.pi / 30.0
+#: operating points (models and modes) kept by OperationalStability: the bracket of a root search
+#: and its last trial points
+POINT_CACHE = 6
 
 
 @dataclass(frozen=True)
@@ -131,6 +135,7 @@ class OperationalStability:
         self.model = OperationalModel(turbine, options)
         self.search = search or SearchSettings()
         self._max_hz = None
+        self._points: OrderedDict = OrderedDict()
 
     def max_hz(self, pitch: float) -> float:
         if self.search.max_hz is not None:
@@ -151,8 +156,19 @@ class OperationalStability:
         return np.concatenate([[om_op], g[g > om_op + 1e-9]])
 
     def _modes(self, wind_speed: float, rpm: float, pitch: float):
+        """``(PointSystem, modes)`` at a rotor speed, the last :data:`POINT_CACHE` kept: the root
+        searches start from the two sweep points that bracket a crossing, and the flutter search ends
+        on a point it evaluated (a shell point costs 3-5 s)."""
+        key = (float(wind_speed), float(rpm), float(pitch))
+        if key in self._points:
+            self._points.move_to_end(key)
+            return self._points[key]
         ps = self.model.at(wind_speed, rpm=rpm, pitch=pitch)
-        return ps, [m for m in point_modes(ps, max_hz=self.max_hz(pitch)) if not m.rigid]
+        out = (ps, [m for m in point_modes(ps, max_hz=self.max_hz(pitch)) if not m.rigid])
+        self._points[key] = out
+        while len(self._points) > POINT_CACHE:
+            self._points.popitem(last=False)
+        return out
 
     def analyse_operating_point(self, wind_speed: float, rpm_grid=None, progress=None) -> PointSummary:
         """Onsets of flutter and divergence above the operating point at ``wind_speed`` (m/s)."""
@@ -182,7 +198,7 @@ class OperationalStability:
             sweep.append((float(rpm), modes))
             margins.append(blade_static_margin(ps))
             if on.divergence is None and i > 0 and margins[-2] > 0 >= margins[-1]:
-                on.divergence = self._locate(lambda r: blade_static_margin(self.model.at(wind_speed, r, pitch)),
+                on.divergence = self._locate(lambda r: blade_static_margin(self._modes(wind_speed, r, pitch)[0]),
                                              grid[i - 1], rpm)
             if flutter is None and i > 0:
                 flutter = self._flutter(wind_speed, pitch, sweep[-2], sweep[-1])
