@@ -47,7 +47,7 @@ def test_a_structural_instability_stops_the_sweep_with_a_note(monkeypatch):
 
 @pytest.mark.slow
 def test_nrel5mw_shell_tip_instability_is_not_divergence():
-    """The real case (36 s): the shell blade at 8 m/s with its tip section left open (the seed's
+    """The real case (36 s): the shell blade at 8 m/s with its tip section left open (the
     free skin edge, ``model.tip_closure: open``)."""
     (p,) = windflutter.stability("nrel5mw", [8.0], model={"type": "shell", "tip_closure": "open"})
     note = p.as_dict()["note"]
