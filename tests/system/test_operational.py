@@ -160,3 +160,37 @@ def test_multiblade_amplitudes_split_the_whirl():
     assert a["bw_tors"] == pytest.approx(0.05) and a["fw_tors"] == pytest.approx(0.05)
     assert a["tower_fa"] == pytest.approx(0.3) and a["tower_ss"] == pytest.approx(0.4)
     assert ModeRecord(1j, "tower_fa", "none").multiblade_amplitudes() is None
+
+
+def test_amp_file_holds_the_cmb_modes_amplitudes(nrel_campbell, tmp_path):
+    """The .amp beside the .cmb: read as HAWCStab2's own (docs/scripts/extract_hawcstab2_modes.py:
+    ``row[1:].reshape(n_modes, 30)``), column k is the .cmb's mode k at every wind speed -- its
+    magnitudes those of the mode's multi-blade components over their largest, NaN for the tower yaw
+    and the shaft, and a mode's largest magnitude 1 with phase 0."""
+    from windflutter.post.campbell_amp import write_amp
+    from windflutter.post.campbell_export import cmb_tracks, read_cmb, write_cmb
+
+    cmb = read_cmb(write_cmb(nrel_campbell, tmp_path / "t.cmb"))
+    amp = np.loadtxt(write_amp(nrel_campbell, tmp_path / "t.amp"), comments="#")
+    n = cmb.frequency.shape[1]
+    assert amp.shape == (3, 1 + 30 * n)
+    np.testing.assert_array_equal(amp[:, 0], cmb.wind_speed)
+    order, keep = cmb_tracks(nrel_campbell)
+    assert len(keep) == n
+    mag = amp[:, 1:].reshape(3, n, 15, 2)
+    for r, i in enumerate(order):
+        pt = nrel_campbell.points[i]
+        for c, t in enumerate(keep):
+            k = nrel_campbell.tracks[t].index[i]
+            if k < 0:
+                assert np.all(np.isnan(mag[r, c])) and np.isnan(cmb.frequency[r, c])
+                continue
+            m = pt.modes[k]
+            assert cmb.frequency[r, c] == pytest.approx(m.damped_frequency_hz, rel=1e-8)
+            a = m.multiblade_amplitudes()
+            top = max(a.values())
+            np.testing.assert_allclose(mag[r, c, 6:, 0], [a[x] / top for x in ("sym_edge", "bw_edge", "fw_edge",
+                                       "sym_flap", "bw_flap", "fw_flap", "sym_tors", "bw_tors", "fw_tors")], rtol=1e-5)
+            assert np.all(np.isnan(mag[r, c, 2:6])) and np.nanmax(mag[r, c, :, 0]) == pytest.approx(1.0)
+            j = int(np.nanargmax(mag[r, c, :, 0]))
+            assert mag[r, c, j, 1] == pytest.approx(0.0, abs=1e-6)

@@ -35,6 +35,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--json", action="store_true", help="print the result as one JSON object")
     p.add_argument("--csv", default=None, metavar="FILE", help="write one row per wind speed and mode")
     p.add_argument("--cmb", default=None, metavar="FILE", help="write a HAWCStab2-style .cmb text file")
+    p.add_argument("--amp", default=None, metavar="FILE", help="write a HAWCStab2-style .amp text file (each "
+                   "mode's tower-top and blade-tip amplitudes, the .cmb's modes in its order)")
     p.add_argument("--plot", default=None, metavar="FILE",
                    help="write the Campbell figure (" + ", ".join(PLOT_EXTENSIONS) + ")")
     p.set_defaults(func=run)
@@ -59,7 +61,7 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.system.operational import OperationalModel  # noqa: PLC0415
 
     config, options = _config(args)
-    for flag, exts in (("--plot", PLOT_EXTENSIONS), ("--csv", (".csv",)), ("--cmb", (".cmb", ".txt"))):
+    for flag, exts in (("--plot", PLOT_EXTENSIONS), ("--csv", (".csv",)), ("--cmb", (".cmb", ".txt")), ("--amp", (".amp", ".txt"))):
         path = getattr(args, flag.lstrip("-"))
         if path is not None:  # before the analysis
             check_output_file(path, flag, exts)
@@ -78,6 +80,10 @@ def run(args: argparse.Namespace) -> int:
         from windflutter.post.campbell_export import write_cmb  # noqa: PLC0415
 
         write_cmb(res, prepare_output_file(args.cmb))
+    if args.amp:
+        from windflutter.post.campbell_amp import write_amp  # noqa: PLC0415
+
+        write_amp(res, prepare_output_file(args.amp))
     if args.plot:
         from windflutter.post.campbell_plots import campbell_figure  # noqa: PLC0415
 

@@ -156,6 +156,14 @@ def write_cmb(campbell, path, frequency: str = "damped", field: str = "--cmb") -
     return p
 
 
+def cmb_tracks(result) -> tuple[np.ndarray, list[int]]:
+    """The rows and columns of :func:`write_cmb` for a Campbell result: its points in ascending wind
+    speed and the tracks that have a mode at some wind speed (the dataset's order)."""
+    v = np.array([float(p.wind_speed) for p in result.points])
+    keep = [t for t, tr in enumerate(result.tracks) if any(k >= 0 for k in tr.index)]
+    return np.argsort(v, kind="stable"), keep
+
+
 def read_cmb(path) -> CmbData:
     """Read a ``.cmb`` file (ours or HAWCStab2's).
 

@@ -75,24 +75,29 @@ class ModeRecord:
         a = abs(self.eigenvalue)
         return float(-self.eigenvalue.real / a) if a > 0 else 0.0
 
-    def multiblade_amplitudes(self) -> dict[str, float] | None:
-        """Magnitudes of the tip motion in HAWCStab2's multi-blade components: ``sym_edge``,
-        ``bw_edge``, ``fw_edge``, ``sym_flap``, ... ``fw_tors`` (m; torsion rad) and of the tower top
-        along and across the wind, ``tower_fa``, ``tower_ss`` (m, with a support; HAWCStab2's TWR y
-        and TWR x): the collective
-        ``|a_0|`` and the whirling parts ``|a_c -+ i a_s| / 2`` of the first cyclic pair (FW: ``a_c + i
-        a_s``, as :func:`classify` names the whirl).  None without blades or with fewer than 3."""
+    def multiblade_components(self) -> dict[str, complex] | None:
+        """The complex tip motion in HAWCStab2's multi-blade components: ``sym_edge``, ``bw_edge``,
+        ``fw_edge``, ``sym_flap``, ... ``fw_tors`` (m; torsion rad) and, with a support, the tower top
+        along and across the wind, ``tower_fa``, ``tower_ss`` (m; HAWCStab2's TWR y and TWR x): the
+        collective ``a_0`` and the whirling parts ``(a_c -+ i a_s) / 2`` of the first cyclic pair (FW:
+        ``a_c + i a_s``, as :func:`classify` names the whirl).  None without blades or with fewer
+        than 3."""
         if self.tip is None or self.tip.shape[1] < 3:
             return None
         a0, ac, as_ = self.tip[:, 0], self.tip[:, 1], self.tip[:, 2]
-        out = {}
+        out: dict[str, complex] = {}
         if self.tower_top is not None:
-            out["tower_fa"], out["tower_ss"] = (float(abs(x)) for x in self.tower_top[:2])
+            out["tower_fa"], out["tower_ss"] = (complex(x) for x in self.tower_top[:2])
         for k, dof in enumerate(("flap", "edge", "tors")):
-            out[f"sym_{dof}"] = float(abs(a0[k]))
-            out[f"bw_{dof}"] = float(0.5 * abs(ac[k] - 1j * as_[k]))
-            out[f"fw_{dof}"] = float(0.5 * abs(ac[k] + 1j * as_[k]))
+            out[f"sym_{dof}"] = complex(a0[k])
+            out[f"bw_{dof}"] = complex(0.5 * (ac[k] - 1j * as_[k]))
+            out[f"fw_{dof}"] = complex(0.5 * (ac[k] + 1j * as_[k]))
         return out
+
+    def multiblade_amplitudes(self) -> dict[str, float] | None:
+        """The magnitudes of :meth:`multiblade_components` (what HAWCStab2's amplitude files give)."""
+        c = self.multiblade_components()
+        return None if c is None else {k: float(abs(v)) for k, v in c.items()}
 
     def as_dict(self) -> dict:
         return {"name": self.name, "family": self.family, "order": int(self.order), "whirl": self.whirl,
