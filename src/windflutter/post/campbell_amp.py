@@ -15,7 +15,6 @@ a wind speed.  Magnitudes and phases from :meth:`~windflutter.system.modes.ModeR
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np
@@ -59,7 +58,7 @@ def write_amp(campbell, path, field: str = "--amp") -> Path:
         the result is not a Campbell result with modes (e.g. a dataset read back from a file), or the
         path cannot be written.
     """
-    from windflutter.post.campbell_export import _writable, cmb_tracks  # noqa: PLC0415
+    from windflutter.post.campbell_export import _writable, cmb_tracks, write_table  # noqa: PLC0415
 
     if not hasattr(campbell, "points") or not hasattr(campbell, "tracks"):
         raise InputError(field, type(campbell).__name__, "a Campbell result with its modes (the .amp needs the "
@@ -74,15 +73,12 @@ def write_amp(campbell, path, field: str = "--amp") -> Path:
              "# Mode number:" + "".join(f"{k + 1:>14d}" * (2 * len(AMP_COLUMNS)) for k in range(n)),
              "# Column num.:" + cols,
              "# Wind speed  " + names]
+    rows = []
     for i in order:
         pt = campbell.points[i]
         row = [float(pt.wind_speed)]
         for t in keep:
             k = campbell.tracks[t].index[i]
             row.extend(mode_amplitudes(pt.modes[k] if k >= 0 else None).ravel())
-        lines.append("".join(f"{x:14.6E}" if math.isfinite(x) else f"{'NaN':>14s}" for x in row))
-    try:
-        p.write_text("\n".join(lines) + "\n", encoding="utf-8")
-    except OSError as exc:
-        raise InputError(field, str(path), f"a writable file ({exc.strerror})") from None
-    return p
+        rows.append(row)
+    return write_table(p, lines, rows, 14, 6, field)

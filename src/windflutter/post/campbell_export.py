@@ -146,13 +146,20 @@ def write_cmb(campbell, path, frequency: str = "damped", field: str = "--cmb") -
     lines += [f"# mode {k + 1}: {ds['track_name'].values[t]}" for k, t in enumerate(keep)]
     f = ds[_FREQUENCY_VARS[frequency]].values[:, keep]
     z = 100.0 * ds["damping_ratio"].values[:, keep]
-    for i, v in enumerate(ds["wind_speed"].values):
-        vals = [v, *f[i], *z[i]]
-        lines.append("".join(f"{x:17.9E}" if math.isfinite(x) else f"{'NaN':>17s}" for x in vals))
+    rows = [[v, *f[i], *z[i]] for i, v in enumerate(ds["wind_speed"].values)]
+    return write_table(p, lines, rows, 17, 9, field)
+
+
+def write_table(p: Path, header: list[str], rows, width: int, digits: int, field: str) -> Path:
+    """Write ``header`` lines and the number ``rows`` in fixed columns of ``width`` (``digits`` after the
+    point, ``NaN`` for non-finite values) to ``p``; ``field`` names the option in error messages."""
+    lines = list(header)
+    for vals in rows:
+        lines.append("".join(f"{x:{width}.{digits}E}" if math.isfinite(x) else f"{'NaN':>{width}s}" for x in vals))
     try:
         p.write_text("\n".join(lines) + "\n", encoding="utf-8")
     except OSError as exc:
-        raise InputError(field, str(path), f"a writable file ({exc.strerror})") from None
+        raise InputError(field, str(p), f"a writable file ({exc.strerror})") from None
     return p
 
 
