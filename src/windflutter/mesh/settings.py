@@ -4,11 +4,11 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from windflutter.config.declarations import TIP_CLOSURES
 from windflutter.errors import InputError, check_choice
 
 PARTS = ("turbine", "blade", "tower", "rotor", "rotor_blade", "support")
 MODELS = ("shell", "beam")
-TIP_CLOSURES = ("rib", "rigid", "open")
 
 
 @dataclass(frozen=True)

@@ -111,9 +111,9 @@ def _spd_or_lu(A: sp.csc_matrix, backend: str):
     if backend == "auto":
         from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 
-        try:
-            F = SPDFactor(A)
-        except NotPositiveDefinite:
+        try:  # CHOLMOD only: without it (ImportError) the LU below is the one factorization
+            F = SPDFactor(A, backend="cholmod")
+        except (ImportError, NotPositiveDefinite):
             pass
         else:
             if F.backend == "cholmod":

@@ -63,7 +63,7 @@ def rigid_link_rows(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
             cols.append(6 * i + nz[1])
             vals.append(g[nz])
             deps.append(6 * dep + c)
-    for k, dia in enumerate(getattr(fe, "diaphragms", [])):
+    for k, dia in enumerate(fe.diaphragms):
         for part in diaphragm_rows(x, dia, k):
             for lst, v in zip((rows, cols, vals, deps), part):
                 lst.append(v)

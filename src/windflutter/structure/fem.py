@@ -310,14 +310,12 @@ class FEModel:
                 raise InputError(f"masses[{i}].node", m.node, f"a node index in 0..{n - 1}")
             if not (np.isfinite(m.mass) and m.mass >= 0):
                 raise InputError(f"masses[{i}].mass", m.mass, "a non-negative mass (kg)")
-        for i, r in enumerate(self.rigid_links):
-            dep = np.asarray(r.dependent)
-            if not 0 <= r.independent < n or (dep.size and (dep.min() < 0 or dep.max() >= n)):
-                raise InputError(f"rigid_links[{i}]", r.name or i, f"node indices in 0..{n - 1}")
+        for kind, ties in (("rigid_links", self.rigid_links), ("diaphragms", self.diaphragms)):
+            for i, r in enumerate(ties):
+                dep = np.asarray(r.dependent)
+                if not 0 <= r.independent < n or (dep.size and (dep.min() < 0 or dep.max() >= n)):
+                    raise InputError(f"{kind}[{i}]", r.name or i, f"node indices in 0..{n - 1}")
         for i, r in enumerate(self.diaphragms):
-            dep = np.asarray(r.dependent)
-            if not 0 <= r.independent < n or (dep.size and (dep.min() < 0 or dep.max() >= n)):
-                raise InputError(f"diaphragms[{i}]", r.name or i, f"node indices in 0..{n - 1}")
             nv = np.asarray(r.normal, float)
             if nv.shape != (3,) or not np.all(np.isfinite(nv)) or np.linalg.norm(nv) == 0:
                 raise InputError(f"diaphragms[{i}].normal", r.normal, "a non-zero 3-vector")

@@ -298,7 +298,7 @@ class OperationalModel:
             steady = f"deflected (BEM, centrifugal + aero loads; {beam})"
         model = o.model
         if o.model == "shell":
-            model = f"shell (blade tips: {(o.mesh or {}).get('tip_closure', 'rib')})"
+            model = f"shell (blade tips: {self._mesh('rotor_blade').tip_closure})"
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
                 "steady_state": steady,
