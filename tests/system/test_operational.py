@@ -194,3 +194,42 @@ def test_amp_file_holds_the_cmb_modes_amplitudes(nrel_campbell, tmp_path):
             assert np.all(np.isnan(mag[r, c, 2:6])) and np.nanmax(mag[r, c, :, 0]) == pytest.approx(1.0)
             j = int(np.nanargmax(mag[r, c, :, 0]))
             assert mag[r, c, j, 1] == pytest.approx(0.0, abs=1e-6)
+
+
+def test_blade_modes_refined_from_the_last_point_equal_a_fresh_solve(nrel5mw_turbine, monkeypatch):
+    """The shell blade's fixed-interface modes at the next rotor speed are refined by subspace
+    iteration from the last point's (``OperationalModel._sparse_modes``).  Driven here on the beam
+    blade (the sparse path forced by ``DENSE_BASIS_LIMIT = 0``): the named modes of the point equal
+    those of the dense path (LAPACK on the same matrices, shares nothing with the refinement) to
+    1e-5 in frequency and 1e-6 in damping ratio (the refinement's 1e-2 on the highest basis mode
+    moves the low modes far less; measured 1e-8), the refinement was used, and after
+    ``restart_modes`` the modes are the cold-started ones (a map's wind speed does not depend on
+    what its worker ran before)."""
+    import windflutter.solve.reduction as red
+    import windflutter.system.operational as opm
+    from windflutter.system.modes import point_modes
+
+    opts = opm.OperationalOptions(mesh={"n_span": 10})
+
+    def named(ps):
+        return {m.name: m for m in point_modes(ps, max_hz=2.2) if not m.rigid}
+
+    ref = named(opm.OperationalModel(nrel5mw_turbine, opts).at(8.0, rpm=13.0, pitch=0.0))
+    calls = []
+    orig = red.refine_modes
+    monkeypatch.setattr(red, "refine_modes", lambda *a, **k: calls.append(orig(*a, **k)) or calls[-1])
+    monkeypatch.setattr(opm, "DENSE_BASIS_LIMIT", 0)
+    om = opm.OperationalModel(nrel5mw_turbine, opts)
+    om.at(8.0, rpm=12.0, pitch=0.0)
+    warm = named(om.at(8.0, rpm=13.0, pitch=0.0))
+    assert len(calls) == 1 and calls[0] is not None
+    assert set(warm) == set(ref)
+    for name, m in ref.items():
+        assert warm[name].frequency_hz == pytest.approx(m.frequency_hz, rel=1e-5), name
+        assert warm[name].damping_ratio == pytest.approx(m.damping_ratio, abs=1e-6), name
+    om.restart_modes()
+    again = named(om.at(8.0, rpm=13.0, pitch=0.0))
+    cold = named(opm.OperationalModel(nrel5mw_turbine, opts).at(8.0, rpm=13.0, pitch=0.0))
+    assert len(calls) == 1  # no refinement after the restart: the modes of a cold start
+    for name, m in cold.items():  # (the steady state's own warm start leaves 1e-12)
+        assert abs(again[name].eigenvalue - m.eigenvalue) <= 1e-9 * abs(m.eigenvalue), name

@@ -47,6 +47,7 @@ __all__ = [
     "ModalBasis",
     "ReducedQEP",
     "structural_modes",
+    "refine_modes",
     "m_orthonormalize",
     "static_correction_modes",
     "augment",
@@ -182,6 +183,50 @@ def structural_modes(
     idx = np.argmax(np.abs(V), axis=0)
     V = V * np.sign(V[idx, np.arange(V.shape[1])])
     return ModalBasis(Phi=V, omega=np.sqrt(np.maximum(w2, 0.0)), rotor_speed=rotor_speed)
+
+
+def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1e-4, max_iter: int = 6):
+    """Lowest ``n_modes`` of ``K phi = w^2 M phi`` by subspace iteration from ``start``.
+
+    For a pencil that changed little since ``start`` was its block of lowest modes (the next rotor
+    speed of a sweep), one or two iterations ``X <- K^-1 M X`` with Rayleigh-Ritz reach what a
+    shift-invert Lanczos from scratch does, at a tenth of the solves (Bathe 2014, sec. 11.6).
+
+    Parameters
+    ----------
+    K, M : real symmetric stiffness (N/m) and mass (kg), (n, n) sparse or dense, ``K`` definite.
+    solve : ``B -> K^-1 B`` for (n, p) blocks (one factorization of ``K``).
+    start : (n, p) start block, ``p > n_modes`` (the extra columns guard the convergence of the
+        highest wanted mode).
+    n_modes : modes wanted.
+    tol : convergence of every wanted Ritz vector ``x``: ``||x - w^2 K^-1 M x||_M <= tol`` with
+        ``||x||_M = 1`` (the sine of its angle to its inverse-iterate; its eigenvalue is then right
+        to about ``tol^2``).
+    max_iter : iterations before giving up.
+
+    Returns
+    -------
+    (w2 (p,), X (n, p)) the M-orthonormal Ritz pairs sorted by ``w2`` (rad^2/s^2), or None when
+    they did not converge in ``max_iter`` iterations (a cold start is then needed).
+    """
+    X = np.asarray(start, float)
+    if X.ndim != 2 or not (n_modes < X.shape[1] < X.shape[0]):
+        raise InputError("start", getattr(X, "shape", None), f"an (n, p) block with {n_modes} < p < n")
+    w2 = None
+    for _ in range(max_iter + 1):
+        Y = np.asarray(solve(np.asarray(M @ X)))
+        if w2 is not None:  # the previous Ritz pairs' residuals, from this iterate
+            R = X[:, :n_modes] - Y[:, :n_modes] * w2[:n_modes]
+            eta = np.sqrt(np.abs(np.einsum("ij,ij->j", R, np.asarray(M @ R))))
+            if np.all(eta <= tol):
+                return w2, X
+        Kr, Mr = Y.T @ np.asarray(K @ Y), Y.T @ np.asarray(M @ Y)
+        try:
+            w2, U = sla.eigh(0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T))
+        except (np.linalg.LinAlgError, ValueError):  # lost rank: start again from scratch
+            return None
+        X = Y @ U
+    return None
 
 
 def m_orthonormalize(V: np.ndarray, M, *, tol: float = 1e-8) -> np.ndarray:

@@ -159,16 +159,23 @@ class OperationalStability:
         """``(PointSystem, modes)`` at a rotor speed, the last :data:`POINT_CACHE` kept: the root
         searches start from the two sweep points that bracket a crossing, and the flutter search ends
         on a point it evaluated (a shell point costs 3-5 s)."""
+        ps, entry = self._point(wind_speed, rpm, pitch)
+        if entry[1] is None:
+            entry[1] = [m for m in point_modes(ps, max_hz=self.max_hz(pitch)) if not m.rigid]
+        return ps, entry[1]
+
+    def _point(self, wind_speed: float, rpm: float, pitch: float):
+        """``(PointSystem, cache entry)`` at a rotor speed; the entry's modes are read on demand (the
+        divergence search needs none)."""
         key = (float(wind_speed), float(rpm), float(pitch))
         if key in self._points:
             self._points.move_to_end(key)
-            return self._points[key]
-        ps = self.model.at(wind_speed, rpm=rpm, pitch=pitch)
-        out = (ps, [m for m in point_modes(ps, max_hz=self.max_hz(pitch)) if not m.rigid])
-        self._points[key] = out
-        while len(self._points) > POINT_CACHE:
-            self._points.popitem(last=False)
-        return out
+        else:
+            self._points[key] = [self.model.at(wind_speed, rpm=rpm, pitch=pitch), None]
+            while len(self._points) > POINT_CACHE:
+                self._points.popitem(last=False)
+        entry = self._points[key]
+        return entry[0], entry
 
     def analyse_operating_point(self, wind_speed: float, rpm_grid=None, progress=None) -> PointSummary:
         """Onsets of flutter and divergence above the operating point at ``wind_speed`` (m/s)."""
@@ -176,6 +183,7 @@ class OperationalStability:
             raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s) on the operating curve")
         pitch = self.pitch_at(wind_speed)
         grid = self.grid(wind_speed, rpm_grid)
+        self.model.restart_modes()  # the result depends on this wind speed's points only
         sweep, margins = [], []
         on = Onset(method="p")
         flutter = None
@@ -198,7 +206,7 @@ class OperationalStability:
             sweep.append((float(rpm), modes))
             margins.append(blade_static_margin(ps))
             if on.divergence is None and i > 0 and margins[-2] > 0 >= margins[-1]:
-                on.divergence = self._locate(lambda r: blade_static_margin(self._modes(wind_speed, r, pitch)[0]),
+                on.divergence = self._locate(lambda r: blade_static_margin(self._point(wind_speed, r, pitch)[0]),
                                              grid[i - 1], rpm)
             if flutter is None and i > 0:
                 flutter = self._flutter(wind_speed, pitch, sweep[-2], sweep[-1])

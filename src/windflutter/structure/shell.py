@@ -11,6 +11,8 @@ displacement gradient, which gives about half of the in-plane stiffening).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
 from windflutter.errors import InputError
@@ -48,6 +50,24 @@ def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
         plyts.append(ply.thickness)
         rhos.append(m.rho)
     return laminated_plate(stack=stack, plyts=plyts, laminaprops=props, rhos=rhos, offset=p.offset)
+
+
+@functools.lru_cache(maxsize=16384)
+def _laminate_ab(p: ShellProperty) -> tuple[tuple, tuple]:
+    sp = pyfe3d_shellprop(p)
+    return ((sp.A11, sp.A12, sp.A16), (sp.A12, sp.A22, sp.A26), (sp.A16, sp.A26, sp.A66)), \
+        ((sp.B11, sp.B12, sp.B16), (sp.B12, sp.B22, sp.B26), (sp.B16, sp.B26, sp.B66))
+
+
+def _membrane_ab(p: ShellProperty, index: int) -> tuple[tuple, tuple]:
+    """The laminate's membrane ``A`` and coupling ``B`` (3 x 3 each, N/m and N) of
+    :func:`pyfe3d_shellprop`, cached by value (a shell blade's steady state asks for them at every
+    rotor speed: 0.3 s a call on the NREL 5 MW)."""
+    try:
+        return _laminate_ab(p)
+    except InputError:
+        pyfe3d_shellprop(p, index)  # the same error, naming the property's index
+        raise
 
 
 def shell_coo(fe: FEModel, mass: str = "consistent"):
@@ -189,9 +209,9 @@ def shell_membrane_resultants(fe: FEModel, u0: np.ndarray) -> np.ndarray:
     convention (kxx = ry_x, kyy = -rx_y, kxy = ry_y - rx_x).
     """
     R, xy, _ = shell_frames(fe)
-    props = [pyfe3d_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
-    A = np.array([[[p.A11, p.A12, p.A16], [p.A12, p.A22, p.A26], [p.A16, p.A26, p.A66]] for p in props])
-    B = np.array([[[p.B11, p.B12, p.B16], [p.B12, p.B22, p.B26], [p.B16, p.B26, p.B66]] for p in props])
+    ab = [_membrane_ab(p, i) for i, p in enumerate(fe.shell_properties)]
+    A = np.array([a for a, _ in ab])
+    B = np.array([b for _, b in ab])
     pid = np.asarray(fe.shell_prop, dtype=np.int64)
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
     U = np.asarray(u0, dtype=float).reshape(-1, 6)[conn]  # (ne, 4, 6)

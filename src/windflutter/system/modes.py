@@ -127,9 +127,11 @@ def _blade_components(ps, q_eta: list[np.ndarray]) -> np.ndarray:
     """(3, ns, k) flap, edge and torsion (x quarter chord) motion of the strips for each of the
     ``k`` multi-blade coordinates (blade frame, the blade's fixed-interface deformation)."""
     rb = ps.blade
-    E = rb.struct.T if ps.Phi is None else rb.struct.T @ ps.Phi
-    W = np.asarray(E @ np.stack(q_eta, 1))
-    return blade_motion_components(rb.sections, W)
+    if ps.Phi is None:  # full order: the nodal motions themselves
+        return blade_motion_components(rb.sections, np.asarray(rb.struct.T @ np.stack(q_eta, 1)))
+    if getattr(ps, "basis_components", None) is None:  # linear in the motion: once per point
+        ps.basis_components = blade_motion_components(rb.sections, np.asarray(rb.struct.T @ ps.Phi))
+    return ps.basis_components @ np.stack(q_eta, 1)
 
 
 def _blade_family(comps: np.ndarray, width: np.ndarray) -> str:
