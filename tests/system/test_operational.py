@@ -146,8 +146,9 @@ def test_undeformed_linearization_reads_the_steady_states_own_stress(nrel5mw_tur
 
 def test_multiblade_amplitudes_split_the_whirl():
     """HAWCStab2's amplitude components from the tip motion in multi-blade coordinates: a cyclic pair
-    ``a_c cos psi + a_s sin psi`` with ``a_s = -i a_c`` is all forward whirl (``|a_c + i a_s| / 2 =
-    |a_c|``), with ``a_s = +i a_c`` all backward; the collective is ``|a_0|``; torsion in rad as given."""
+    ``a_c cos psi + a_s sin psi`` with ``a_s = -i a_c`` is all forward whirl (``|a_c + i a_s| =
+    2 |a_c|``, HAWCStab2's count: twice the blade's whirl amplitude), with ``a_s = +i a_c`` all
+    backward; the collective is ``|a_0|``; torsion in rad as given."""
     from windflutter.system.modes import ModeRecord
 
     tip = np.zeros((3, 3), complex)
@@ -155,9 +156,9 @@ def test_multiblade_amplitudes_split_the_whirl():
     tip[1] = [0.5, 1.0, 1.0j]  # edge: collective 0.5 and backward whirl 1
     tip[2] = [0.0, 0.1, 0.0]  # torsion: a standing cyclic motion, half forward, half backward
     a = ModeRecord(1j, "flap", "FW", tip=tip, tower_top=np.array([0.3, -0.4j, 0.0])).multiblade_amplitudes()
-    assert a["fw_flap"] == pytest.approx(2.0) and a["bw_flap"] == pytest.approx(0.0, abs=1e-15)
-    assert a["sym_edge"] == pytest.approx(0.5) and a["bw_edge"] == pytest.approx(1.0) and a["fw_edge"] == pytest.approx(0.0, abs=1e-15)
-    assert a["bw_tors"] == pytest.approx(0.05) and a["fw_tors"] == pytest.approx(0.05)
+    assert a["fw_flap"] == pytest.approx(4.0) and a["bw_flap"] == pytest.approx(0.0, abs=1e-15)
+    assert a["sym_edge"] == pytest.approx(0.5) and a["bw_edge"] == pytest.approx(2.0) and a["fw_edge"] == pytest.approx(0.0, abs=1e-15)
+    assert a["bw_tors"] == pytest.approx(0.1) and a["fw_tors"] == pytest.approx(0.1)
     assert a["tower_fa"] == pytest.approx(0.3) and a["tower_ss"] == pytest.approx(0.4)
     assert ModeRecord(1j, "tower_fa", "none").multiblade_amplitudes() is None
 

@@ -79,9 +79,13 @@ class ModeRecord:
         """The complex tip motion in HAWCStab2's multi-blade components: ``sym_edge``, ``bw_edge``,
         ``fw_edge``, ``sym_flap``, ... ``fw_tors`` (m; torsion rad) and, with a support, the tower top
         along and across the wind, ``tower_fa``, ``tower_ss`` (m; HAWCStab2's TWR y and TWR x): the
-        collective ``a_0`` and the whirling parts ``(a_c -+ i a_s) / 2`` of the first cyclic pair (FW:
-        ``a_c + i a_s``, as :func:`classify` names the whirl).  None without blades or with fewer
-        than 3."""
+        collective ``a_0`` and the whirling parts ``a_c -+ i a_s`` of the first cyclic pair (FW:
+        ``a_c + i a_s``, as :func:`classify` names the whirl), without the factor 1/2 that would make
+        a blade's whirl amplitude: HAWCStab2's amplitude files count the whirling parts so (against its
+        IEA 15 MW files, ours over HAWCStab2's cyclic amplitudes are 0.45-0.49 relative to the
+        collective flap or the tower top with the half, 0.92-0.94 for the tower top over the collective:
+        ``tests/system/test_hawcstab2_iea15mw.py::test_whirl_amplitudes_count_as_hawcstab2s``).  None
+        without blades or with fewer than 3."""
         if self.tip is None or self.tip.shape[1] < 3:
             return None
         a0, ac, as_ = self.tip[:, 0], self.tip[:, 1], self.tip[:, 2]
@@ -90,8 +94,8 @@ class ModeRecord:
             out["tower_fa"], out["tower_ss"] = (complex(x) for x in self.tower_top[:2])
         for k, dof in enumerate(("flap", "edge", "tors")):
             out[f"sym_{dof}"] = complex(a0[k])
-            out[f"bw_{dof}"] = complex(0.5 * (ac[k] - 1j * as_[k]))
-            out[f"fw_{dof}"] = complex(0.5 * (ac[k] + 1j * as_[k]))
+            out[f"bw_{dof}"] = complex(ac[k] - 1j * as_[k])
+            out[f"fw_{dof}"] = complex(ac[k] + 1j * as_[k])
         return out
 
     def multiblade_amplitudes(self) -> dict[str, float] | None:
