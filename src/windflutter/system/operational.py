@@ -443,7 +443,9 @@ class OperationalModel:
             solve = lambda F: np.linalg.solve(K, F)  # noqa: E731
         else:  # shells: one sparse factorization, the modes from the last rotor speed's if near
             M = st.Mr.tocsc()
-            solve = _spd_solver(Ks)
+            from windflutter.solve.reduction import spd_operator
+
+            solve = spd_operator(Ks)
             w2, V = self._sparse_modes(rb, Ks, M, solve, n)
         if not (self.options.corrections and blocks is not None):
             return V
@@ -481,8 +483,7 @@ class OperationalModel:
         ok = prev is not None and prev.shape == (K.shape[0], p)
         out = refine_modes(K, M, solve, prev, n, tol=MODES_TOL) if ok else None
         if out is None:
-            op = spla.LinearOperator(K.shape, matvec=solve, dtype=float)
-            w2, V = spla.eigsh(K, k=p, M=M, sigma=0.0, OPinv=op, which="LM", v0=np.ones(K.shape[0]))
+            w2, V = spla.eigsh(K, k=p, M=M, sigma=0.0, OPinv=solve, which="LM", v0=np.ones(K.shape[0]))
             order = np.argsort(w2)
             out = w2[order], V[:, order]
         self._modes_start = out[1]
@@ -493,21 +494,6 @@ class OperationalModel:
         start of each wind speed of a stability map, so that its onsets do not depend on which
         points a worker ran before (they differ by about 1e-7 RPM otherwise)."""
         self._modes_start = None
-
-def _spd_solver(K):
-    """``b -> K^-1 b`` for the rotating blade's stiffness: a Cholesky factor (CHOLMOD with the
-    ``fast`` extra; measured on the NREL 5 MW shell blade, 7,944 DOF: 0.11 s and 4 ms a solve against
-    SuperLU's 1.3 s and 16 ms), SuperLU when CHOLMOD is missing or the matrix is not positive
-    definite (a blade past its static stability)."""
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
-
-    from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-
-    try:
-        return SPDFactor(K).solve
-    except NotPositiveDefinite:
-        return spla.splu(sp.csc_matrix(K)).solve
 
 
 def _support_basis(st, n_modes: int) -> np.ndarray:
