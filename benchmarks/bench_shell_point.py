@@ -3,8 +3,8 @@
 Issue 17's target: the 12-wind-speed shell map in under 3 minutes on 2 cores.  A shell point pays,
 at every rotor speed of its sweep and every trial of its root searches, the fixed-interface modes of
 the 7,866-DOF blade.  Baseline measured in the same run: those modes from scratch at every rotor speed
-(shift-invert Lanczos, ``OperationalModel.restart_modes`` before each); new: refined by subspace
-iteration from the last speed's (``solve.reduction.refine_modes``, the default).  Printed: wall time,
+(shift-invert Lanczos, ``BladeBasis.restart`` before each); new: refined by subspace iteration
+from the last speed's (``solve.symmetric.refine_modes``, the default).  Printed: wall time,
 model evaluations, blade DOF, basis size and the onsets of both (they must agree to well inside the
 search's 0.01 RPM).  ``--quick``: 8 m/s up to 16 RPM (no onset; the time per rotor speed).
 
@@ -27,18 +27,18 @@ from windflutter.solve.linsolve import blas_limit  # noqa: E402
 
 def run(turbine, wind: float, max_rpm: float, cold: bool) -> dict:
     import windflutter
-    from windflutter.system.operational import OperationalModel
+    from windflutter.system.blade_basis import BladeBasis
 
-    orig = OperationalModel._sparse_modes
+    orig = BladeBasis._sparse_modes
     count = {"n": 0}
 
     def sparse_modes(self, *a, **k):
         count["n"] += 1
         if cold:
-            self.restart_modes()
+            self.restart()
         return orig(self, *a, **k)
 
-    OperationalModel._sparse_modes = sparse_modes
+    BladeBasis._sparse_modes = sparse_modes
     try:
         t0 = time.perf_counter()
         with warnings.catch_warnings():
@@ -46,7 +46,7 @@ def run(turbine, wind: float, max_rpm: float, cold: bool) -> dict:
             p = windflutter.stability(turbine, [wind], model="shell", rotor_speed={"max_rpm": max_rpm})[0]
         wall = time.perf_counter() - t0
     finally:
-        OperationalModel._sparse_modes = orig
+        BladeBasis._sparse_modes = orig
     return dict(wall=wall, evaluations=count["n"], flutter=p.flutter_rpm, mode=p.flutter_mode,
                 divergence=p.divergence_rpm, rss=maxrss_mb())
 

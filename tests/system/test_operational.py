@@ -199,14 +199,15 @@ def test_amp_file_holds_the_cmb_modes_amplitudes(nrel_campbell, tmp_path):
 
 def test_blade_modes_refined_from_the_last_point_equal_a_fresh_solve(nrel5mw_turbine, monkeypatch):
     """The shell blade's fixed-interface modes at the next rotor speed are refined by subspace
-    iteration from the last point's (``OperationalModel._sparse_modes``).  Driven here on the beam
+    iteration from the last point's (``system.blade_basis.BladeBasis``).  Driven here on the beam
     blade (the sparse path forced by ``DENSE_BASIS_LIMIT = 0``): the named modes of the point equal
     those of the dense path (LAPACK on the same matrices, shares nothing with the refinement) to
     1e-5 in frequency and 1e-6 in damping ratio (the refinement's 1e-2 on the highest basis mode
     moves the low modes far less; measured 1e-8), the refinement was used, and after
     ``restart_modes`` the modes are the cold-started ones (a map's wind speed does not depend on
     what its worker ran before)."""
-    import windflutter.solve.reduction as red
+    import windflutter.solve.symmetric as red
+    import windflutter.system.blade_basis as bb
     import windflutter.system.operational as opm
     from windflutter.system.modes import point_modes
 
@@ -219,7 +220,7 @@ def test_blade_modes_refined_from_the_last_point_equal_a_fresh_solve(nrel5mw_tur
     calls = []
     orig = red.refine_modes
     monkeypatch.setattr(red, "refine_modes", lambda *a, **k: calls.append(orig(*a, **k)) or calls[-1])
-    monkeypatch.setattr(opm, "DENSE_BASIS_LIMIT", 0)
+    monkeypatch.setattr(bb, "DENSE_BASIS_LIMIT", 0)
     om = opm.OperationalModel(nrel5mw_turbine, opts)
     om.at(8.0, rpm=12.0, pitch=0.0)
     warm = named(om.at(8.0, rpm=13.0, pitch=0.0))

@@ -24,19 +24,15 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 
 from windflutter.aero.sections import RotorGeometry
 from windflutter.errors import InputError
 from windflutter.system.blade import RotorBlade
+from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.blade_aero import blade_system, project_blade_aero
 from windflutter.system.multiblade import MultiBladeSystem, multiblade_system
 from windflutter.system.support import Drivetrain, fixed_frame, rigid_body_mass, support_model
 from windflutter.units import RPM
-
-#: blade models up to this many free DOFs get their fixed-interface basis from a dense eigen-solve
-#: (beams: ~200); above (shells: ~8000 per blade) sparse shift-invert Lanczos
-DENSE_BASIS_LIMIT = 1500
 
 #: supports with more free DOFs than this (shell towers) are reduced to SUPPORT_AUTO_MODES modes
 #: plus the six hub-load corrections unless ``support_modes`` says otherwise
@@ -46,11 +42,6 @@ SUPPORT_AUTO_MODES = 30
 #: relative change of the steady state's strip motions and loads at which its iteration stops: the
 #: linearization needs the state to a few digits (1e-5 moves the NREL 5 MW onsets by < 1e-4 RPM)
 STEADY_TOL = 1e-5
-
-#: shell blades: modes computed beyond the wanted ones, the guard of the next rotor speed's subspace
-#: iteration; its convergence (``refine_modes``' ``tol``: the modes' frequencies to about 1e-8)
-GUARD_MODES = 10
-MODES_TOL = 1e-2
 
 PARTS = ("turbine", "rotor")
 DRIVETRAINS = ("flexible", "rigid", "locked")
@@ -182,7 +173,8 @@ class OperationalModel:
         self._blades: dict = {}
         self._support = None
         self._last_steady: dict = {}
-        self._modes_start = None  # the last shell-blade modes (reduced coordinates), see _sparse_modes
+        o = self.options
+        self._basis = BladeBasis(o.blade_modes, corrections=o.corrections, correction_tol=o.correction_tol)
 
     # -- parts -------------------------------------------------------------------------------
     def _mesh(self, part: str, pitch: float = 0.0):
@@ -428,72 +420,15 @@ class OperationalModel:
         return replace(rb.sections, e_chord=ec)
 
     def _blade_basis(self, rb: RotorBlade, omega: float, ksig, klink, blocks, strip_P):
-        """Fixed-interface basis (nq, m): modes of the prestressed rotating blade, plus static
-        corrections for the strip load shapes; None for full order."""
-        n = self.options.blade_modes
-        st = rb.struct
-        if n is None or n >= st.nq:
-            return None
-        T = st.T
-        Ks = (st.Kr + T.T @ (ksig - omega**2 * rb.Kr1) @ T).tocsc()
-        Ks = 0.5 * (Ks + Ks.T)
-        if st.nq <= DENSE_BASIS_LIMIT:
-            K, M = Ks.toarray(), st.Mr.toarray()
-            w2, V = sla.eigh(K, 0.5 * (M + M.T), subset_by_index=[0, n - 1])
-            solve = lambda F: np.linalg.solve(K, F)  # noqa: E731
-        else:  # shells: one sparse factorization, the modes from the last rotor speed's if near
-            M = st.Mr.tocsc()
-            from windflutter.solve.reduction import spd_operator
-
-            solve = spd_operator(Ks)
-            w2, V = self._sparse_modes(rb, Ks, M, solve, n)
-        if not (self.options.corrections and blocks is not None):
-            return V
-        # static responses to the strip loads the retained modes generate (modal truncation
-        # augmentation): Ka and Da blocks acting on the modes' section motion
-        R = np.asarray((strip_P @ (T @ V)))  # (3 ns, n)
-        ns = blocks.n_sections
-        Rs = R.reshape(ns, 3, -1)
-        loads = np.concatenate([np.einsum("jab,jbk->jak", blocks.Ka, Rs), np.einsum("jab,jbk->jak", blocks.Da, Rs)],
-                               axis=2).reshape(3 * ns, -1)
-        F = np.asarray(T.T @ (strip_P.T @ loads))
-        X = solve(F)
-        X -= V @ (V.T @ (M @ X))
-        G = X.T @ M @ X
-        w, U = np.linalg.eigh(0.5 * (G + G.T))
-        keep = w > self.options.correction_tol * w.max()
-        C = X @ (U[:, keep] / np.sqrt(w[keep]))
-        return np.hstack([V, C])
-
-
-    def _sparse_modes(self, rb: RotorBlade, K, M, solve, n: int):
-        """The ``n`` lowest fixed-interface modes ``(w2, V)`` of a large (shell) blade: refined by
-        subspace iteration from the last modes computed (:func:`~windflutter.solve.reduction.
-        refine_modes`, 0.05-0.2 s on the NREL 5 MW shell blade, against 0.5 s for shift-invert
-        Lanczos from scratch, used first and whenever the refinement does not converge).  Every
-        pitch of the blade has the same reduced coordinates (:mod:`windflutter.system.pitch`), so
-        the last modes are a start whatever the pitch; :data:`GUARD_MODES` more are kept.
-        :meth:`restart_modes` forgets them (a result then depends only on what follows)."""
-        import scipy.sparse.linalg as spla
-
-        from windflutter.solve.reduction import refine_modes
-
-        p = min(n + GUARD_MODES, K.shape[0] - 2)
-        prev = self._modes_start
-        ok = prev is not None and prev.shape == (K.shape[0], p)
-        out = refine_modes(K, M, solve, prev, n, tol=MODES_TOL) if ok else None
-        if out is None:
-            w2, V = spla.eigsh(K, k=p, M=M, sigma=0.0, OPinv=solve, which="LM", v0=np.ones(K.shape[0]))
-            order = np.argsort(w2)
-            out = w2[order], V[:, order]
-        self._modes_start = out[1]
-        return out[0][:n], out[1][:, :n]
+        """Fixed-interface basis (nq, m) of the blade at this point (:class:`~windflutter.system.
+        blade_basis.BladeBasis`); None for full order."""
+        return self._basis(rb, omega, ksig, blocks, strip_P)
 
     def restart_modes(self) -> None:
-        """Compute the next shell-blade modes from scratch (:meth:`_sparse_modes`): called at the
-        start of each wind speed of a stability map, so that its onsets do not depend on which
+        """Compute the next shell-blade modes from scratch (:meth:`BladeBasis.restart`): called at
+        the start of each wind speed of a stability map, so that its onsets do not depend on which
         points a worker ran before (they differ by about 1e-7 RPM otherwise)."""
-        self._modes_start = None
+        self._basis.restart()
 
 
 def _support_basis(st, n_modes: int) -> np.ndarray:
