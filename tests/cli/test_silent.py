@@ -272,3 +272,22 @@ def test_written_yaml_reads_back_equal():
     cfg = config_from_dict({"title": "1e5"})
     assert config_from_dict(parse_yaml(cfg.to_yaml(), "f", "f")) == cfg
     assert load_config(None, {"title": "7e3"}).title == "7e3"
+
+
+def test_a_warning_is_shown_once_per_command():
+    """The command line's warnings (``cli.warn.one_line_warnings``): one line each, a text once --
+    a run's workers and its Campbell build the model again and raised its layup warning three times
+    (the NREL 5 MW shell run) -- distinct texts all shown."""
+    import io
+    import warnings
+
+    from windflutter.cli.warn import one_line_warnings
+
+    out = io.StringIO()
+    with one_line_warnings("windflutter run", stream=out):
+        warnings.simplefilter("always")
+        for text in ("the blade layup is not\n  the blade of its 6x6", "another", "the blade layup is not\n  the blade of its 6x6"):
+            warnings.warn(text, UserWarning, stacklevel=1)
+    lines = out.getvalue().splitlines()
+    assert lines == ["windflutter run: warning: the blade layup is not the blade of its 6x6",
+                     "windflutter run: warning: another"]

@@ -18,10 +18,17 @@ from windflutter.errors import one_line
 @contextlib.contextmanager
 def one_line_warnings(prog: str, stream=None):
     """Within the block, every shown warning is printed as ``PROG: warning: MESSAGE`` (whitespace
-    folded to one line) on ``stream`` (default stderr); the filters are unchanged."""
+    folded to one line) on ``stream`` (default stderr), each text once (a run's worker processes
+    and its Campbell each build the model and would repeat its warnings); the filters are
+    unchanged."""
+    shown: set[str] = set()
 
     def show(message, category, filename, lineno, file=None, line=None):  # noqa: ARG001
-        print(f"{prog}: warning: {one_line(message)}", file=stream or file or sys.stderr)
+        text = one_line(message)
+        if text in shown:
+            return
+        shown.add(text)
+        print(f"{prog}: warning: {text}", file=stream or file or sys.stderr)
 
     with warnings.catch_warnings():
         warnings.showwarning = show
