@@ -38,7 +38,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError
-from windflutter.linalg_tools import skew
+from windflutter.linalg_tools import congruence, skew
 from windflutter.structure.assembly import lumped_mass_matrices
 from windflutter.structure.beam import _GAUSS_W, _GAUSS_XI, _block_rotation, _shape_functions, beam_frames, element_dofs
 from windflutter.structure.fem import FEModel
@@ -123,13 +123,13 @@ def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndar
         X = np.einsum("eij,ej->ei", R, (1.0 - xi) * x0 + xi * x1)
         Gs, Ks, fs = section_spin(m, mc, Q, w_loc, X)
         wl = (wq * L)[:, None, None]
-        G += wl * np.einsum("eki,ekl,elj->eij", N, Gs, N)
-        Kr += wl * np.einsum("eki,ekl,elj->eij", N, Ks, N)
-        Me += wl * np.einsum("eki,ekl,elj->eij", N, Ms, N)
+        G += wl * congruence(N, Gs)
+        Kr += wl * congruence(N, Ks)
+        Me += wl * congruence(N, Ms)
         f[:, :6] += (wq * L * (1.0 - xi))[:, None] * fs  # loads lumped on the nodes (docstring)
         f[:, 6:] += (wq * L * xi)[:, None] * fs
     T = _block_rotation(R)
-    G, Kr, Me = (np.einsum("eki,ekl,elj->eij", T, A, T) for A in (G, Kr, Me))
+    G, Kr, Me = (congruence(T, A) for A in (G, Kr, Me))
     f = np.einsum("eki,ek->ei", T, f)
     return G, Kr, f, Me, element_dofs(conn)
 

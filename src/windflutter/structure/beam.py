@@ -30,6 +30,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.structure.fem import FEModel
+from windflutter.linalg_tools import congruence
 
 _E1X = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # S(e1): S(e1) b = e1 x b
 _GAUSS_XI, _GAUSS_W = np.polynomial.legendre.leggauss(4)
@@ -161,12 +162,12 @@ def beam_local_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray
     sec = np.asarray(fe.beam_section, dtype=np.int64)
     Kt = beam_tip_stiffness(L, C_inv[sec])
     H = _H(L)
-    K_loc = np.einsum("eki,ekl,elj->eij", H, Kt, H)
+    K_loc = congruence(H, Kt)
     M_loc = np.zeros_like(K_loc)
     Mse = Ms[sec]
     for xi, w in zip(_GAUSS_XI, _GAUSS_W):
         N, _ = _shape_functions(L, xi)
-        M_loc += (w * L)[:, None, None] * np.einsum("eki,ekl,elj->eij", N, Mse, N)
+        M_loc += (w * L)[:, None, None] * congruence(N, Mse)
     return K_loc, M_loc, L, R
 
 
@@ -180,8 +181,8 @@ def beam_global_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarra
     """
     K_loc, M_loc, L, R = beam_local_matrices(fe)
     T = _block_rotation(R)
-    K_e = np.einsum("eki,ekl,elj->eij", T, K_loc, T)
-    M_e = np.einsum("eki,ekl,elj->eij", T, M_loc, T)
+    K_e = congruence(T, K_loc)
+    M_e = congruence(T, M_loc)
     dofs = element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))
     return K_e, M_e, dofs
 
@@ -214,5 +215,5 @@ def beam_geometric_matrices(fe: FEModel, N_axial: np.ndarray) -> tuple[np.ndarra
         _, dN = _shape_functions(L, xi)
         KG_loc += (w * L * N_axial)[:, None, None] * np.einsum("eki,ekj->eij", dN, dN)
     T = _block_rotation(R)
-    KG = np.einsum("eki,ekl,elj->eij", T, KG_loc, T)
+    KG = congruence(T, KG_loc)
     return KG, element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))

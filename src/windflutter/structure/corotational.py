@@ -54,7 +54,7 @@ import scipy.sparse.linalg as spla
 from scipy.spatial.transform import Rotation
 
 from windflutter.errors import InputError, ModelError
-from windflutter.linalg_tools import skew
+from windflutter.linalg_tools import congruence, skew
 from windflutter.structure.beam import beam_frames, beam_local_matrices, element_dofs
 from windflutter.structure.fem import FEModel
 
@@ -314,7 +314,7 @@ def beam_tangent(fe: FEModel, config: BeamConfiguration, resultants: np.ndarray 
         if resultants.shape != (len(el.l0), 12) or not np.all(np.isfinite(resultants)):
             raise InputError("resultants", resultants.shape, f"finite ({len(el.l0)}, 12) element end loads")
     E, B, Hg, g = _element_derivatives(el, config, resultants)
-    Km = np.einsum("eki,ekl,elj->eij", B, el.K_loc, B)
+    Km = congruence(B, el.K_loc)
     f = np.zeros(fe.n_dof)
     np.add.at(f, el.dofs, np.einsum("eki,ek->ei", B, g))
     n = fe.n_dof
