@@ -277,7 +277,7 @@ def _element_derivatives(el: _Elements, config: BeamConfiguration, g: np.ndarray
     off = ((m[0] - m[1] - m[2] + m[3]) / (4.0 * h[i] * h[j])).T
     Hz[:, i, j] = off
     Hz[:, j, i] = off
-    return E[0], Bz @ _A, np.einsum("zi,ezw,wj->eij", _A, Hz, _A), g
+    return E[0], Bz @ _A, congruence(_A, Hz), g
 
 
 def _assemble(mats: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
