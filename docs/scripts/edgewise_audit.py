@@ -86,7 +86,7 @@ def build(V: float, n_span: int = 20, aero: UnsteadyOptions | None = None, turbi
         st = dataclasses.replace(st, sections=sec, bem=aero_state.bem)
     ksig, klink = om._prestress(rb, st, omega)
     blocks, P = om._aero_blocks(rb, st, V, omega)
-    Phi = om._blade_basis(rb, omega, ksig, klink, blocks, P)
+    Phi = om.blade_basis(rb, omega, ksig, blocks, P)
     bm = rb.matrices(Phi, ksigma_full=ksig, klink=klink)
     M, C, K = bm.at(omega, ksigma=bm.Ks1)
     B = rb.basis_full(Phi)

@@ -40,7 +40,6 @@ Units: SI (m, rad, s, N, N m, W); angles in rad.
 
 from __future__ import annotations
 
-import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -228,18 +227,17 @@ def _check_inputs(fe, struct, sections, rotor, wind_speed, omega, n_blades, air_
                          f"({6 * sections.n_sections}, {fe.n_dof}): strips of this FE model")
 
 
-_UNIT_CF: dict = {}
-
-
 def _unit_centrifugal(fe, struct, axis: np.ndarray, hub: np.ndarray, group: str, seed: bool):
     """``(f1, u1, K1)`` at 1 rad/s: the centrifugal load (N), its linear static displacement (m, rad)
     and the reduced static operator's centrifugal part ``K_sigma(u1) - K_r`` (None for the seed's
-    load), kept while ``struct`` lives (a sweep over rotor speed needs them at every speed: a
-    factorization and the geometric stiffness, 0.1 s a speed on the NREL 5 MW shell blade)."""
-    key = (id(fe), id(struct), tuple(np.round(axis, 12)), tuple(np.round(hub, 9)), group, bool(seed))
-    hit = _UNIT_CF.get(key)
-    if hit is not None and hit[0]() is fe and hit[1]() is struct:
-        return hit[2]
+    load), kept on ``struct`` beside its cached reduced matrices (a sweep over rotor speed needs them
+    at every speed: a factorization and the geometric stiffness, 0.1 s a speed on the NREL 5 MW shell
+    blade)."""
+    cache = struct.__dict__.setdefault("_unit_centrifugal", {})
+    key = (tuple(np.round(axis, 12)), tuple(np.round(hub, 9)), group, bool(seed))
+    hit = cache.get(key)
+    if hit is not None and hit[0] is fe:
+        return hit[1]
     nodes = rotating_nodes(fe, group)
     if seed:
         f1, K1 = centrifugal_load(struct.M, fe, nodes, axis, hub), None
@@ -248,9 +246,7 @@ def _unit_centrifugal(fe, struct, axis: np.ndarray, hub: np.ndarray, group: str,
         _, Kr1, f1 = spin_terms(fe, struct.M, nodes, axis, hub)
         u1 = static_solve(struct, f1)
         K1 = struct.reduce(sp.csr_matrix(geometric_stiffness(fe, u1) - Kr1))
-    _UNIT_CF[key] = (weakref.ref(fe), weakref.ref(struct), (f1, u1, K1))
-    for k in [k for k, v in _UNIT_CF.items() if v[0]() is None or v[1]() is None]:  # dead structures
-        del _UNIT_CF[k]
+    cache[key] = (fe, (f1, u1, K1))
     return f1, u1, K1
 
 

@@ -356,7 +356,7 @@ class OperationalModel:
         else:
             ksig, klink = self._prestress(rb, st, omega)
         blocks, strip_P = self._aero_blocks(rb, st, wind_speed, omega)
-        Phi = self._blade_basis(rb, omega, ksig, klink, blocks, strip_P)
+        Phi = self.blade_basis(rb, omega, ksig, blocks, strip_P)
         bm = rb.matrices(Phi, ksigma_full=ksig, klink=klink)
         M, C, K = bm.at(omega, ksigma=bm.Ks1)
         aero = None
@@ -419,7 +419,7 @@ class OperationalModel:
         ec /= np.linalg.norm(ec, axis=1, keepdims=True)
         return replace(rb.sections, e_chord=ec)
 
-    def _blade_basis(self, rb: RotorBlade, omega: float, ksig, klink, blocks, strip_P):
+    def blade_basis(self, rb: RotorBlade, omega: float, ksig, blocks, strip_P):
         """Fixed-interface basis (nq, m) of the blade at this point (:class:`~windflutter.system.
         blade_basis.BladeBasis`); None for full order."""
         return self._basis(rb, omega, ksig, blocks, strip_P)
