@@ -435,3 +435,40 @@ def test_iea15mw_2nd_edge_damping_by_mode_shape(request, points):
     print("\n".join(lines))
     assert n == 20, "\n".join(lines)
     assert misses == SECOND_EDGE_MISSES[points], "\n".join(lines)
+
+
+@pytest.mark.parametrize("points", ["windflutter_points", "hawcstab2_configuration_points"])
+def test_iea15mw_2nd_edge_region_summed_decay_rate(request, points):
+    """The decay rates summed over every mode of the 2nd edge region (1.6-2.45 Hz, the region of the
+    test above, damping ratio below 30 %) against HAWCStab2's sum: within 20 %, with the same number
+    of modes in the region in both codes.  A sum of eigenvalues over a cluster of close modes is the
+    trace of the system on that cluster, unchanged by how the coupling inside it shares the damping
+    out, so it separates "too much aerodynamic damping" from "the damping shared out differently".
+    Measured (2 Dec 2026): 0.90-1.09 (windIO description), 0.94-1.08 (HAWCStab2's configuration), five
+    modes each at every wind speed, although the 2.0-2.1 Hz modes one by one miss by 1.6-2.4 x
+    (SECOND_EDGE_MISSES): in HAWCStab2 the 2nd flap BW (2.00 Hz, 15.5 % at 10 m/s) carries the damping
+    that ours (2.13 Hz, 12.5 %) shares with the 2nd tower side-side and 2nd edge BW.  What it does not
+    check: the sum is mostly flap damping (the 2nd flap BW alone is half of it), so it hardly sees the
+    edgewise mean-load terms (without them 0.92-1.08); the quasi-steady circulation fails it (1.39 at
+    15 m/s), so does the blade without structural damping (0.73 at 5 m/s).  Tolerance: the issue's
+    35 % for one decay rate, over five modes whose errors are not all of one sign (35 / sqrt 5 = 16 %),
+    rounded up.  Above 30 % a root's natural frequency says little about which modes it mixes with
+    (HAWCStab2's 47 %-damped 2nd flap collective at 5 m/s has its natural frequency in the region)."""
+    lo, hi, max_zeta = 1.6, 2.45, 0.30
+    d = np.loadtxt(DATA / "aeroelastic_entire_turbine.cmb", comments="#")
+    lines, bad = [], []
+    for v, modes in request.getfixturevalue(points).items():
+        row = d[np.argmin(np.abs(d[:, 0] - v))]
+        f, z = row[1:61], row[61:121] / 100.0
+        keep = (f > 1e-3) & (z > -1.0) & (z < max_zeta)
+        fn, zk = f[keep] / np.sqrt(1 - z[keep] ** 2), z[keep]
+        inside = (fn > lo) & (fn < hi)
+        ref = float(np.sum(zk[inside] * 2 * np.pi * fn[inside]))
+        ours = [m for m in modes if lo < m.frequency_hz < hi and m.damping_ratio < max_zeta]
+        ratio = sum(-m.eigenvalue.real for m in ours) / ref
+        lines.append(f"{v:4.0f} m/s summed decay rate {ref:.3f} 1/s (HAWCStab2, {int(inside.sum())} modes), "
+                     f"ours x {ratio:.2f} ({len(ours)} modes: {', '.join(m.name for m in ours)})")
+        if len(ours) != int(inside.sum()) or abs(ratio - 1) > 0.20:
+            bad.append(v)
+    print("\n".join(lines))
+    assert not bad, "\n".join(lines)
