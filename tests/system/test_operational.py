@@ -166,8 +166,8 @@ def test_multiblade_amplitudes_split_the_whirl():
 def test_amp_file_holds_the_cmb_modes_amplitudes(nrel_campbell, tmp_path):
     """The .amp beside the .cmb: read as HAWCStab2's own (docs/scripts/extract_hawcstab2_modes.py:
     ``row[1:].reshape(n_modes, 30)``), column k is the .cmb's mode k at every wind speed -- its
-    magnitudes those of the mode's multi-blade components over their largest, NaN for the tower yaw
-    and the shaft, and a mode's largest magnitude 1 with phase 0."""
+    magnitudes those of the mode's multi-blade components over their largest (the tower yaw too), NaN
+    for the shaft, and a mode's largest magnitude 1 with phase 0."""
     from windflutter.post.campbell_amp import write_amp
     from windflutter.post.campbell_export import cmb_tracks, read_cmb, write_cmb
 
@@ -192,7 +192,8 @@ def test_amp_file_holds_the_cmb_modes_amplitudes(nrel_campbell, tmp_path):
             top = max(a.values())
             np.testing.assert_allclose(mag[r, c, 6:, 0], [a[x] / top for x in ("sym_edge", "bw_edge", "fw_edge",
                                        "sym_flap", "bw_flap", "fw_flap", "sym_tors", "bw_tors", "fw_tors")], rtol=1e-5)
-            assert np.all(np.isnan(mag[r, c, 2:6])) and np.nanmax(mag[r, c, :, 0]) == pytest.approx(1.0)
+            assert mag[r, c, 2, 0] == pytest.approx(a["tower_yaw"] / top, rel=1e-5)  # TWR yaw
+            assert np.all(np.isnan(mag[r, c, 3:6])) and np.nanmax(mag[r, c, :, 0]) == pytest.approx(1.0)
             j = int(np.nanargmax(mag[r, c, :, 0]))
             assert mag[r, c, j, 1] == pytest.approx(0.0, abs=1e-6)
 

@@ -7,8 +7,9 @@ symmetric / BW / FW edge, flap and torsion -- the magnitudes normalized to the m
 columns of :func:`write_amp` are the same, the modes those of :func:`~windflutter.post.campbell_export.
 write_cmb` in the same order, so CampbellViewer-style tools and the reading of
 ``docs/scripts/extract_hawcstab2_modes.py`` (``row[1:].reshape(n_modes, 30)[:, 0::2]``) take it.
-HAWCStab2's x at the tower top is across the wind, its y along it.  windflutter does not give the
-tower-top yaw or the shaft's motion: those columns are ``NaN``, as is every column of a mode not found at
+HAWCStab2's x at the tower top is across the wind, its y along it.  The tower-top yaw is
+about windflutter's vertical (z up; HAWC2's z points down, so its sign may be the other).
+windflutter does not give the shaft's motion: those columns are ``NaN``, as is every column of a mode not found at
 a wind speed.  Magnitudes and phases from :meth:`~windflutter.system.modes.ModeRecord.multiblade_components`
 (m; torsion rad), phases relative to the largest component.
 """
@@ -23,7 +24,7 @@ from windflutter.errors import InputError
 
 #: HAWCStab2's 15 columns (name, unit) and windflutter's component of each (None: not given)
 AMP_COLUMNS: tuple[tuple[str, str, str | None], ...] = (
-    ("TWR x", "m", "tower_ss"), ("TWR y", "m", "tower_fa"), ("TWR yaw", "rad", None),
+    ("TWR x", "m", "tower_ss"), ("TWR y", "m", "tower_fa"), ("TWR yaw", "rad", "tower_yaw"),
     ("SFT x", "m", None), ("SFT y", "m", None), ("SFT tor", "rad", None),
     ("Sym edge", "m", "sym_edge"), ("BW edge", "m", "bw_edge"), ("FW edge", "m", "fw_edge"),
     ("Sym flap", "m", "sym_flap"), ("BW flap", "m", "bw_flap"), ("FW flap", "m", "fw_flap"),

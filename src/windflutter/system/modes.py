@@ -45,8 +45,9 @@ class ModeRecord:
     (multi-blade coordinates), unit norm, for tracking.  energy : kinetic-energy shares by group.
     tip : (3, N) complex flap (m), edge (m) and torsion (rad) of the blades' outermost strip in each
     multi-blade coordinate (collective, cosine, sine, ...), for the mode's ``shape`` (None without
-    blades): what HAWCStab2's amplitude files give for the blade tip.  tower_top : (3,) complex
-    translation (m) of the tower-top node for the same shape (None without a support).
+    blades): what HAWCStab2's amplitude files give for the blade tip.  tower_top : (6,) complex
+    translation (m: along the wind, across it, up) and rotation (rad, about the same axes: roll,
+    tilt, yaw) of the tower-top node for the same shape (None without a support).
     """
 
     eigenvalue: complex
@@ -78,7 +79,8 @@ class ModeRecord:
     def multiblade_components(self) -> dict[str, complex] | None:
         """The complex tip motion in HAWCStab2's multi-blade components: ``sym_edge``, ``bw_edge``,
         ``fw_edge``, ``sym_flap``, ... ``fw_tors`` (m; torsion rad) and, with a support, the tower top
-        along and across the wind, ``tower_fa``, ``tower_ss`` (m; HAWCStab2's TWR y and TWR x): the
+        along and across the wind, ``tower_fa``, ``tower_ss`` (m; HAWCStab2's TWR y and TWR x), and its yaw
+        about the vertical ``tower_yaw`` (rad; HAWCStab2's TWR yaw, with z up here): the
         collective ``a_0`` and the whirling parts ``a_c -+ i a_s`` of the first cyclic pair (FW:
         ``a_c + i a_s``, as :func:`classify` names the whirl), without the factor 1/2 that would make
         a blade's whirl amplitude: HAWCStab2's amplitude files count the whirling parts so (against its
@@ -92,6 +94,8 @@ class ModeRecord:
         out: dict[str, complex] = {}
         if self.tower_top is not None:
             out["tower_fa"], out["tower_ss"] = (complex(x) for x in self.tower_top[:2])
+            if self.tower_top.size >= 6:
+                out["tower_yaw"] = complex(self.tower_top[5])
         for k, dof in enumerate(("flap", "edge", "tors")):
             out[f"sym_{dof}"] = complex(a0[k])
             out[f"bw_{dof}"] = complex(ac[k] - 1j * as_[k])
@@ -184,7 +188,7 @@ def _amplitudes(ps, q: np.ndarray, comps: np.ndarray | None, ns: int) -> dict:
     sm = ps.support
     if sm is not None and sm.fe is not None and "tower_top" in sm.fe.node_groups:
         i_top = int(sm.fe.node_groups["tower_top"][0])
-        out["tower_top"] = np.asarray(sm.expand[6 * i_top: 6 * i_top + 3] @ q[:ns]).ravel() * scale
+        out["tower_top"] = np.asarray(sm.expand[6 * i_top: 6 * i_top + 6] @ q[:ns]).ravel() * scale
     return out
 
 
