@@ -3,7 +3,7 @@
 At a wind speed on HAWCStab2's operating curve, in HAWCStab2's configuration (the blade described
 about its half chord, HAWC2's thrust-induction relation, tower damping 0.1 %), prints for our 1st edge
 BW and FW modes, per model variant: damping ratio, decay rate, the whirling flap over edge tip amplitude
-(magnitude and phase) and the tower top's side-side motion over the edge amplitude; then HAWCStab2's
+(magnitude and phase) and the tower top's side-side motion and yaw over the edge amplitude; then HAWCStab2's
 (its amplitude file, tests/data/iea15mw_hawcstab2/modes.csv).
 
     python docs/scripts/edgewise_split.py [WIND]
@@ -62,7 +62,7 @@ def main(wind: float) -> None:
             e, f = c[f"{w}_edge"], c[f"{w}_flap"]
             out.append(f"{m.whirl} zeta {100 * m.damping_ratio:.2f} % sigma {-m.eigenvalue.real:.4f} 1/s "
                        f"flap/edge {abs(f / e):.3f} ({math.degrees(np.angle(f / e)):+.0f} deg) "
-                       f"tower SS/edge {abs(c['tower_ss'] / e):.4f}")
+                       f"tower SS/edge {abs(c['tower_ss'] / e):.4f} yaw/edge {abs(c['tower_yaw'] / e):.2e} rad/m")
         print(f"{name:30s}", " | ".join(out), flush=True)
     for r in csv.DictReader(open(DATA / "modes.csv")):
         if float(r["wind_speed"]) == wind and r["blade_label"] in ("BW edge", "FW edge") and float(r["frequency_hz"]) < 1.0:
@@ -70,7 +70,8 @@ def main(wind: float) -> None:
             w = r["blade_label"].split()[0].lower()
             print(f"HAWCStab2 {r['blade_label']}: zeta {100 * z:.2f} % sigma {z * 2 * math.pi * f / math.sqrt(1 - z * z):.4f} "
                   f"1/s flap/edge {float(r[w + '_flap']) / float(r[w + '_edge']):.3f} "
-                  f"tower SS/edge {float(r['twr_x']) / float(r[w + '_edge']):.4f} (phases: the .amp file)")
+                  f"tower SS/edge {float(r['twr_x']) / float(r[w + '_edge']):.4f} "
+                  f"yaw/edge {float(r['twr_yaw']) / float(r[w + '_edge']):.2e} rad/m (phases: the .amp file)")
 
 
 if __name__ == "__main__":
