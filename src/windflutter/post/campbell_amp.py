@@ -7,10 +7,10 @@ symmetric / BW / FW edge, flap and torsion -- the magnitudes normalized to the m
 columns of :func:`write_amp` are the same, the modes those of :func:`~windflutter.post.campbell_export.
 write_cmb` in the same order, so CampbellViewer-style tools and the reading of
 ``docs/scripts/extract_hawcstab2_modes.py`` (``row[1:].reshape(n_modes, 30)[:, 0::2]``) take it.
-HAWCStab2's x at the tower top is across the wind, its y along it.  The tower-top yaw is
-about windflutter's vertical (z up; HAWC2's z points down, so its sign may be the other).
-windflutter does not give the shaft's motion: those columns are ``NaN``, as is every column of a mode not found at
-a wind speed.  Magnitudes and phases from :meth:`~windflutter.system.modes.ModeRecord.multiblade_components`
+HAWCStab2's x at the tower top is across the wind, its y along it.  The tower-top yaw is about
+windflutter's vertical (z up; HAWC2's z points down, so its sign may be the other).  windflutter does
+not give the shaft's motion: those columns are ``NaN``, as is every column of a mode not found at a
+wind speed.  Magnitudes and phases from :meth:`~windflutter.system.modes.ModeRecord.multiblade_components`
 (m; torsion rad), phases relative to the largest component.
 """
 
