@@ -307,6 +307,17 @@ TIP_AMPLITUDES = {f"{w}_{d}": f"{w}_{d}" for d in ("edge", "flap", "tors") for w
 TOWER_AMPLITUDES = {"twr_y": "tower_fa", "twr_x": "tower_ss"}
 
 
+def hawcstab2_1st_tower_modes(wind: float):
+    """HAWCStab2's 1st tower side-side and fore-aft modes at ``wind`` (rows of modes.csv, its .amp
+    amplitudes): of its modes at 0.1-0.4 Hz, those with the largest tower-top motion across and
+    along the wind."""
+    import csv
+
+    with open(DATA / "modes.csv") as fh:
+        ref = [r for r in csv.DictReader(fh) if float(r["wind_speed"]) == wind and 0.1 < float(r["frequency_hz"]) < 0.4]
+    return max(ref, key=lambda r: float(r["twr_x"])), max(ref, key=lambda r: float(r["twr_y"]))
+
+
 def test_whirl_amplitudes_count_as_hawcstab2s(hawcstab2_configuration_points):
     """Our multi-blade tip amplitudes are on HAWCStab2's scale (``ModeRecord.multiblade_components``):
     in the 1st tower modes, where the tower top and the collective flap are plain displacements in
@@ -316,14 +327,10 @@ def test_whirl_amplitudes_count_as_hawcstab2s(hawcstab2_configuration_points):
     ``a_c -+ i a_s``.  Held: the cyclic ratios (side-side: largest cyclic tip amplitude over the tower
     top; fore-aft: over the collective flap) within 25 % of HAWCStab2's at every wind speed, as the
     non-cyclic one is; with the half they are 0.44-0.49 and the test fails."""
-    import csv
-
-    rows = list(csv.DictReader(open(DATA / "modes.csv")))
     cyc = ("bw_edge", "fw_edge", "bw_flap", "fw_flap")
     for v, modes in hawcstab2_configuration_points.items():
         ours = {m.name: m.multiblade_amplitudes() for m in modes}
-        ref = [r for r in rows if float(r["wind_speed"]) == v and 0.1 < float(r["frequency_hz"]) < 0.4]
-        ss, fa = max(ref, key=lambda r: float(r["twr_x"])), max(ref, key=lambda r: float(r["twr_y"]))
+        ss, fa = hawcstab2_1st_tower_modes(v)
         a, b = ours["1st tower side-side"], ours["1st tower fore-aft"]
         pairs = {"SS cyclic / tower": (max(float(ss[k]) for k in cyc) / float(ss["twr_x"]), max(a[k] for k in cyc) / a["tower_ss"]),
                  "FA cyclic / collective": (max(float(fa[k]) for k in cyc) / float(fa["sym_flap"]), max(b[k] for k in cyc) / b["sym_flap"]),
@@ -455,13 +462,9 @@ def test_iea15mw_2nd_edge_region_summed_decay_rate(request, points):
     rounded up.  Above 30 % a root's natural frequency says little about which modes it mixes with
     (HAWCStab2's 47 %-damped 2nd flap collective at 5 m/s has its natural frequency in the region)."""
     lo, hi, max_zeta = 1.6, 2.45, 0.30
-    d = np.loadtxt(DATA / "aeroelastic_entire_turbine.cmb", comments="#")
     lines, bad = [], []
     for v, modes in request.getfixturevalue(points).items():
-        row = d[np.argmin(np.abs(d[:, 0] - v))]
-        f, z = row[1:61], row[61:121] / 100.0
-        keep = (f > 1e-3) & (z > -1.0) & (z < max_zeta)
-        fn, zk = f[keep] / np.sqrt(1 - z[keep] ** 2), z[keep]
+        fn, zk = hawcstab2_modes(v, max_hz=hi, max_zeta=max_zeta)
         inside = (fn > lo) & (fn < hi)
         ref = float(np.sum(zk[inside] * 2 * np.pi * fn[inside]))
         ours = [m for m in modes if lo < m.frequency_hz < hi and m.damping_ratio < max_zeta]
@@ -480,12 +483,8 @@ def test_tower_top_yaw_as_hawcstab2s(hawcstab2_configuration_points):
     over the side-side displacement: within 25 % of HAWCStab2's (as the other amplitude ratios).
     Measured (2 Dec 2026) 1.07-1.10 x HAWCStab2's 0.0024-0.0026 rad/m at 5-25 m/s; in the 1st edge
     whirling modes, per metre of tip edge, 0.83-1.10 x except the BW at 10 m/s (1.54 x, 6.7e-5 rad)."""
-    import csv
-
-    rows = list(csv.DictReader(open(DATA / "modes.csv")))
     for v, modes in hawcstab2_configuration_points.items():
         ours = {m.name: m.multiblade_amplitudes() for m in modes}["1st tower side-side"]
-        ref = [r for r in rows if float(r["wind_speed"]) == v and 0.1 < float(r["frequency_hz"]) < 0.4]
-        ss = max(ref, key=lambda r: float(r["twr_x"]))
+        ss, _ = hawcstab2_1st_tower_modes(v)
         h, w = float(ss["twr_yaw"]) / float(ss["twr_x"]), ours["tower_yaw"] / ours["tower_ss"]
         assert w / h == pytest.approx(1.0, abs=0.25), (v, h, w)

@@ -29,8 +29,8 @@ from __future__ import annotations
 import numpy as np
 
 from windflutter.errors import InputError
-from windflutter.structure.fem import FEModel
 from windflutter.linalg_tools import congruence
+from windflutter.structure.fem import FEModel
 
 _E1X = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # S(e1): S(e1) b = e1 x b
 _GAUSS_XI, _GAUSS_W = np.polynomial.legendre.leggauss(4)
