@@ -4,8 +4,9 @@ Reads the DLR-AE/CampbellViewer files (Apache-2.0; /work/shared/data/iea15mw/haw
 ``aeroelastic_entire_turbine.cmb`` (frequencies, damping ratios) and ``.amp`` (per mode the modal
 magnitudes of the tower top (x, y, yaw), the shaft (x, y, torsion) and blade 1 in multi-blade
 components: symmetric / BW / FW edge, flap and torsion).  Writes, per wind speed and mode, the
-frequency (Hz), damping ratio (%) and the magnitudes, and the label of the largest blade component
-(``Sym|BW|FW`` + ``edge|flap|tors``) -- the numbers HAWCStab2 users read to name a mode.
+frequency (Hz), damping ratio (%), the magnitudes, the label of the largest blade component
+(``Sym|BW|FW`` + ``edge|flap|tors``) -- the numbers HAWCStab2 users read to name a mode -- and the
+phases (deg, columns ``<dof>_ph``; their convention: docs/campbell.md, "HAWCStab2's phases").
 
     python docs/scripts/extract_hawcstab2_modes.py SRC_DIR tests/data/iea15mw_hawcstab2/modes.csv
 """
@@ -25,16 +26,19 @@ def main(src: str, out: str) -> None:
     src = Path(src)
     cmb = np.loadtxt(src / "aeroelastic_entire_turbine.cmb", comments="#")
     amp = np.loadtxt(src / "aeroelastic_entire_turbine.amp", comments="#")
-    lines = ["wind_speed,mode,frequency_hz,damping_pct,blade_label," + ",".join(COLS)]
+    lines = ["wind_speed,mode,frequency_hz,damping_pct,blade_label," + ",".join(COLS)
+             + "," + ",".join(c + "_ph" for c in COLS)]
     for row_c, row_a in zip(cmb, amp):
         v = row_c[0]
         f, z = row_c[1:61], row_c[61:121]
         mag = row_a[1:].reshape(60, 30)[:, 0::2]
+        phase = row_a[1:].reshape(60, 30)[:, 1::2]
         for k in range(60):
             blade = mag[k, 6:15]
             i = int(np.argmax(blade))
             label = ("Sym", "BW", "FW")[i % 3] + " " + ("edge", "flap", "tors")[i // 3]
-            lines.append(f"{v:g},{k + 1},{f[k]:.6g},{z[k]:.6g},{label}," + ",".join(f"{x:.4g}" for x in mag[k]))
+            lines.append(f"{v:g},{k + 1},{f[k]:.6g},{z[k]:.6g},{label}," + ",".join(f"{x:.4g}" for x in mag[k])
+                         + "," + ",".join(f"{x:.1f}" for x in phase[k]))
     Path(out).write_text("\n".join(lines) + "\n")
 
 

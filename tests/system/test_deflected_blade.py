@@ -149,7 +149,7 @@ def test_iea15mw_edge_modes_at_10ms_against_hawcstab2():
     with zeta < 10 %, tests/data/iea15mw_hawcstab2).  Frequencies: measured -1.3, -0.7, -1.3 %,
     tolerance 2.5 % (the undeformed axis: +4.1, +4.2, -0.9 %); mean BW/FW decay rate: measured
     +10 %, tolerance 25 % (the undeformed axis: +35 %; docs/edgewise_damping.md sec. 8)."""
-    from test_hawcstab2_iea15mw import hawcstab2_modes, operating_point
+    from hawcstab2_reference import hawcstab2_modes, operating_point
 
     from windflutter.model import load_turbine
 
@@ -172,7 +172,7 @@ def test_iea15mw_deflected_against_hawcstab2():
     """The criterion of test_hawcstab2_iea15mw.py (every HAWCStab2 mode below 2.2 Hz with zeta < 10 %
     matched within 5 % in frequency and 1 point or 40 % in damping ratio, at 5-25 m/s) with the deflected
     blade: 36 of 40 (90 %; the undeformed axis 35); at least 85 %, no negatively damped mode (~8 s)."""
-    from test_hawcstab2_iea15mw import WINDS, hawcstab2_modes, matches, operating_point
+    from hawcstab2_reference import WINDS, hawcstab2_modes, matches, operating_point
 
     from windflutter.model import load_turbine
     from windflutter.system.modes import point_modes
