@@ -255,8 +255,9 @@ def test_whirl_amplitudes_count_as_hawcstab2s(hawcstab2_configuration_points):
     """Our multi-blade tip amplitudes are on HAWCStab2's scale (``ModeRecord.multiblade_components``):
     in the 1st tower modes, where the tower top and the collective flap are plain displacements in
     both codes, HAWCStab2's file gives its cyclic (BW/FW) tip amplitudes twice as large, relative to
-    those, as the blades' whirl amplitude ``|a_c -+ i a_s| / 2`` (measured at 5-25 m/s: 2.06-2.28 x,
-    while the tower top over the collective flap agrees to 0.92-0.94): its whirling parts are
+    those, as the blades' whirl amplitude ``|a_c -+ i a_s| / 2`` (measured at 5-25 m/s: 2.06-2.30 x,
+    while the tower top over the collective flap agrees to 1.06-1.09; the tip in the blade's
+    pitching frame, 3 Dec 2026): its whirling parts are
     ``a_c -+ i a_s``.  Held: the cyclic ratios (side-side: largest cyclic tip amplitude over the tower
     top; fore-aft: over the collective flap) within 25 % of HAWCStab2's at every wind speed, as the
     non-cyclic one is; with the half they are 0.44-0.49 and the test fails."""
@@ -380,8 +381,8 @@ def test_tower_top_yaw_as_hawcstab2s(hawcstab2_configuration_points):
     """The tower top's yaw (``tower_yaw``, the .amp file's TWR yaw column) in the 1st tower side-side
     mode, where the tower twists with its sideways bending (the rotor hangs ahead of the tower axis),
     over the side-side displacement: within 25 % of HAWCStab2's (as the other amplitude ratios).
-    Measured (2 Dec 2026) 1.07-1.10 x HAWCStab2's 0.0024-0.0026 rad/m at 5-25 m/s; in the 1st edge
-    whirling modes, per metre of tip edge, 0.83-1.10 x except the BW at 10 m/s (1.54 x, 6.7e-5 rad)."""
+    Measured (3 Dec 2026) 1.07-1.11 x HAWCStab2's 0.0024-0.0026 rad/m at 5-25 m/s; in the 1st edge
+    whirling modes, per metre of tip edge, 0.83-1.09 x except the BW at 10 m/s (1.53 x, 6.7e-5 rad)."""
     for v, modes in hawcstab2_configuration_points.items():
         ours = {m.name: m.multiblade_amplitudes() for m in modes}["1st tower side-side"]
         ss, _ = hawcstab2_1st_tower_modes(v)
@@ -409,7 +410,7 @@ def test_mode_shape_phases_as_hawcstab2s(hawcstab2_configuration_points):
     assert len(pairs) >= 30, len(pairs)
     found = []
     for conj in ({"fw"}, {"bw"}, set()):
-        for flip in (set(), {"flap", "edge"}, {"tors"}, {"flap", "edge", "tors"}):
+        for flip in ({k for k, on in zip(("flap", "edge", "tors"), bits) if on} for bits in np.ndindex(2, 2, 2)):
             mean, az = min((np.mean([phase_misfit(h, w, conj, flip, np.radians(a))[0] for _, h, w, _ in pairs]), a)
                            for a in range(0, 360, 3))
             found.append((mean, az, sorted(conj), sorted(flip)))
@@ -418,6 +419,6 @@ def test_mode_shape_phases_as_hawcstab2s(hawcstab2_configuration_points):
     each = [(v, m.name, phase_misfit(h, w, set(conj), set(flip), np.radians(az))[0]) for v, h, w, m in pairs]
     print(f"best: conjugated {conj}, reversed {flip}, azimuth {az} deg, mean {mean:.1f} deg, largest {max(e for *_, e in each):.1f} deg ({len(pairs)} modes)")
     print("\n".join(f"  {o[0]:5.1f} deg at {o[1]} deg: conjugated {o[2]}, reversed {o[3]}" for o in others))
-    assert (conj, flip) == (["fw"], ["edge", "flap"]) and abs(az - 270) <= 6, found[:3]
+    assert (conj, flip) == (["fw"], ["edge"]) and abs(az - 270) <= 6, found[:3]
     assert mean <= 8.0 and all(o[0] >= 2 * mean for o in others if o[2] != conj), found[:3]
     assert max(e for *_, e in each) <= 30.0, sorted(each, key=lambda x: -x[2])[:3]

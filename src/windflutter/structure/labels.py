@@ -48,6 +48,18 @@ def blade_motion_components(sections, shapes: np.ndarray) -> np.ndarray:
     return np.stack([flap, edge, tors])
 
 
+def frame_components(sections, shapes: np.ndarray, frame: np.ndarray, strip: int = -1) -> np.ndarray:
+    """(3, n) motion of one strip (default the outermost) for each mode, in the axes ``frame``
+    (3, 3; columns x, y, z in global axes): translation along x and y (m) and rotation about z (rad).
+    With the blade's pitching frame (:func:`windflutter.steady.geometry.pitching_frames`: x flapwise
+    downwind, y edgewise, z the pitch axis) these are the tip flap, edge and torsion as HAWC2 and
+    HAWCStab2 report them, undeformed axes turned with the pitch only."""
+    j = strip % sections.n_sections
+    q = sections.motion_map[6 * j: 6 * j + 6] @ shapes  # (6, n)
+    frame = np.asarray(frame, float)
+    return np.stack([frame[:, 0] @ q[:3], frame[:, 1] @ q[:3], frame[:, 2] @ q[3:]])
+
+
 def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[str]:
     """One label per column of ``shapes`` (full numbering, modes in ascending frequency).
 

@@ -27,6 +27,7 @@ import numpy as np
 
 from windflutter.aero.sections import RotorGeometry
 from windflutter.errors import InputError
+from windflutter.steady.geometry import pitching_frames
 from windflutter.system.blade import RotorBlade
 from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.blade_aero import blade_system, project_blade_aero
@@ -155,6 +156,12 @@ class PointSystem:
     blade_structure: tuple | None = None
     #: (3, ns, m) flap, edge, torsion strip motion of each basis vector (filled when modes are read)
     basis_components: np.ndarray | None = field(default=None, repr=False)
+    #: (3, 3) the blade's pitching frame (columns x flapwise, y edgewise, z the pitch axis; undeformed
+    #: axes turned with the pitch: steady.geometry.pitching_frames), the axes of ModeRecord.tip
+    tip_frame: np.ndarray | None = field(default=None, repr=False)
+    #: (3, m) the tip flap, edge (m) and torsion (rad) of each basis vector in ``tip_frame`` (filled
+    #: when modes are read)
+    tip_basis: np.ndarray | None = field(default=None, repr=False)
 
 
 class OperationalModel:
@@ -346,6 +353,7 @@ class OperationalModel:
         omega = om_c if rpm is None else float(rpm) * RPM
         pitch = pi_c if pitch is None else float(pitch)
         rb = self.blade(pitch)
+        tip_frame = pitching_frames(rb.sections, self.rotor)[0] if rb.sections.n_sections else None
         st = self.steady(rb, wind_speed, omega)
         if self.options.structure == "deflected":  # the blade rebuilt and linearized about its deflected shape
             from windflutter.system.damping import blade_mu
@@ -368,7 +376,7 @@ class OperationalModel:
         mbc = multiblade_system(ff, blade, self.n_blades, omega, self.rotor.shaft_axis)
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
-                           blade_system=blade, blade_structure=(M, K))
+                           blade_system=blade, blade_structure=(M, K), tip_frame=tip_frame)
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):
