@@ -31,7 +31,7 @@ from windflutter.steady.geometry import pitching_frames
 from windflutter.system.blade import RotorBlade
 from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.blade_aero import blade_system, project_blade_aero
-from windflutter.system.multiblade import MultiBladeSystem, multiblade_system
+from windflutter.system.multiblade import FixedFrame, MultiBladeSystem, multiblade_system
 from windflutter.system.support import Drivetrain, fixed_frame, rigid_body_mass, support_model
 from windflutter.units import RPM
 
@@ -139,7 +139,10 @@ class PointSystem:
     the substructure; ``Phi`` (nq_blade, m) its fixed-interface basis; ``support`` the support
     model (None for ``part="rotor"``); ``steady`` the steady state (or None); ``labels`` of the
     ground-fixed coordinates; ``blade_structure`` the blade's structural ``(M, K)`` (rotating-frame
-    and steady-stress terms, no aerodynamics) in its coordinates.
+    and steady-stress terms, no aerodynamics) in its coordinates and ``blade_damping`` its structural
+    ``C`` (file damping and Coriolis); ``fixed`` the ground-fixed part (:class:`FixedFrame`), so that
+    the system without aerodynamics can be formed at the same steady state (a decay-rate audit:
+    ``docs/scripts/whirl_split_audit.py``).
     """
 
     wind_speed: float
@@ -154,6 +157,8 @@ class PointSystem:
     labels: list
     blade_system: object = None
     blade_structure: tuple | None = None
+    blade_damping: np.ndarray | None = field(default=None, repr=False)
+    fixed: FixedFrame | None = field(default=None, repr=False)
     #: (3, ns, m) flap, edge, torsion strip motion of each basis vector (filled when modes are read)
     basis_components: np.ndarray | None = field(default=None, repr=False)
     #: (3, 3) the blade's pitching frame (columns x flapwise, y edgewise, z the pitch axis; undeformed
@@ -376,7 +381,8 @@ class OperationalModel:
         mbc = multiblade_system(ff, blade, self.n_blades, omega, self.rotor.shaft_axis)
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
-                           blade_system=blade, blade_structure=(M, K), tip_frame=tip_frame)
+                           blade_system=blade, blade_structure=(M, K), blade_damping=C,
+                           fixed=ff, tip_frame=tip_frame)
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):
