@@ -11,7 +11,10 @@ HAWCStab2's x at the tower top is across the wind, its y along it.  The tower-to
 windflutter's vertical (z up; HAWC2's z points down, so its sign may be the other).  windflutter does
 not give the shaft's motion: those columns are ``NaN``, as is every column of a mode not found at a
 wind speed.  Magnitudes and phases from :meth:`~windflutter.system.modes.ModeRecord.multiblade_components`
-(m; torsion rad), phases relative to the largest component.
+(m; torsion rad; the blade tip in the blade's pitching frame, as HAWCStab2's), phases relative to the
+largest component and in windflutter's convention: HAWCStab2's own files write the FW parts
+conjugated, the edge the other way and blade 1 at another azimuth (docs/campbell.md, "HAWCStab2's
+phases"; ``tests/system/test_hawcstab2_iea15mw.py::test_mode_shape_phases_as_hawcstab2s``).
 """
 
 from __future__ import annotations
