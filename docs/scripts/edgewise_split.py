@@ -17,7 +17,6 @@ phase, the eigenvector's clock, is fitted on the side-side motion).
 from __future__ import annotations
 
 import cmath
-import csv
 import math
 import sys
 from pathlib import Path
@@ -26,6 +25,8 @@ import numpy as np
 
 ROOT = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(ROOT / "tests"))
+sys.path.insert(0, str(ROOT / "tests" / "system"))
+from hawcstab2_reference import hawcstab2_1st_edge_whirl, operating_point  # noqa: E402
 from reference_axis import moved_reference  # noqa: E402
 
 from windflutter.aero.unsteady import UnsteadyOptions  # noqa: E402
@@ -33,7 +34,6 @@ from windflutter.model import load_turbine  # noqa: E402
 from windflutter.system.modes import point_modes  # noqa: E402
 from windflutter.system.operational import OperationalModel, OperationalOptions  # noqa: E402
 
-DATA = ROOT / "tests" / "data" / "iea15mw_hawcstab2"
 VARIANTS = {
     "defaults": {},
     "lift direction instantaneous": {"aero": UnsteadyOptions(lift_direction="instantaneous")},
@@ -45,12 +45,6 @@ VARIANTS = {
     "drivetrain rigid": {"drivetrain": "rigid"},
     "tower damping 1 %": {"tower_damping": 0.01},
 }
-
-
-def operating_point(wind: float) -> tuple[float, float]:
-    op = np.loadtxt(DATA / "operation_1_25_windspeed.opt", skiprows=1)
-    i = int(np.argmin(np.abs(op[:, 0] - wind)))
-    return float(op[i, 2]), float(op[i, 1])
 
 
 def main(wind: float) -> None:
@@ -70,24 +64,16 @@ def main(wind: float) -> None:
                        f"flap/edge {abs(f / e):.3f} ({math.degrees(np.angle(f / e)):+.0f} deg) "
                        f"tower SS/edge {abs(c['tower_ss'] / e):.4f} yaw/edge {abs(c['tower_yaw'] / e):.2e} rad/m")
         print(f"{name:30s}", " | ".join(out), flush=True)
-    for r in csv.DictReader(open(DATA / "modes.csv")):
-        if float(r["wind_speed"]) == wind and r["blade_label"] in ("BW edge", "FW edge") and float(r["frequency_hz"]) < 1.0:
-            z, f = float(r["damping_pct"]) / 100.0, float(r["frequency_hz"])
-            w = r["blade_label"].split()[0].lower()
-            print(f"HAWCStab2 {r['blade_label']}: zeta {100 * z:.2f} % sigma {z * 2 * math.pi * f / math.sqrt(1 - z * z):.4f} "
-                  f"1/s flap/edge {float(r[w + '_flap']) / float(r[w + '_edge']):.3f} "
-                  f"tower SS/edge {float(r['twr_x']) / float(r[w + '_edge']):.4f} "
-                  f"yaw/edge {float(r['twr_yaw']) / float(r[w + '_edge']):.2e} rad/m (phases: the .amp file)")
+    for whirl in ("BW", "FW"):
+        r = hawcstab2_1st_edge_whirl(wind, whirl)
+        z, f, w = float(r["damping_pct"]) / 100.0, float(r["frequency_hz"]), whirl.lower()
+        print(f"HAWCStab2 {r['blade_label']}: zeta {100 * z:.2f} % sigma {z * 2 * math.pi * f / math.sqrt(1 - z * z):.4f} "
+              f"1/s flap/edge {float(r[w + '_flap']) / float(r[w + '_edge']):.3f} "
+              f"tower SS/edge {float(r['twr_x']) / float(r[w + '_edge']):.4f} "
+              f"yaw/edge {float(r['twr_yaw']) / float(r[w + '_edge']):.2e} rad/m (phases: the .amp file)")
 
 
 AZIMUTH = math.radians(273.0)  # blade 1's azimuth origin in HAWCStab2's file relative to ours
-
-
-def _hawcstab2_row(wind: float, label: str) -> dict:
-    with open(DATA / "modes.csv") as fh:
-        rows = [r for r in csv.DictReader(fh) if float(r["wind_speed"]) == wind and r["blade_label"] == label
-                and float(r["frequency_hz"]) < 1.0]
-    return rows[0]
 
 
 def shapes(winds: list[float]) -> None:
@@ -102,7 +88,7 @@ def shapes(winds: list[float]) -> None:
             if m.name not in ("1st edge BW", "1st edge FW"):
                 continue
             c, w = m.multiblade_components(), m.whirl.lower()
-            r = _hawcstab2_row(wind, f"{m.whirl} edge")
+            r = hawcstab2_1st_edge_whirl(wind, m.whirl)
             h = {k: float(r[k]) * cmath.exp(1j * math.radians(float(r[k + "_ph"]))) for k in r if k + "_ph" in r}
             e = -c[f"{w}_edge"] * cmath.exp(-1j * AZIMUTH if w == "bw" else 1j * AZIMUTH)  # ours, as HAWCStab2 writes it
             if w == "bw":

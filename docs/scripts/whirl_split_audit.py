@@ -58,12 +58,12 @@ def partition(ps, lam: complex, x: np.ndarray) -> dict[str, float]:
     Aq = -D @ (lam**2 * (mb.M - st.M) + lam * (mb.C - st.C) + (mb.K - st.K))
     Fz = D @ mb.F
     # the lag states driven by each group's motion: z = (lam - A)^-1 (Bq + lam Bv) q, linear in q
+    idx = groups(ps)
     drive = np.linalg.solve(lam * np.eye(mb.A.shape[0]) - mb.A, mb.Bq + lam * mb.Bv)
-    z_from = {g: drive[:, ii] @ q[ii] for g, ii in groups(ps).items()}
+    z_from = {g: drive[:, ii] @ q[ii] for g, ii in idx.items()}
     assert np.allclose(sum(z_from.values()), z, rtol=1e-6, atol=1e-9 * np.abs(z).max())
     kap = np.vdot(q, Ks @ q)
     den = abs(lam) ** 2 * np.vdot(q, Ms @ q).real + kap.real
-    idx = groups(ps)
     out = {}
     Csym = 0.5 * (Cs + Cs.T)
     for g, ii in idx.items():

@@ -1,6 +1,7 @@
 """HAWCStab2's IEA 15 MW Campbell analysis as the tests read it (tests/data/iea15mw_hawcstab2,
 DLR-AE/CampbellViewer, Apache-2.0): its modes, operating points, amplitude-file labels and mode-shape
-pairing, shared by test_hawcstab2_iea15mw.py, test_hawcstab2_phases.py and test_deflected_blade.py."""
+pairing, shared by test_hawcstab2_iea15mw.py, test_hawcstab2_structural_damping.py,
+test_deflected_blade.py and docs/scripts/edgewise_split.py, whirl_split_audit.py."""
 
 from __future__ import annotations
 
@@ -18,6 +19,14 @@ def amplitude_rows(wind: float | None = None) -> list[dict]:
     at ``wind`` only if given."""
     with open(DATA / "modes.csv") as fh:
         return [r for r in csv.DictReader(fh) if wind is None or float(r["wind_speed"]) == wind]
+
+
+def hawcstab2_1st_edge_whirl(wind: float, whirl: str) -> dict:
+    """HAWCStab2's 1st edge ``whirl`` ("BW" or "FW") mode at ``wind``: its only mode below 1 Hz whose
+    largest tip amplitude is that whirl's edge (a row of modes.csv)."""
+    rows = [r for r in amplitude_rows(wind) if r["blade_label"] == f"{whirl} edge" and float(r["frequency_hz"]) < 1.0]
+    assert len(rows) == 1, (wind, whirl, len(rows))
+    return rows[0]
 
 
 def hawcstab2_modes(wind: float, max_hz: float = 2.2, max_zeta: float = 0.10):

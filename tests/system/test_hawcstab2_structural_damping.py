@@ -32,13 +32,11 @@ FAMILIES = ("1st flap BW", "1st flap FW", "1st edge BW", "1st edge FW", "2nd fla
 def ground_fixed_damping(ps):
     """The point's multi-blade system with the circulatory part of the blade's structural damping
     left out (its symmetric part, the file damping, kept in ``C_B`` only; the Coriolis terms kept)."""
-    from windflutter.system.multiblade import BladeSystem, multiblade_system
+    from windflutter.system.multiblade import multiblade_system
 
     bs, Cs = ps.blade_system, ps.blade_damping
     undamped = dataclasses.replace(bs, C=bs.C - 0.5 * (Cs + Cs.T))
-    K = multiblade_system(ps.fixed, BladeSystem(M=undamped.M, C=undamped.C, K=undamped.K, F=undamped.F,
-                                                Az=undamped.Az, Bq=undamped.Bq, Bv=undamped.Bv),
-                          ps.n_blades, ps.omega, ps.blade.axis).K
+    K = multiblade_system(ps.fixed, undamped, ps.n_blades, ps.omega, ps.blade.axis).K
     return dataclasses.replace(ps, mbc=dataclasses.replace(ps.mbc, K=K))
 
 
@@ -110,6 +108,7 @@ def test_an_isotropic_rotor_alone_has_one_decay_rate_for_both_whirls():
         modes = {m.name: m for m in point_modes(build, max_hz=1.6)}
         for fam in ("1st edge", "1st flap"):
             bw, fw = modes[f"{fam} BW"].eigenvalue, modes[f"{fam} FW"].eigenvalue
-            assert (bw.imag + 2 * ps.omega) == pytest.approx(fw.imag, rel=1e-6) or not equal
+            if equal:
+                assert bw.imag + 2 * ps.omega == pytest.approx(fw.imag, rel=1e-6), (fam, bw, fw)
             same = abs(bw.real / fw.real - 1) < 1e-6
             assert same == equal, (fam, bw, fw, equal)

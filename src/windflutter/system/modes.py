@@ -148,13 +148,13 @@ def _blade_components(ps, q_eta: list[np.ndarray]) -> np.ndarray:
 def _tip_components(ps, q_eta: list[np.ndarray]) -> np.ndarray | None:
     """(3, k) tip flap, edge (m) and torsion (rad) of the outermost strip in the blade's pitching
     frame (``ps.tip_frame``) for each of the ``k`` multi-blade coordinates; None without a frame."""
-    frame = getattr(ps, "tip_frame", None)
+    frame = ps.tip_frame
     if frame is None:
         return None
     rb = ps.blade
     if ps.Phi is None:
         return frame_components(rb.sections, np.asarray(rb.struct.T @ np.stack(q_eta, 1)), frame)
-    if getattr(ps, "tip_basis", None) is None:
+    if ps.tip_basis is None:
         ps.tip_basis = frame_components(rb.sections, np.asarray(rb.struct.T @ ps.Phi), frame)
     return ps.tip_basis @ np.stack(q_eta, 1)
 
@@ -195,17 +195,13 @@ def _rigid_drivetrain(q: np.ndarray, labels: list) -> bool:
     return bool(abs(a - g) < 0.5 * max(abs(a), abs(g), 1e-300))
 
 
-def _amplitudes(ps, q: np.ndarray, comps: np.ndarray | None, tip: np.ndarray | None, ns: int) -> dict:
-    """``tip`` and ``tower_top`` of :class:`ModeRecord` for the mode ``q`` scaled to unit norm:
-    the tip in the pitching frame where the point has one (``tip``), else in the outermost strip's
-    own axes (``comps``)."""
+def _amplitudes(ps, q: np.ndarray, tip: np.ndarray | None, ns: int) -> dict:
+    """``tip`` (:func:`_tip_components` of the mode) and ``tower_top`` of :class:`ModeRecord` for the
+    mode ``q`` scaled to unit norm."""
     scale = 1.0 / max(np.linalg.norm(q), 1e-300)
     out = {}
     if tip is not None:
         out["tip"] = tip * scale
-    elif comps is not None:
-        quarter_chord = 0.25 * ps.blade.sections.chord[-1]
-        out["tip"] = comps[:, -1, :] * scale / np.array([1.0, 1.0, quarter_chord])[:, None]  # torsion in rad
     sm = ps.support
     if sm is not None and sm.fe is not None and "tower_top" in sm.fe.node_groups:
         i_top = int(sm.fe.node_groups["tower_top"][0])
@@ -233,7 +229,7 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     comps = _blade_components(ps, [q[s] for s in coords]) if m else None
     sig = mode_signature(ps, q, energy, comps)
     tip = _tip_components(ps, [q[s] for s in coords]) if m else None
-    rec = {"shape": shape, "energy": energy, "signature": sig, **_amplitudes(ps, q, comps, tip, ns)}
+    rec = {"shape": shape, "energy": energy, "signature": sig, **_amplitudes(ps, q, tip, ns)}
     blade = None
     if comps is not None:
         whirl = "collective"
