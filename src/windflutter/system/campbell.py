@@ -157,7 +157,7 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
         if progress is not None:
             progress(i / len(ws), f"V = {v:g} m/s")
         ps = om.at(float(v))
-        modes = point_modes(ps, max_hz=max_hz)
+        modes = point_modes(ps, max_hz=max_hz, previous=pts[-1].modes if pts else None)
         st = ps.steady
         pts.append(CampbellPoint(wind_speed=float(v), rotor_speed_rpm=ps.omega / RPM, pitch_deg=math.degrees(ps.pitch),
                                  modes=modes, power=float(st.power) if st is not None else float("nan"),

@@ -65,6 +65,18 @@ class ModeRecord:
     blade_family: tuple | None = field(default=None, repr=False)
     tip: np.ndarray | None = field(default=None, repr=False)
     tower_top: np.ndarray | None = field(default=None, repr=False)
+    #: the structural identity given (:class:`windflutter.system.identity.Identity`), its share of the
+    #: mode's kinetic energy, the two largest participations ``[(name, share), ...]``, and whether
+    #: the given identity carries less than ``identity.MIXED_SHARE`` (named by both)
+    identity: object = field(default=None, repr=False)
+    share: float = float("nan")
+    participation: list = field(default_factory=list, repr=False)
+    mixed: bool = False
+
+    @property
+    def heavily_damped(self) -> bool:
+        """Damping ratio above ``identity.HEAVY_DAMPING`` (0.3): drawn and flagged as such."""
+        return self.damping_ratio > 0.3
 
     @property
     def frequency_hz(self) -> float:
@@ -111,9 +123,13 @@ class ModeRecord:
         return None if c is None else {k: float(abs(v)) for k, v in c.items()}
 
     def as_dict(self) -> dict:
+        part = list(self.participation) + [("", None)] * (2 - len(self.participation))
         return {"name": self.name, "family": self.family, "order": int(self.order), "whirl": self.whirl,
                 "frequency_hz": self.frequency_hz, "damped_frequency_hz": self.damped_frequency_hz,
-                "damping_ratio": self.damping_ratio}
+                "damping_ratio": self.damping_ratio, "share": self.share, "mixed": bool(self.mixed),
+                "heavily_damped": self.heavily_damped,
+                "participation_1": part[0][0], "participation_1_share": part[0][1],
+                "participation_2": part[1][0], "participation_2_share": part[1][1]}
 
 
 def _block_energy(q: np.ndarray, M: np.ndarray, sl: slice) -> float:
@@ -249,60 +265,20 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     return ModeRecord(lam, blade[0], blade[1], **rec)
 
 
-#: a tower-named mode must share at least this MAC with the support structural mode it is given,
-#: and its frequency must lie within this factor of that mode's
-TOWER_MAC = 0.5
-TOWER_FREQUENCY_FACTOR = 1.5
+def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8,
+                previous: list[ModeRecord] | None = None) -> list[ModeRecord]:
+    """Every oscillatory structural mode of the point up to ``max_hz`` (undamped frequency), named by
+    its participation in the turbine's own structural modes (:mod:`windflutter.system.identity`).
 
-
-def one_mode_per_tower_mode(ps, modes: list[ModeRecord]) -> list[ModeRecord]:
-    """Tower names only for as many modes as the support has structural modes: in place.
-
-    A blade mode coupled with the tower (the 2nd edge BW near a 2nd tower mode) can carry most of
-    its energy in the tower and be classified as a tower mode, so that the support's one 2nd
-    side-side mode gave three "side-side" names.  The support's structural modes (the support
-    model alone, without the rotor) are assigned one to one to
-    the tower-classified modes by the largest product of MAC (support coordinates, mass-weighted)
-    and support energy share, among the pairs whose frequencies lie within
-    :data:`TOWER_FREQUENCY_FACTOR` of each other; a mode that gets no support mode with MAC >=
-    :data:`TOWER_MAC` takes the family and whirl of its blade motion (``blade_family``)."""
-    from scipy.optimize import linear_sum_assignment
-
-    cand = [i for i, m in enumerate(modes) if m.family in _TOWER_NAMES and m.blade_family is not None]
-    ns = sum(1 for lb in ps.labels if lb.startswith("support"))
-    if not cand or ps.support is None or ns == 0:
-        return modes
-    import scipy.linalg as sla
-
-    Ms = 0.5 * (ps.support.M + ps.support.M.T)  # the support alone: with the rotor carried rigidly, its
-    Ks = 0.5 * (ps.support.K + ps.support.K.T)  # rotary inertia put the 2nd tower modes at 0.8-1.3 Hz
-    w2, Phi = sla.eigh(Ks, Ms)  # mass-normalized: Phi^T Ms Phi = I
-    Q = np.stack([modes[i].shape[:ns] for i in cand], axis=1)
-    q_norm = np.real(np.einsum("ij,ik,kj->j", Q.conj(), Ms, Q))
-    mac = np.abs(Phi.T @ Ms @ Q) ** 2 / np.maximum(q_norm, 1e-300)[None, :]
-    share = np.array([modes[i].energy.get("support", 0.0) for i in cand])
-    f_s = np.sqrt(np.maximum(w2, 0.0))[:, None] / (2 * np.pi)
-    f_m = np.array([modes[i].frequency_hz for i in cand])[None, :]
-    near = (f_s <= TOWER_FREQUENCY_FACTOR * f_m) & (f_m <= TOWER_FREQUENCY_FACTOR * f_s)
-    mac = np.where(near, mac, 0.0)
-    rows, cols = linear_sum_assignment(-(mac * share[None, :]))
-    won = {int(c) for r, c in zip(rows, cols) if mac[r, c] >= TOWER_MAC}
-    for j, i in enumerate(cand):
-        if j not in won:
-            modes[i].family, modes[i].whirl = modes[i].blade_family
-    return modes
-
-
-def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8) -> list[ModeRecord]:
-    """Every oscillatory structural mode of the point up to ``max_hz`` (undamped frequency), named.
-
-    Left out: roots with ``Im lambda <= 0`` (the conjugates), the drivetrain's rigid-body root,
-    over-damped roots (``zeta >= max_damping``) and the aerodynamic lag roots -- real in the
-    rotating frame, ``-beta U/b +- i Omega`` for the cyclic states -- recognised by their
-    participation factors ``|u_i v_i|`` (left and right eigenvectors, scale-invariant): a mode is
-    structural when the structural states ``[q, q']`` carry at least ``min_structural`` of it, or at
-    least half of it and its damped frequency is not within 10 % of the rotor speed's multiples
-    (heavily damped flap modes in operation share much of themselves with the lag states).
+    Left out: roots with ``Im lambda <= 0`` (the conjugates), over-damped roots (``zeta >=
+    max_damping``) and the aerodynamic lag roots -- real in the rotating frame, ``-beta U/b +- i
+    Omega`` for the cyclic states -- recognised by their participation factors ``|u_i v_i|`` (left
+    and right eigenvectors, scale-invariant): a mode is structural when the structural states
+    ``[q, q']`` carry at least ``min_structural`` of it, or at least half of it and its damped
+    frequency is not within 10 % of the rotor speed's multiples (heavily damped flap modes in
+    operation share much of themselves with the lag states).  ``previous``: the named modes of the
+    previous point of a sweep (wind or rotor speed), whose identities this point continues by the
+    similarity of the mode signatures (:func:`windflutter.system.identity.assign`).
     """
     import scipy.linalg as sla
 
@@ -322,7 +298,41 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
     idx = np.where(keep)[0]
     idx = idx[np.argsort(np.abs(lam[idx]))]
     modes = [classify(ps, complex(lam[i]), X[:, i]) for i in idx]
-    return name_modes(one_mode_per_tower_mode(ps, modes))
+    return identify_modes(ps, modes, X[: ps.mbc.M.shape[0], idx], previous)
+
+
+def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[ModeRecord] | None = None):
+    """Name ``modes`` (their structural coordinates the columns of ``Q``) by their participation in
+    the structural identities of ``ps.reference``, in place; returns ``modes``."""
+    from windflutter.system.identity import assign, name_record, participations, point_own_modes
+
+    if not modes:
+        return modes
+    ref = ps.reference
+    own = None
+    if ps.mbc.n_eta:
+        if getattr(ps, "basis_components", None) is None and ps.Phi is not None:
+            ps.basis_components = blade_motion_components(ps.blade.sections, np.asarray(ps.blade.struct.T @ ps.Phi))
+        comps = ps.basis_components if ps.Phi is not None else \
+            blade_motion_components(ps.blade.sections, np.asarray(ps.blade.struct.T))
+        own = point_own_modes(ps, comps, ref)
+    freqs = np.array([m.frequency_hz for m in modes])
+    ids, S = participations(ps, Q, own, ref, freqs)
+    cont = None
+    if previous:
+        from windflutter.linalg_tools import mac_matrix
+
+        by_id = {m.identity: m for m in previous if m.identity is not None and m.signature is not None}
+        cols = [k for k, i in enumerate(ids) if i in by_id]
+        if cols:
+            A = np.stack([m.signature for m in modes], 1)
+            B = np.stack([by_id[ids[k]].signature for k in cols], 1)
+            cont = np.zeros_like(S)
+            cont[:, cols] = mac_matrix(A, B)
+    got = assign(S, cont)
+    for i, rec in enumerate(modes):
+        name_record(rec, ids, S[i], int(got[i]))
+    return modes
 
 
 def name_modes(modes: list[ModeRecord]) -> list[ModeRecord]:

@@ -167,6 +167,8 @@ class PointSystem:
     #: (3, m) the tip flap, edge (m) and torsion (rad) of each basis vector in ``tip_frame`` (filled
     #: when modes are read)
     tip_basis: np.ndarray | None = field(default=None, repr=False)
+    #: the turbine's own structural modes that name the modes (:mod:`windflutter.system.identity`)
+    reference: object = field(default=None, repr=False)
 
 
 class OperationalModel:
@@ -220,6 +222,15 @@ class OperationalModel:
             fe, sec = build_model(self.turbine, self._mesh("rotor_blade", 0.0))
             self._blade_zero = (fe, assemble(fe), sec)
         return self._blade_zero
+
+    def reference(self):
+        """The structural identities of this model (:func:`windflutter.system.identity.
+        structural_reference`: the blade's standstill modes, the support's own modes), cached."""
+        if getattr(self, "_reference", None) is None:
+            from windflutter.system.identity import structural_reference
+
+            self._reference = structural_reference(self.blade(0.0), self.support())
+        return self._reference
 
     def support(self):
         """The support model (None for the rotor on a fixed nacelle), cached."""
@@ -382,7 +393,7 @@ class OperationalModel:
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
                            blade_system=blade, blade_structure=(M, K), blade_damping=C,
-                           fixed=ff, tip_frame=tip_frame)
+                           fixed=ff, tip_frame=tip_frame, reference=self.reference())
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):

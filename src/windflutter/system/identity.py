@@ -1,0 +1,320 @@
+"""Mode identity from the turbine's own structural modes: what every aeroelastic mode *is*.
+
+The names a Campbell diagram is read by are the structural modes an engineer knows: the blade's
+1st flap, 1st edge, 2nd flap, ..., 1st torsion (each as collective, backward- or forward-whirling
+rotor mode), the tower's fore-aft and side-side modes, the drivetrain's shaft torsion.  They are
+defined here once per turbine, from the parts' own modes, and each aeroelastic mode is named by its
+participation in them -- not by the geometry of its eigenvector and its frequency order at the
+point, which fail at high pitch, high damping and strong coupling.
+
+1. **Reference** (:class:`StructuralReference`, once per model): the blade's structural modes at
+   standstill, without aerodynamics, in its own (pitching) frame; each named by its largest strip
+   motion -- flap, edge or torsion (:func:`windflutter.structure.labels.blade_motion_components`) --
+   and ordered in frequency within its family.  The support's modes (the support alone), named fore-
+   aft / side-side / torsion by their motion.
+2. **The point's own modes**: the blade's structural modes at the operating point -- rotating, with
+   the steady state's stress and deflection, still without aerodynamics (``ps.blade_structure``) --
+   each given the name of the reference mode it continues, by an assignment of the MAC of their
+   strip motions (a comparison that does not depend on the reduction basis or the pitch).
+3. **Participation**: an aeroelastic mode's blade coordinates, in each multi-blade coordinate, are
+   expanded in the point's own modes (mass-orthogonal: the kinetic energies add up exactly); with
+   ``a_0, a_c, a_s`` the collective and first cyclic amplitudes of own mode ``j`` the kinetic
+   energies are ``N |a_0|^2`` (collective), ``N/4 |a_c + i a_s|^2`` (forward whirl, FW) and
+   ``N/4 |a_c - i a_s|^2`` (backward whirl, BW).  The support's coordinates are expanded in its
+   modes, the drivetrain's in its rigid rotation and its shaft torsion.  Shares are fractions of the
+   mode's kinetic energy.
+4. **Assignment**: the identities are given to the point's aeroelastic modes by the assignment of
+   largest total share (Hungarian algorithm), so a name is used once per operating point, and a
+   crossing or veering keeps the names by participation.  A mode whose assigned identity carries less
+   than :data:`MIXED_SHARE` of it is *mixed* and named by its two largest participations
+   (``"2nd edge BW + 2nd tower side-side"``), not guessed.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.linalg as sla
+from scipy.optimize import linear_sum_assignment
+
+from windflutter.linalg_tools import mac_matrix
+from windflutter.structure.labels import blade_motion_components, ordinal
+
+#: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
+#: mixed, with its two largest participations
+MIXED_SHARE = 0.6
+#: a point mode continues a reference mode only with at least this MAC of their strip motions
+REFERENCE_MAC = 0.3
+#: the blade's reference modes: at least this many, and all up to this multiple of the highest
+#: frequency asked for
+MIN_REFERENCE_MODES = 12
+#: an assigned identity carrying less than this share of a mode is not given to it (the identities
+#: that fit it are taken by modes that fit them better): the mode is named by its participations only
+MIN_ASSIGNED_SHARE = 0.1
+#: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
+RIGID_HZ = 0.05
+#: a heavily damped mode (drawn and flagged as such)
+HEAVY_DAMPING = 0.3
+BLADE_FAMILIES = ("flap", "edge", "torsion")
+TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
+WHIRLS = ("collective", "BW", "FW")
+
+
+@dataclass(frozen=True)
+class Identity:
+    """One structural identity: ``family`` (flap, edge, torsion, tower_fa, tower_ss, tower_torsion,
+    drivetrain, rigid), ``order`` (1st, 2nd ...; 0 for the drivetrain's), ``whirl`` (collective, BW,
+    FW, asymmetric for blade modes; none otherwise)."""
+
+    family: str
+    order: int
+    whirl: str = "none"
+
+    @property
+    def name(self) -> str:
+        return identity_name(self.family, self.whirl, self.order)
+
+
+def identity_name(family: str, whirl: str, order: int) -> str:
+    """``"1st flap BW"``, ``"2nd tower side-side"``, ``"drivetrain"``, ``"drivetrain rigid-body"``."""
+    if family in TOWER_NAMES:
+        return f"{ordinal(order)} {TOWER_NAMES[family]}"
+    if family == "drivetrain":
+        return "drivetrain"
+    if family == "rigid":
+        return "drivetrain rigid-body"
+    if family == "other":
+        return f"other {order}" if order else "other"
+    return f"{ordinal(order)} {family} {whirl}".rstrip()
+
+
+# ------------------------------------------------------------------------------------------------
+# 1. the reference: the parts' own modes, once per model
+# ------------------------------------------------------------------------------------------------
+@dataclass
+class StructuralReference:
+    """The blade's standstill modes (``blade``: (family, order, frequency Hz) in frequency order,
+    ``signatures``: their unit strip-motion signatures, columns) and the support's modes (``Phi_s``
+    mass-normalized in support coordinates, ``support``: (family, order, frequency Hz))."""
+
+    blade: list
+    signatures: np.ndarray
+    support: list = field(default_factory=list)
+    Phi_s: np.ndarray | None = None
+
+    def first_hz(self, family: str) -> float:
+        """The frequency (Hz) of the blade's 1st mode of ``family`` (NaN if it has none)."""
+        return next((f for fam, o, f in self.blade if fam == family and o == 1), float("nan"))
+
+
+def strip_signatures(sections, comps: np.ndarray) -> np.ndarray:
+    """(3 ns, n) unit-norm signatures of strip motions ``comps`` (3, ns, n) (flap, edge, torsion x a
+    quarter chord), weighted by the square root of the strip widths."""
+    s = comps * np.sqrt(np.asarray(sections.width, float))[None, :, None]
+    s = s.reshape(-1, comps.shape[-1])
+    return s / np.maximum(np.linalg.norm(s, axis=0), 1e-300)[None, :]
+
+
+def strip_family(sections, comps: np.ndarray) -> list[str]:
+    """flap / edge / torsion of each mode: the largest width-weighted strip-motion energy."""
+    en = np.sum(np.abs(comps) ** 2 * np.asarray(sections.width, float)[None, :, None], axis=1)
+    return [BLADE_FAMILIES[k] for k in np.argmax(en, axis=0)]
+
+
+def _ordered(families: list[str]) -> list[int]:
+    count: dict = {}
+    out = []
+    for fam in families:
+        count[fam] = count.get(fam, 0) + 1
+        out.append(count[fam])
+    return out
+
+
+def blade_reference(struct, sections, max_hz: float | None = None):
+    """(named modes, signatures) of a blade's structural modes at standstill (``struct``: its
+    assembled, root-clamped :class:`~windflutter.structure.assembly.Structural`)."""
+    from windflutter.solve.reduction import structural_modes
+
+    K, M = struct.Kr, struct.Mr
+    n_dof = K.shape[0]
+    n = min(max(MIN_REFERENCE_MODES, 24), n_dof - 1)
+    basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), n)
+    f = basis.omega / (2 * np.pi)
+    comps = blade_motion_components(sections, np.asarray(struct.T @ basis.Phi))
+    fams = strip_family(sections, comps)
+    keep = np.arange(len(f))
+    if max_hz is not None:  # all up to 3 x the limit, and at least MIN_REFERENCE_MODES
+        keep = keep[(f <= 3.0 * max_hz) | (keep < MIN_REFERENCE_MODES)]
+    fams = [fams[i] for i in keep]
+    named = [(fam, o, float(f[i])) for fam, o, i in zip(fams, _ordered(fams), keep)]
+    return named, strip_signatures(sections, comps[:, :, keep])
+
+
+def support_reference(support) -> tuple[list, np.ndarray | None]:
+    """(named modes, mass-normalized shapes) of the support alone (tower, nacelle, hub; no rotor)."""
+    if support is None:
+        return [], None
+    Ms = 0.5 * (support.M + support.M.T)
+    Ks = 0.5 * (support.K + support.K.T)
+    w2, Phi = sla.eigh(Ks, Ms)
+    md = np.asarray(support.struct.M.diagonal())
+    fams = []
+    for k in range(Phi.shape[1]):
+        u = np.asarray(support.expand @ Phi[:, k])
+        e = (md * np.abs(u) ** 2).reshape(-1, 6).sum(axis=0)
+        fams.append("tower_torsion" if e[5] > max(e[0], e[1]) else ("tower_fa" if e[0] >= e[1] else "tower_ss"))
+    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
+    return [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)], Phi
+
+
+def structural_reference(blade, support, max_hz: float | None = None) -> StructuralReference:
+    """The reference of a turbine model: ``blade`` a :class:`~windflutter.system.blade.RotorBlade`
+    (its standstill structure; the pitch does not change its modes in its own frame), ``support`` the
+    support model or None."""
+    named, sig = blade_reference(blade.struct, blade.sections, max_hz)
+    sup, Phi_s = support_reference(support)
+    return StructuralReference(blade=named, signatures=sig, support=sup, Phi_s=Phi_s)
+
+
+# ------------------------------------------------------------------------------------------------
+# 2. the point's own blade modes, named by the reference
+# ------------------------------------------------------------------------------------------------
+@dataclass
+class PointOwnModes:
+    """The blade's own modes at an operating point: ``V`` (m, r) M-orthonormal on the blade's elastic
+    coordinates, ``Me`` their mass, ``ident`` (r,) the (family, order) each continues."""
+
+    V: np.ndarray
+    Me: np.ndarray
+    ident: list
+    w2: np.ndarray | None = None
+
+
+def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralReference) -> PointOwnModes:
+    """The blade's structural modes at the point (rotating, steady stress, no aerodynamics) named by
+    the reference modes they continue (assignment of the MAC of their strip motions)."""
+    M, K = ps.blade_structure
+    e = slice(6, None)
+    Me = 0.5 * (M[e, e] + M[e, e].T)
+    Ke = 0.5 * (K[e, e] + K[e, e].T)
+    w2, V = sla.eigh(Ke, Me)
+    comps = basis_components @ V if basis_components.ndim == 3 else basis_components
+    sig = strip_signatures(ps.blade.sections, comps)
+    mac = mac_matrix(reference.signatures, sig)
+    rows, cols = linear_sum_assignment(-mac)
+    ident: list = [None] * V.shape[1]
+    for r, c in zip(rows, cols):
+        if mac[r, c] >= REFERENCE_MAC:
+            fam, order, _ = reference.blade[r]
+            ident[c] = (fam, order)
+    # own modes beyond the reference: their family by their strip motion, ordinals after the reference's
+    fams = strip_family(ps.blade.sections, comps)
+    top = {}
+    for fam, order, _ in reference.blade:
+        top[fam] = max(top.get(fam, 0), order)
+    for c in np.argsort(w2):
+        if ident[c] is None:
+            top[fams[c]] = top.get(fams[c], 0) + 1
+            ident[c] = (fams[c], top[fams[c]])
+    return PointOwnModes(V=V, Me=Me, ident=ident, w2=w2)
+
+
+# ------------------------------------------------------------------------------------------------
+# 3. participation of each aeroelastic mode in the identities
+# ------------------------------------------------------------------------------------------------
+def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: StructuralReference,
+                   frequencies_hz: np.ndarray) -> tuple[list[Identity], np.ndarray]:
+    """``(identities, S)``: ``S[i, k]`` the share of the strain energy of mode ``i`` (column ``i``
+    of ``Q``, the structural coordinates of ``ps.mbc``) in identity ``k`` (modal strain energy).
+
+    Strain, not kinetic, energy: the blade coordinates are deformations relative to the hub, so that
+    in a mode that moves the hub above the blade's 1st flap frequency (a 2nd or 3rd tower mode, a
+    whirling 3rd edge mode) the blades, left behind by the moving hub, carry a large relative kinetic
+    energy in their 1st flap shape (the shape with the largest base-motion participation) but little
+    strain.  Each part's strain energy is ``sum_j omega_j^2 |a_j|^2`` over its own modes
+    (frequencies ``omega_j``, mass-normalized amplitudes ``a_j``); the drivetrain's that of its shaft
+    spring; its rigid rotation (an identity only below :data:`RIGID_HZ`) counts with ``omega^2``
+    times its kinetic energy.  A heavily damped mode (70 % flap in operation) spreads its strain over
+    neighbouring modes of its family and is then reported as mixed."""
+    mb = ps.mbc
+    nF, m, N = mb.n_fixed, mb.n_eta, mb.n_blades
+    labels = ps.labels
+    ns = sum(1 for lb in labels if lb.startswith("support"))
+    w = 2 * np.pi * np.asarray(frequencies_hz, float)
+    ids: list[Identity] = []
+    cols: list[np.ndarray] = []
+    if ns and reference.Phi_s is not None:  # support: its own modes
+        a = reference.Phi_s.T @ (0.5 * (ps.support.M + ps.support.M.T)) @ Q[:ns]
+        ws = 2 * np.pi * np.array([f for _, _, f in reference.support])
+        for k, (fam, order, _) in enumerate(reference.support):
+            ids.append(Identity(fam, order))
+            cols.append(ws[k] ** 2 * np.abs(a[k]) ** 2)
+    dt = [i for i, lb in enumerate(labels) if lb in ("azimuth", "generator")]
+    if dt:  # drivetrain: rigid rotation and shaft torsion
+        qd = Q[dt]
+        Md = mb.M[np.ix_(dt, dt)]
+        Md = 0.5 * (Md + Md.T)
+        r = np.ones(len(dt))
+        mr = r @ Md @ r
+        e_rig = w**2 * np.abs((r @ Md @ qd) / mr) ** 2 * mr
+        ids.append(Identity("rigid", 0))
+        cols.append(np.where(w < 2 * np.pi * RIGID_HZ, e_rig, 0.0))
+        if len(dt) > 1 and ps.fixed is not None:
+            Kd = ps.fixed.K[np.ix_(dt, dt)]
+            ids.append(Identity("drivetrain", 0))
+            cols.append(np.abs(np.real(np.einsum("ij,ik,kj->j", qd.conj(), 0.5 * (Kd + Kd.T), qd))))
+    if m and own is not None:  # blades: the point's own modes, per multi-blade coordinate
+        wj2 = np.maximum(own.w2, 0.0)[:, None]
+        A = [own.V.T @ (own.Me @ Q[nF + j * m: nF + (j + 1) * m]) for j in range(N)]
+        e = {"collective": N * np.abs(A[0]) ** 2}
+        if N >= 3:
+            e["FW"] = N / 4 * np.abs(A[1] + 1j * A[2]) ** 2
+            e["BW"] = N / 4 * np.abs(A[1] - 1j * A[2]) ** 2
+        rest = sum((np.abs(x) ** 2 for x in A[3 if N >= 3 else 1:]), np.zeros_like(A[0], float))
+        if np.any(rest):
+            e["asymmetric"] = N / 2 * rest
+        e = {k: wj2 * v for k, v in e.items()}
+        for j, (fam, order) in enumerate(own.ident):
+            for wh, ew in e.items():
+                ids.append(Identity(fam, order, wh))
+                cols.append(ew[j])
+    S = np.stack(cols, axis=1) if cols else np.zeros((Q.shape[1], 0))
+    tot = S.sum(axis=1, keepdims=True)
+    return ids, S / np.maximum(tot, 1e-300)
+
+
+# ------------------------------------------------------------------------------------------------
+# 4. assignment
+# ------------------------------------------------------------------------------------------------
+def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 0.5) -> np.ndarray:
+    """(n_modes,) the identity index given to each mode (largest total share, one identity per mode;
+    -1 for none); ``continuity`` (n_modes, n_ids), optional, adds ``weight`` times each mode's
+    similarity to the mode that carried the identity at the previous point of a sweep."""
+    C = S if continuity is None else S + weight * continuity
+    out = np.full(S.shape[0], -1)
+    if S.size == 0:
+        return out
+    rows, cols = linear_sum_assignment(-C)
+    out[rows] = cols
+    return out
+
+
+def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int) -> None:
+    """Give mode record ``rec`` the identity ``ids[k]`` (its shares ``shares`` over ``ids``), in place:
+    family, order, whirl, name, the dominant and second participations, mixed and rigid flags."""
+    order = np.argsort(shares)[::-1]
+    first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
+    rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
+    if k < 0 or shares[k] < MIN_ASSIGNED_SHARE:  # no identity of its own: its participations
+        rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
+        rec.rigid, rec.share, rec.mixed = False, 0.0, True
+        rec.name = " + ".join(n for n, _ in rec.participation)
+        return
+    mine = ids[k]
+    rec.identity, rec.family, rec.order, rec.whirl = mine, mine.family, mine.order, mine.whirl
+    rec.rigid = mine.family == "rigid"
+    rec.share = float(shares[k])
+    other = next(((n, s) for n, s in rec.participation if n != mine.name), None)
+    rec.mixed = rec.share < MIXED_SHARE
+    rec.name = mine.name if not rec.mixed or other is None else f"{mine.name} + {other[0]}"
