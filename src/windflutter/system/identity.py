@@ -49,13 +49,16 @@ REFERENCE_MAC = 0.3
 #: the blade's reference modes: at least this many, and all up to this multiple of the highest
 #: frequency asked for
 MIN_REFERENCE_MODES = 12
-#: an assigned identity carrying less than this share of a mode is not given to it (the identities
-#: that fit it are taken by modes that fit them better): the mode is named by its participations only
+#: an assigned identity carrying less than this share of a mode (for a heavily damped mode, or less
+#: than half of its largest participation) is not given to it (the identities that fit it are taken
+#: by modes that fit them better): the mode is named by its two largest participations, as mixed
 MIN_ASSIGNED_SHARE = 0.1
 #: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
 RIGID_HZ = 0.05
 #: a heavily damped mode (drawn and flagged as such)
 HEAVY_DAMPING = 0.3
+#: modes damped above this are named by their kinetic, not strain, energy (aerodynamically damped flap)
+KINETIC_DAMPING = 0.15
 BLADE_FAMILIES = ("flap", "edge", "torsion")
 TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
 WHIRLS = ("collective", "BW", "FW")
@@ -208,15 +211,25 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
         if mac[r, c] >= REFERENCE_MAC:
             fam, order, _ = reference.blade[r]
             ident[c] = (fam, order)
-    # own modes beyond the reference: their family by their strip motion, ordinals after the reference's
+    # an own mode left without a reference (MAC below REFERENCE_MAC after the assignment): the unused
+    # reference mode of its own strip family that it resembles most, else an ordinal after the
+    # reference's (an own mode above the reference's range)
     fams = strip_family(ps.blade.sections, comps)
-    top = {}
+    used = {ident[c] for c in range(len(ident)) if ident[c] is not None}
+    top: dict = {}
     for fam, order, _ in reference.blade:
         top[fam] = max(top.get(fam, 0), order)
     for c in np.argsort(w2):
-        if ident[c] is None:
+        if ident[c] is not None:
+            continue
+        free = [r for r, (fam, order, _) in enumerate(reference.blade) if fam == fams[c] and (fam, order) not in used]
+        if free:
+            r = max(free, key=lambda r: mac[r, c])
+            ident[c] = reference.blade[r][:2]
+        else:
             top[fams[c]] = top.get(fams[c], 0) + 1
             ident[c] = (fams[c], top[fams[c]])
+        used.add(ident[c])
     return PointOwnModes(V=V, Me=Me, ident=ident, w2=w2)
 
 
@@ -224,7 +237,8 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
 # 3. participation of each aeroelastic mode in the identities
 # ------------------------------------------------------------------------------------------------
 def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: StructuralReference,
-                   frequencies_hz: np.ndarray) -> tuple[list[Identity], np.ndarray]:
+                   frequencies_hz: np.ndarray, damping_ratios: np.ndarray | None = None
+                   ) -> tuple[list[Identity], np.ndarray]:
     """``(identities, S)``: ``S[i, k]`` the share of the strain energy of mode ``i`` (column ``i``
     of ``Q``, the structural coordinates of ``ps.mbc``) in identity ``k`` (modal strain energy).
 
@@ -236,12 +250,16 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
     (frequencies ``omega_j``, mass-normalized amplitudes ``a_j``); the drivetrain's that of its shaft
     spring; its rigid rotation (an identity only below :data:`RIGID_HZ`) counts with ``omega^2``
     times its kinetic energy.  A heavily damped mode (70 % flap in operation) spreads its strain over
-    neighbouring modes of its family and is then reported as mixed."""
+    neighbouring modes of its family (its quasi-static response to the aerodynamic load, weighted up by
+    their stiffness): for modes damped above :data:`KINETIC_DAMPING` (``damping_ratios``) the shares are
+    those of the modal kinetic energies ``|a_j|^2`` instead -- heavy aerodynamic damping is the blades'
+    flap, with little hub motion."""
     mb = ps.mbc
     nF, m, N = mb.n_fixed, mb.n_eta, mb.n_blades
     labels = ps.labels
     ns = sum(1 for lb in labels if lb.startswith("support"))
     w = 2 * np.pi * np.asarray(frequencies_hz, float)
+    heavy = np.zeros(Q.shape[1], bool) if damping_ratios is None else np.asarray(damping_ratios) > KINETIC_DAMPING
     ids: list[Identity] = []
     cols: list[np.ndarray] = []
     if ns and reference.Phi_s is not None:  # support: its own modes
@@ -249,7 +267,7 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
         ws = 2 * np.pi * np.array([f for _, _, f in reference.support])
         for k, (fam, order, _) in enumerate(reference.support):
             ids.append(Identity(fam, order))
-            cols.append(ws[k] ** 2 * np.abs(a[k]) ** 2)
+            cols.append(np.where(heavy, 1.0, ws[k] ** 2) * np.abs(a[k]) ** 2)
     dt = [i for i, lb in enumerate(labels) if lb in ("azimuth", "generator")]
     if dt:  # drivetrain: rigid rotation and shaft torsion
         qd = Q[dt]
@@ -257,15 +275,17 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
         Md = 0.5 * (Md + Md.T)
         r = np.ones(len(dt))
         mr = r @ Md @ r
-        e_rig = w**2 * np.abs((r @ Md @ qd) / mr) ** 2 * mr
+        e_rig = np.where(heavy, 1.0, w**2) * np.abs((r @ Md @ qd) / mr) ** 2 * mr
         ids.append(Identity("rigid", 0))
         cols.append(np.where(w < 2 * np.pi * RIGID_HZ, e_rig, 0.0))
         if len(dt) > 1 and ps.fixed is not None:
             Kd = ps.fixed.K[np.ix_(dt, dt)]
             ids.append(Identity("drivetrain", 0))
-            cols.append(np.abs(np.real(np.einsum("ij,ik,kj->j", qd.conj(), 0.5 * (Kd + Kd.T), qd))))
+            e_k = np.abs(np.real(np.einsum("ij,ik,kj->j", qd.conj(), 0.5 * (Kd + Kd.T), qd)))
+            e_m = np.maximum(np.real(np.einsum("ij,ik,kj->j", qd.conj(), Md, qd)) - e_rig, 0.0)
+            cols.append(np.where(heavy, e_m, e_k))
     if m and own is not None:  # blades: the point's own modes, per multi-blade coordinate
-        wj2 = np.maximum(own.w2, 0.0)[:, None]
+        wj2 = np.where(heavy[None, :], 1.0, np.maximum(own.w2, 0.0)[:, None])
         A = [own.V.T @ (own.Me @ Q[nF + j * m: nF + (j + 1) * m]) for j in range(N)]
         e = {"collective": N * np.abs(A[0]) ** 2}
         if N >= 3:
@@ -275,13 +295,19 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
         if np.any(rest):
             e["asymmetric"] = N / 2 * rest
         e = {k: wj2 * v for k, v in e.items()}
+        known = {(fam, order) for fam, order, _ in reference.blade}
+        residual = np.zeros(Q.shape[1])
         for j, (fam, order) in enumerate(own.ident):
             for wh, ew in e.items():
+                if (fam, order) not in known:  # above the reference's range (and the basis's static
+                    residual += ew[j]         # corrections): counted, never a name
+                    continue
                 ids.append(Identity(fam, order, wh))
                 cols.append(ew[j])
-    S = np.stack(cols, axis=1) if cols else np.zeros((Q.shape[1], 0))
+        cols.append(residual)
+    S = np.stack(cols, axis=1) if cols else np.zeros((Q.shape[1], 1))
     tot = S.sum(axis=1, keepdims=True)
-    return ids, S / np.maximum(tot, 1e-300)
+    return ids, (S / np.maximum(tot, 1e-300))[:, :len(ids)]
 
 
 # ------------------------------------------------------------------------------------------------
@@ -300,13 +326,13 @@ def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 
     return out
 
 
-def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int) -> None:
+def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False) -> None:
     """Give mode record ``rec`` the identity ``ids[k]`` (its shares ``shares`` over ``ids``), in place:
     family, order, whirl, name, the dominant and second participations, mixed and rigid flags."""
     order = np.argsort(shares)[::-1]
     first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
-    if k < 0 or shares[k] < MIN_ASSIGNED_SHARE:  # no identity of its own: its participations
+    if k < 0 or shares[k] < max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0):  # no identity of its own: its participations
         rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
         rec.rigid, rec.share, rec.mixed = False, 0.0, True
         rec.name = " + ".join(n for n, _ in rec.participation)

@@ -304,7 +304,7 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
 def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[ModeRecord] | None = None):
     """Name ``modes`` (their structural coordinates the columns of ``Q``) by their participation in
     the structural identities of ``ps.reference``, in place; returns ``modes``."""
-    from windflutter.system.identity import assign, name_record, participations, point_own_modes
+    from windflutter.system.identity import HEAVY_DAMPING, assign, name_record, participations, point_own_modes
 
     if not modes:
         return modes
@@ -317,7 +317,8 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
             blade_motion_components(ps.blade.sections, np.asarray(ps.blade.struct.T))
         own = point_own_modes(ps, comps, ref)
     freqs = np.array([m.frequency_hz for m in modes])
-    ids, S = participations(ps, Q, own, ref, freqs)
+    zetas = np.array([m.damping_ratio for m in modes])
+    ids, S = participations(ps, Q, own, ref, freqs, zetas)
     cont = None
     if previous:
         from windflutter.linalg_tools import mac_matrix
@@ -331,7 +332,7 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
             cont[:, cols] = mac_matrix(A, B)
     got = assign(S, cont)
     for i, rec in enumerate(modes):
-        name_record(rec, ids, S[i], int(got[i]))
+        name_record(rec, ids, S[i], int(got[i]), heavy=bool(zetas[i] > HEAVY_DAMPING))
     return modes
 
 
