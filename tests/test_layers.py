@@ -39,7 +39,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("system",),
     ("stability",),
     ("post",),
-    ("analysers",),
+    ("analysers", "operating"),
     ("workflow",),
     ("api",),
     ("cli", "__main__", "windflutter"),

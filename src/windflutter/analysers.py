@@ -176,25 +176,20 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
         return None
     if getattr(turbine, "operating_curve", None) is None:
         return None
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
-    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
-    from windflutter.system.campbell import campbell  # noqa: PLC0415
-    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
+    from windflutter.operating import operating_campbell as service  # noqa: PLC0415
 
     aero = next(a for a, m in config.cases if m == "p")
     case = getattr(analyser, "_cases", {}).get((aero, "p")) if analyser is not None else None
-    model = case.model if case is not None else OperationalModel(turbine, operational_options(config, aero))
     oc = turbine.operating_curve
     winds = [v for v in config.wind_speeds if oc.wind_speed[0] - 1e-9 <= v <= oc.wind_speed[-1] + 1e-9]
     if not winds:
         return None
-    max_hz = config.campbell.max_hz or 1.25 * torsion_frequency(model, 0.0)
-    return campbell(turbine, winds, max_hz=max_hz, model=model)
+    return service(turbine, config, winds, model=case.model if case is not None else None)
 
 
 def _with_validity_notes(fn: Callable, *args, **kw):
     """``(fn(*args, **kw), notes)``: the messages of the
-    :class:`~windflutter.errors.ValidityWarning`\ s raised inside (a model used outside its range,
+    :class:`~windflutter.errors.ValidityWarning` s raised inside (a model used outside its range,
     e.g. the BEM in the propeller-brake state), each with the lowest rotor speed it was raised at
     (``"... [from 17.31 RPM]"``, :func:`validity_from_rpm`), kept with the point (its ``reason``,
     shown in the report beside ``ok``); every warning is still shown as usual, each note once."""

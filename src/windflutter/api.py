@@ -271,7 +271,7 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
     wind_speeds : m/s; default the operating curve's within 3-25 m/s (a ``config``'s wind speeds
         are not used).
     max_hz : modes up to this frequency (Hz; the config's ``campbell.max_hz``); default 1.25 x the
-        first blade torsion frequency.
+        blade's 1st torsion frequency (:func:`windflutter.operating.operating_campbell`).
     config : base analysis config (see :func:`analysis_config`); one ``aero``.
     progress : optional ``progress(fraction, text)``.
     **options : analysis-config overrides (module docstring), e.g. ``model="shell"``,
@@ -283,20 +283,16 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
         ``.points`` (per wind speed: rotor speed, pitch, modes with frequency and damping),
         ``.least_damped()``, ``.unstable()``, ``.as_dict()`` (the CLI's ``--json``).
     """
+    from windflutter.operating import operating_campbell  # noqa: PLC0415
     from windflutter.stability.build import operational_options  # noqa: PLC0415
-    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
-    from windflutter.system.campbell import campbell as _campbell  # noqa: PLC0415
-    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
 
     extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
     if max_hz is not None:
         extra["campbell.max_hz"] = max_hz
     cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
-    opts = operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))
-    model = OperationalModel(as_turbine(turbine), opts)
-    limit = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else 1.25 * torsion_frequency(model, 0.0)
+    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
-    return _campbell(model.turbine, winds, max_hz=limit, model=model, progress=progress)
+    return operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
 
 
 # --------------------------------------------------------------------------------------------

@@ -72,8 +72,8 @@ def test_hawcstab2s_structural_damping_acts_as_if_ground_fixed(structural_points
     for v, ps in structural_points.items():
         row = d[np.argmin(np.abs(d[:, 0] - v))]
         f_ref, z_ref = row[1:61], row[61:121] / 100.0
-        ours = {m.name: m for m in point_modes(ps, max_hz=2.5)}
-        ground = {m.name: m for m in point_modes(ground_fixed_damping(ps), max_hz=2.5)}
+        ours = {m.identity_name: m for m in point_modes(ps, max_hz=2.5)}
+        ground = {m.identity_name: m for m in point_modes(ground_fixed_damping(ps), max_hz=2.5)}
         for name in FAMILIES:
             m, g = ours[name], ground[name]
             j = int(np.argmin(np.abs(f_ref - m.damped_frequency_hz)))
@@ -105,7 +105,7 @@ def test_an_isotropic_rotor_alone_has_one_decay_rate_for_both_whirls():
     rpm, pitch = operating_point(10.0)
     ps = om.at(10.0, rpm=rpm, pitch=math.radians(pitch))
     for build, equal in ((ps, True), (ground_fixed_damping(ps), False)):
-        modes = {m.name: m for m in point_modes(build, max_hz=1.6)}
+        modes = {m.identity_name: m for m in point_modes(build, max_hz=1.6)}
         for fam in ("1st edge", "1st flap"):
             bw, fw = modes[f"{fam} BW"].eigenvalue, modes[f"{fam} FW"].eigenvalue
             if equal:

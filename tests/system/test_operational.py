@@ -77,11 +77,13 @@ def test_campbell_cli_json_is_exactly_the_documented_schema(capsys):
     assert set(out) == {"turbine", "part", "frame", "points"} and out["frame"] == "ground-fixed"
     (pt,) = out["points"]
     assert set(pt) == {"wind_speed", "rotor_speed_rpm", "pitch_deg", "modes"}
-    keys = {"name", "family", "order", "whirl", "frequency_hz", "damped_frequency_hz", "damping_ratio"}
+    keys = {"name", "family", "order", "whirl", "frequency_hz", "damped_frequency_hz", "damping_ratio", "share",
+            "mixed", "heavily_damped", "participation_1", "participation_1_share", "participation_2",
+            "participation_2_share"}
     assert pt["modes"] and all(set(m) == keys for m in pt["modes"])
-    assert {m["whirl"] for m in pt["modes"]} <= {"BW", "FW", "collective", "none"}
+    assert {m["whirl"] for m in pt["modes"]} <= {"BW", "FW", "collective", "asymmetric", "none"}
     assert {m["family"] for m in pt["modes"]} <= {"flap", "edge", "torsion", "tower_fa", "tower_ss", "tower_torsion",
-                                                  "drivetrain", "other"}
+                                                  "drivetrain", "rigid", "mixed"}
     for m in pt["modes"]:
         assert m["damped_frequency_hz"] <= m["frequency_hz"] + 1e-12
 

@@ -3,7 +3,8 @@ every mode of the whole turbine (ground-fixed frame, multi-blade coordinates) al
 curve, with mode names in the field's terms.
 
 The flags are analysis-config fields (:mod:`windflutter.cli.options`), checked as a config is;
-the model is method p's (:func:`windflutter.stability.build.operational_options`).
+the command parses, calls :func:`windflutter.api.campbell` (the operating-point service,
+:mod:`windflutter.operating`) and prints or exports.
 """
 
 from __future__ import annotations
@@ -54,24 +55,16 @@ def _config(args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
+    from windflutter.api import campbell  # noqa: PLC0415
     from windflutter.files import check_output_file, prepare_output_file  # noqa: PLC0415
-    from windflutter.model import load_turbine  # noqa: PLC0415
-    from windflutter.stability.operational import torsion_frequency  # noqa: PLC0415
-    from windflutter.system.campbell import campbell  # noqa: PLC0415
-    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
 
-    config, options = _config(args)
+    config, _ = _config(args)
     for flag, exts in (("--plot", PLOT_EXTENSIONS), ("--csv", (".csv",)), ("--cmb", (".cmb", ".txt")), ("--amp", (".amp", ".txt"))):
         path = getattr(args, flag.lstrip("-"))
         if path is not None:  # before the analysis
             check_output_file(path, flag, exts)
-    turbine = load_turbine(args.turbine)
-    model = OperationalModel(turbine, options)
     winds = config.wind_speeds if args.wind_speeds is not None else None
-    max_hz = config.campbell.max_hz
-    if max_hz is None:
-        max_hz = 1.25 * torsion_frequency(model, 0.0)
-    res = campbell(turbine, winds, max_hz=max_hz, model=model)
+    res = campbell(args.turbine, winds, config=config)
     if args.csv:
         from windflutter.post.campbell_export import write_csv  # noqa: PLC0415
 

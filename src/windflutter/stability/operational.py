@@ -42,8 +42,8 @@ POINT_CACHE = 6
 @dataclass(frozen=True)
 class SearchSettings:
     """Rotor-speed sweep of method p: up to ``rpm_max`` (RPM) in steps of ``rpm_step`` from the
-    operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: 1.25 x
-    the first blade torsion frequency); ``full_sweep`` False stops past both onsets."""
+    operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: the
+    model's default, :meth:`windflutter.system.identity.StructuralReference.default_max_hz`); ``full_sweep`` False stops past both onsets."""
 
     rpm_max: float = 40.0
     rpm_step: float = 2.0
@@ -96,27 +96,6 @@ def structural_mode_radius(ps) -> float:
     return float(r[np.argmax(np.linalg.norm(v[:, :3], axis=1))] / r.max())
 
 
-def torsion_frequency(om, pitch: float) -> float:
-    """The first torsion-dominated fixed-interface blade mode (Hz) at standstill (structure only)."""
-    from windflutter.structure.labels import blade_motion_components
-
-    from windflutter.solve.reduction import structural_modes
-
-    rb = om.blade(pitch)
-    st = rb.struct
-    K, M = st.Kr, st.Mr
-    n = min(40, K.shape[0] - 1)
-    # dense LAPACK below 600 DOF (beam blades), shift-invert Lanczos above (a shell blade's dense
-    # eigh took 65 s)
-    basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), n)
-    w2, V = basis.omega**2, basis.Phi
-    c = blade_motion_components(rb.sections, np.asarray(st.T @ V))
-    en = np.sum(np.abs(c) ** 2 * rb.sections.width[None, :, None], axis=1)
-    tors = np.where(np.argmax(en, axis=0) == 2)[0]
-    i = int(tors[0]) if tors.size else n - 1
-    return float(np.sqrt(max(w2[i], 0.0)) / (2 * np.pi))
-
-
 def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
     """The mode's rotating-frame frequency is (about) zero: ``omega_r = omega -+ Omega`` for FW/BW,
     ``omega`` for collective (and non-blade) modes."""
@@ -141,7 +120,7 @@ class OperationalStability:
         if self.search.max_hz is not None:
             return float(self.search.max_hz)
         if self._max_hz is None:
-            self._max_hz = 1.25 * torsion_frequency(self.model, pitch)
+            self._max_hz = self.model.reference().default_max_hz()
         return self._max_hz
 
     def pitch_at(self, wind_speed: float) -> float:

@@ -45,15 +45,17 @@ class CampbellPoint:
 @dataclass
 class Track:
     """A mode followed along the wind speeds: ``index[i]`` is its position in point ``i``'s mode
-    list (-1 where it is not found); ``names`` the distinct names it carried, in order (more than
-    one: its identity changes along the curve)."""
+    list (-1 where it is not found); ``names`` the distinct names it carried, in order (a mixed mode's
+    name shows its second participation, which can change along the curve)."""
 
     index: list[int]
     names: list[str] = field(default_factory=list)
+    #: the structural identity the track follows (``"1st edge BW"``; empty for modes without one)
+    identity: str = ""
 
     @property
     def name(self) -> str:
-        return self.names[-1] if self.names else ""
+        return self.identity or (self.names[-1] if self.names else "")
 
     @property
     def changes_identity(self) -> bool:
@@ -93,36 +95,50 @@ class CampbellResult:
 
 
 def track_modes(points: list[CampbellPoint], min_mac: float = 0.5) -> list[Track]:
-    """Follow the modes from point to point: assignment of maximum MAC of their signatures
-    (Hungarian algorithm); a pair with MAC below ``min_mac`` starts a new track."""
+    """Follow the modes from point to point: one track per structural identity (a mode keeps its
+    identity along the curve by participation, :mod:`windflutter.system.identity`, each identity used
+    once per point); the modes without one (mixed beyond naming) by the assignment of maximum MAC of
+    their signatures (Hungarian algorithm) among themselves, a pair with MAC below ``min_mac``
+    starting a new track."""
     from scipy.optimize import linear_sum_assignment
 
     from windflutter.linalg_tools import mac_matrix
 
     n = len(points)
     tracks: list[Track] = []
-    live: dict[int, int] = {}  # mode index at the previous point -> track
+    by_identity: dict = {}
+    live: dict[int, int] = {}  # unnamed mode index at the previous point -> track
     for i, p in enumerate(points):
-        new_live: dict[int, int] = {}
-        if i > 0 and live and p.modes:
-            prev = points[i - 1].modes
-            A = np.stack([prev[j].signature for j in live], 1)
-            B = np.stack([m.signature for m in p.modes], 1)
-            mac = mac_matrix(A, B)
-            rows, cols = linear_sum_assignment(-mac)
-            keys = list(live)
-            for r, c in zip(rows, cols):
-                if mac[r, c] >= min_mac:
-                    new_live[int(c)] = live[keys[r]]
+        where: dict[int, int] = {}
         for k, m in enumerate(p.modes):
+            key = getattr(m, "identity", None)
+            if key is not None:
+                if key not in by_identity:
+                    tracks.append(Track(index=[-1] * n, identity=key.name))
+                    by_identity[key] = len(tracks) - 1
+                where[k] = by_identity[key]
+        rest = [k for k in range(len(p.modes)) if k not in where]
+        new_live: dict[int, int] = {}
+        if i > 0 and live and rest:
+            prev = points[i - 1].modes
+            keys = list(live)
+            mac = mac_matrix(np.stack([prev[j].signature for j in keys], 1),
+                             np.stack([p.modes[k].signature for k in rest], 1))
+            for r, c in zip(*linear_sum_assignment(-mac)):
+                if mac[r, c] >= min_mac:
+                    new_live[rest[c]] = live[keys[r]]
+        for k in rest:
             if k not in new_live:
                 tracks.append(Track(index=[-1] * n))
                 new_live[k] = len(tracks) - 1
-            t = tracks[new_live[k]]
-            t.index[i] = k
-            if not t.names or t.names[-1] != m.name:
-                t.names.append(m.name)
-        live = new_live
+            where[k] = new_live[k]
+        for k, t in where.items():
+            tr = tracks[t]
+            tr.index[i] = k
+            name = p.modes[k].name
+            if not tr.names or tr.names[-1] != name:
+                tr.names.append(name)
+        live = {k: t for k, t in new_live.items()}
     return tracks
 
 

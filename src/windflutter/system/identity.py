@@ -54,7 +54,10 @@ MIN_REFERENCE_MODES = 12
 #: by modes that fit them better): the mode is named by its two largest participations, as mixed
 MIN_ASSIGNED_SHARE = 0.1
 #: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
-RIGID_HZ = 0.05
+RIGID_HZ = 0.15
+#: the default frequency limit of the Campbell and the overspeed sweep: this factor x the blade's 1st
+#: torsion frequency at standstill
+MAX_HZ_FACTOR = 1.25
 #: a heavily damped mode (drawn and flagged as such)
 HEAVY_DAMPING = 0.3
 #: modes damped above this are named by their kinetic, not strain, energy (aerodynamically damped flap)
@@ -105,6 +108,13 @@ class StructuralReference:
     signatures: np.ndarray
     support: list = field(default_factory=list)
     Phi_s: np.ndarray | None = None
+
+    def default_max_hz(self) -> float:
+        """The Campbell's and the overspeed sweep's frequency limit (Hz) when none is given:
+        :data:`MAX_HZ_FACTOR` x the blade's 1st torsion frequency (its classical-flutter partner), or
+        x its highest reference mode without a torsion mode."""
+        f = self.first_hz("torsion")
+        return MAX_HZ_FACTOR * (f if np.isfinite(f) else max(fk for _, _, fk in self.blade))
 
     def first_hz(self, family: str) -> float:
         """The frequency (Hz) of the blade's 1st mode of ``family`` (NaN if it has none)."""

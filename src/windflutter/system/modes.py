@@ -74,6 +74,12 @@ class ModeRecord:
     mixed: bool = False
 
     @property
+    def identity_name(self) -> str:
+        """The name of the structural identity given (``"1st flap FW"``), without the second
+        participation that :attr:`name` shows for a mixed mode; :attr:`name` without one."""
+        return self.identity.name if self.identity is not None else self.name
+
+    @property
     def heavily_damped(self) -> bool:
         """Damping ratio above ``identity.HEAVY_DAMPING`` (0.3): drawn and flagged as such."""
         return self.damping_ratio > 0.3

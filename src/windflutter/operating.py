@@ -1,0 +1,52 @@
+"""The operating-point service: the one place that composes the operating-point Campbell.
+
+``windflutter campbell`` (:mod:`windflutter.cli.campbell`), :func:`windflutter.api.campbell` and the
+Campbell stage of ``windflutter run`` (:func:`windflutter.analysers.operating_campbell`) all call
+:func:`operating_campbell`: it owns the model (method p's
+:class:`~windflutter.system.operational.OperationalModel`, from the analysis config), the defaults
+(the wind speeds of the operating curve within 3-25 m/s; the frequency limit
+:meth:`~windflutter.system.identity.StructuralReference.default_max_hz`, 1.25 x the blade's 1st
+torsion frequency) and the named, tracked modes (:mod:`windflutter.system.identity`).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from windflutter.config import AnalysisConfig
+from windflutter.errors import InputError
+
+
+def campbell_model(turbine: Any, config: AnalysisConfig):
+    """Method p's operating-point model of ``turbine`` for ``config`` (its one aerodynamic variant;
+    with several, the first one analysed with method p)."""
+    from windflutter.stability.build import operational_options
+    from windflutter.system.operational import OperationalModel
+
+    aero = next((a for a, m in config.cases if m == "p"), config.aero[0])
+    return OperationalModel(turbine, operational_options(config, aero))
+
+
+def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *, model=None, progress=None):
+    """The operating-point Campbell diagram of ``turbine`` with the analysis ``config``.
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`.
+    config : the checked analysis config (its ``campbell.max_hz``, model, aerodynamics, solver).
+    wind_speeds : m/s; None: the operating curve's within 3-25 m/s.
+    model : an operating-point model built for ``config`` to reuse (its parts are cached), e.g. the
+        one the run's stability solver built.
+    progress : optional ``progress(fraction, text)``.
+
+    Returns
+    -------
+    windflutter.system.campbell.CampbellResult
+    """
+    from windflutter.system.campbell import campbell
+
+    if getattr(turbine, "operating_curve", None) is None:
+        raise InputError("operating curve", None, "a turbine with an operating curve (wind, rotor speed, pitch)")
+    om = model if model is not None else campbell_model(turbine, config)
+    max_hz = config.campbell.max_hz if config.campbell.max_hz is not None else om.reference().default_max_hz()
+    return campbell(om.turbine, wind_speeds, max_hz=max_hz, model=om, progress=progress)
