@@ -21,6 +21,23 @@ def amplitude_rows(wind: float | None = None) -> list[dict]:
         return [r for r in csv.DictReader(fh) if wind is None or float(r["wind_speed"]) == wind]
 
 
+def hawcstab2_continued(label: str, order: int, wind: float):
+    """(natural frequency Hz, damping ratio) at ``wind`` of HAWCStab2's ``order``-th mode labelled
+    ``label`` ("BW flap", "Sym flap", ...) *as HAWCStab2 continues it*: its mode numbers follow its
+    structural modes along the wind speeds, so the mode is chosen once, at the lowest wind speed, as
+    the ``order``-th of that label in the frequency of its structural mode of the same number (above
+    0.3 Hz: the 1st tower modes carry blade labels too), and read at ``wind`` by that number.  Its
+    aeroelastic file's frequency is the damped one (converted with ``sqrt(1 - zeta^2)``)."""
+    st = np.loadtxt(DATA / "structural_entire_turbine.cmb", comments="#")
+    low = amplitude_rows(float(st[0, 0]))
+    ks = sorted((int(r["mode"]) for r in low if r["blade_label"] == label and st[0, int(r["mode"])] > 0.3),
+                key=lambda k: st[0, k])
+    k = ks[order - 1]
+    (r,) = [r for r in amplitude_rows(wind) if int(r["mode"]) == k]
+    z = float(r["damping_pct"]) / 100.0
+    return float(r["frequency_hz"]) / np.sqrt(1 - z**2), z
+
+
 def hawcstab2_1st_edge_whirl(wind: float, whirl: str) -> dict:
     """HAWCStab2's 1st edge ``whirl`` ("BW" or "FW") mode at ``wind``: its only mode below 1 Hz whose
     largest tip amplitude is that whirl's edge (a row of modes.csv)."""

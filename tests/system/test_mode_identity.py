@@ -14,11 +14,11 @@ import pytest
 from windflutter.api import campbell, load_turbine
 from windflutter.system.operational import OperationalModel
 
-from .identity_checks import blade_counts_below, identity_checks
+from identity_checks import blade_counts_below, identity_checks
 
 
 def _check(name: str, winds, limit_hz: float, share: float):
-    res = campbell(name, winds, max_hz=limit_hz + 0.8)
+    res = campbell(name, [float(v) for v in winds], max_hz=limit_hz + 0.8)
     ref = OperationalModel(load_turbine(name)).reference()
     ok, n, missing, jumps, impossible = identity_checks(res, blade_counts_below(ref, limit_hz), limit_hz)
     report = "\n".join([f"{ok}/{n}", *missing, *jumps, *impossible])

@@ -104,6 +104,22 @@ def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
     return abs(w_r) < rel * max(omega, 1e-9)
 
 
+def flutter_label(sweep, rpm: float, mode) -> str:
+    """The flutter mode's name: the identity it had in operation (followed back from the onset to the
+    operating rotor speed, the first sweep point, by the MAC of its signature), and ``" -> "`` the one
+    it has at the onset where the two differ (``post.fmt.flutter_label`` reads both)."""
+    ref = mode.signature
+    here = mode
+    for r, modes in reversed([(r, m) for r, m in sweep if r <= rpm]):
+        if not modes:
+            continue
+        mac = mac_matrix(ref[:, None], np.stack([x.signature for x in modes], 1))[0]
+        here = modes[int(np.argmax(mac))]
+        ref = here.signature
+    start, onset = here.identity_name, mode.identity_name
+    return onset if start == onset else f"{start} -> {onset}"
+
+
 class OperationalStability:
     """Method p on a turbine: :meth:`analyse_operating_point` per wind speed (models cached)."""
 
@@ -269,6 +285,6 @@ class OperationalStability:
         return PointSummary(wind_speed=float(V), pitch_deg=float(np.degrees(pitch)),
                             flutter_rpm=None if flutter is None else float(flutter[0]),
                             flutter_frequency_hz=None if flutter is None else flutter[1].frequency_hz,
-                            flutter_mode=None if flutter is None else flutter[1].name,
+                            flutter_mode=None if flutter is None else flutter_label(sweep, *flutter),
                             divergence_rpm=on.divergence, sweep_rpm=rpm, frequency_hz=np.abs(lam) / (2 * np.pi),
                             damping_ratio=zeta, mode_labels=[t.name for t in tracks], onset=on)
