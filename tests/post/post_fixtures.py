@@ -16,7 +16,8 @@ RATED_RPM = 12.1
 #: this list was written; the checker test re-checks whatever the files carry)
 UDUNITS_OK = {"1", "m/s", "rpm", "Hz", "s", "m", "rad", "J", "W", "N", "degree", "s-1"}
 CSV_FIELDS = ("wind_speed", "rotor_speed_rpm", "pitch_deg", "name", "family", "order", "whirl",
-              "frequency_hz", "damped_frequency_hz", "damping_ratio")
+              "frequency_hz", "damped_frequency_hz", "damping_ratio", "share", "mixed", "heavily_damped",
+              "participation_1", "participation_1_share", "participation_2", "participation_2_share")
 
 
 def _mode(f_hz: float, zeta: float, name: str, family: str, whirl: str, order: int = 1, rigid: bool = False):

@@ -8,11 +8,11 @@ store (``OUTDIR/campbell.nc``) all read, so a stored diagram can be re-plotted a
 Dimensions ``wind_speed`` (m/s, strictly increasing) and ``track`` (a mode followed along the
 wind speeds by :func:`~windflutter.system.campbell.track_modes`).  Every mode of every point sits
 in exactly one cell; a cell without a mode is NaN (strings: empty).  Per cell the mode's name,
-family, whirl and order (they may change along a track: the track's identity is the MAC match,
-the name is what the mode is at that point), its undamped and damped frequencies (Hz), damping
-ratio (1), the real and imaginary parts of its eigenvalue (s-1; NetCDF has no complex type) and
-whether it is the drivetrain's rigid-body root.  ``track_name`` is the name a track has at its
-last point.  The modelling assumptions are global attributes ``assumption_<key>``.
+family, whirl and order (a track is one structural identity, :mod:`windflutter.system.identity`;
+a mixed mode's name adds its second participation), its two largest participations and their
+shares, its undamped and damped frequencies (Hz), damping ratio (1), the real and imaginary parts
+of its eigenvalue (s-1; NetCDF has no complex type) and the flags rigid-body root, mixed and heavily
+damped.  ``track_name`` is the identity a track follows.  The modelling assumptions are global attributes ``assumption_<key>``.
 """
 
 from __future__ import annotations
@@ -35,10 +35,18 @@ CAMPBELL_VARIABLES: dict[str, tuple[str | None, str]] = {
     "power": ("W", "aerodynamic rotor power of the steady state"),
     "thrust": ("N", "rotor thrust of the steady state"),
     "tip_deflection": ("m", "flapwise blade-tip deflection of the steady state"),
-    "track_name": (None, "name of the tracked mode at its last operating point"),
-    "mode_name": (None, "name of the mode at this operating point (empty: not found)"),
-    "family": (None, "mode family: flap, edge, torsion, tower_fa, tower_ss, tower_torsion, drivetrain, other"),
-    "whirl": (None, "whirl of the mode: BW, FW, collective or none"),
+    "track_name": (None, "structural identity the track follows (its last mode's name for a track without one)"),
+    "mode_name": (None, "name of the mode at this operating point: its identity, with its second participation "
+                        "when mixed (empty: not found)"),
+    "family": (None, "mode family: flap, edge, torsion, tower_fa, tower_ss, tower_torsion, drivetrain, rigid, mixed"),
+    "whirl": (None, "whirl of the mode: BW, FW, collective, asymmetric or none"),
+    "participation_1": (None, "the structural identity with the largest share of the mode"),
+    "participation_2": (None, "the structural identity with the second largest share of the mode"),
+    "participation_1_share": ("1", "share of the mode's energy in participation_1"),
+    "participation_2_share": ("1", "share of the mode's energy in participation_2"),
+    "share": ("1", "share of the mode's energy in the identity it is named by"),
+    "mixed": ("1", "1 when the identity it is named by carries less than 60 % of the mode"),
+    "heavily_damped": ("1", "1 for a damping ratio above 0.3"),
     "order": ("1", "order of the mode within its family and whirl (0: none / not found)"),
     "frequency": ("Hz", "undamped natural frequency |lambda|/(2 pi) of the mode"),
     "damped_frequency": ("Hz", "damped frequency Im(lambda)/(2 pi) of the mode"),
@@ -47,8 +55,10 @@ CAMPBELL_VARIABLES: dict[str, tuple[str | None, str]] = {
     "eigenvalue_imag": ("s-1", "imaginary part of the mode's eigenvalue lambda (damped angular frequency, rad/s)"),
     "rigid_body": ("1", "1 for the drivetrain's rigid-body root, 0 otherwise"),
 }
-CELL_FLOATS = ("frequency", "damped_frequency", "damping_ratio", "eigenvalue_real", "eigenvalue_imag")
-CELL_STRINGS = ("mode_name", "family", "whirl")
+CELL_FLOATS = ("frequency", "damped_frequency", "damping_ratio", "eigenvalue_real", "eigenvalue_imag", "share",
+               "participation_1_share", "participation_2_share")
+CELL_STRINGS = ("mode_name", "family", "whirl", "participation_1", "participation_2")
+CELL_FLAGS = ("rigid_body", "mixed", "heavily_damped")
 POINT_FLOATS = {"rotor_speed": "rotor_speed_rpm", "pitch": "pitch_deg", "power": "power",
                 "thrust": "thrust", "tip_deflection": "tip_deflection"}
 
@@ -66,7 +76,7 @@ def _cells(result, order: np.ndarray) -> dict[str, np.ndarray]:
     out: dict[str, np.ndarray] = {k: np.full((n, nt), np.nan) for k in CELL_FLOATS}
     out.update({k: np.full((n, nt), "", dtype=object) for k in CELL_STRINGS})
     out["order"] = np.zeros((n, nt), np.int32)
-    out["rigid_body"] = np.zeros((n, nt), np.int8)
+    out.update({k: np.zeros((n, nt), np.int8) for k in CELL_FLAGS})
     for t, tr in enumerate(tracks):
         for row, i in enumerate(order):
             k = tr.index[i]
@@ -81,6 +91,11 @@ def _cells(result, order: np.ndarray) -> dict[str, np.ndarray]:
             out["mode_name"][row, t], out["family"][row, t], out["whirl"][row, t] = m.name, m.family, m.whirl
             out["order"][row, t] = int(m.order)
             out["rigid_body"][row, t] = int(bool(m.rigid))
+            out["mixed"][row, t] = int(bool(getattr(m, "mixed", False)))
+            out["heavily_damped"][row, t] = int(m.damping_ratio > 0.3)
+            out["share"][row, t] = float(getattr(m, "share", np.nan))
+            for j, (name, share) in enumerate(list(getattr(m, "participation", []))[:2], start=1):
+                out[f"participation_{j}"][row, t], out[f"participation_{j}_share"][row, t] = name, float(share)
     return out
 
 
@@ -124,10 +139,12 @@ def campbell_dataset(result) -> xr.Dataset:
     _check_tracks(result)
     cells = _cells(result, order)
     dims = ("wind_speed", "track")
-    data = {k: (dims, cells[k]) for k in (*CELL_STRINGS, "order", *CELL_FLOATS, "rigid_body")}
+    data = {k: (dims, cells[k]) for k in (*CELL_STRINGS, "order", *CELL_FLOATS, *CELL_FLAGS)}
     for key, attr in POINT_FLOATS.items():
         data[key] = (("wind_speed",), np.array([float(getattr(result.points[i], attr)) for i in order]))
-    data["track_name"] = (("track",), _last_names(cells["mode_name"]))
+    last = _last_names(cells["mode_name"])
+    data["track_name"] = (("track",), np.array([getattr(tr, "identity", "") or last[t]
+                                                for t, tr in enumerate(result.tracks)], dtype=object))
     ds = xr.Dataset(data, coords={"wind_speed": ("wind_speed", v[order]),
                                   "track": ("track", np.arange(len(result.tracks), dtype=np.int32))})
     for name in ds.variables:
@@ -135,6 +152,8 @@ def campbell_dataset(result) -> xr.Dataset:
     ds["wind_speed"].attrs["standard_name"] = "wind_speed"
     ds["wind_speed"].encoding["_FillValue"] = None  # CF 2.5.1: no fill value on a coordinate variable
     ds["rigid_body"].attrs.update(flag_values=np.array([0, 1], np.int8), flag_meanings="elastic rigid_body")
+    ds["mixed"].attrs.update(flag_values=np.array([0, 1], np.int8), flag_meanings="named mixed")
+    ds["heavily_damped"].attrs.update(flag_values=np.array([0, 1], np.int8), flag_meanings="normal heavily_damped")
     ds.attrs.update(campbell_attrs(result))
     return ds
 

@@ -27,8 +27,11 @@ from windflutter.errors import InputError
 from windflutter.post.campbell_data import as_campbell_dataset, present
 
 CSV_FIELDS = ("wind_speed", "rotor_speed_rpm", "pitch_deg", "name", "family", "order", "whirl",
-              "frequency_hz", "damped_frequency_hz", "damping_ratio")
-_CSV_FLOATS = {"wind_speed", "rotor_speed_rpm", "pitch_deg", "frequency_hz", "damped_frequency_hz", "damping_ratio"}
+              "frequency_hz", "damped_frequency_hz", "damping_ratio", "share", "mixed", "heavily_damped",
+              "participation_1", "participation_1_share", "participation_2", "participation_2_share")
+_CSV_FLOATS = {"wind_speed", "rotor_speed_rpm", "pitch_deg", "frequency_hz", "damped_frequency_hz", "damping_ratio",
+               "share", "participation_1_share", "participation_2_share"}
+_CSV_INTS = {"order", "mixed", "heavily_damped"}
 _FREQUENCY_VARS = {"undamped": "frequency", "damped": "damped_frequency"}
 
 
@@ -48,8 +51,18 @@ def csv_rows(campbell) -> list[dict]:
                          "order": int(ds["order"].values[i, t]), "whirl": str(ds["whirl"].values[i, t]),
                          "frequency_hz": float(f[i, t]),
                          "damped_frequency_hz": float(ds["damped_frequency"].values[i, t]),
-                         "damping_ratio": float(ds["damping_ratio"].values[i, t])})
+                         "damping_ratio": float(ds["damping_ratio"].values[i, t]),
+                         **{k: _finite_or_none(ds[k].values[i, t]) for k in ("share", "participation_1_share",
+                                                                             "participation_2_share") if k in ds},
+                         **{k: int(ds[k].values[i, t]) for k in ("mixed", "heavily_damped") if k in ds},
+                         **{k: str(ds[k].values[i, t]) for k in ("participation_1", "participation_2") if k in ds}})
     return rows
+
+
+def _finite_or_none(x) -> float | None:
+    """A share as the JSON has it: None where the mode has none (NaN in the dataset)."""
+    x = float(x)
+    return x if math.isfinite(x) else None
 
 
 def _writable(path, field: str) -> Path:
@@ -104,7 +117,8 @@ def read_csv(path) -> list[dict]:
     out = []
     for n, r in enumerate(rows, start=2):
         try:
-            out.append({k: float(v) if k in _CSV_FLOATS else int(v) if k == "order" else v for k, v in r.items()})
+            out.append({k: (None if v == "" else float(v)) if k in _CSV_FLOATS else int(v) if k in _CSV_INTS else v
+                        for k, v in r.items()})
         except (TypeError, ValueError):
             raise InputError(f"line {n}", r, "numbers in the numeric columns", source=str(p)) from None
     return out

@@ -129,10 +129,11 @@ class ModeRecord:
         return None if c is None else {k: float(abs(v)) for k, v in c.items()}
 
     def as_dict(self) -> dict:
-        part = list(self.participation) + [("", None)] * (2 - len(self.participation))
+        part = [(n, float(x)) for n, x in self.participation] + [("", None)] * (2 - len(self.participation))
         return {"name": self.name, "family": self.family, "order": int(self.order), "whirl": self.whirl,
                 "frequency_hz": self.frequency_hz, "damped_frequency_hz": self.damped_frequency_hz,
-                "damping_ratio": self.damping_ratio, "share": self.share, "mixed": bool(self.mixed),
+                "damping_ratio": self.damping_ratio, "share": self.share if np.isfinite(self.share) else None,
+                "mixed": bool(self.mixed),
                 "heavily_damped": self.heavily_damped,
                 "participation_1": part[0][0], "participation_1_share": part[0][1],
                 "participation_2": part[1][0], "participation_2_share": part[1][1]}
