@@ -29,7 +29,7 @@ def real_shapes(vectors: np.ndarray) -> np.ndarray:
     return np.real(V * (np.abs(ph) / np.where(ph == 0, 1.0, ph))[None, :])
 
 
-def mode_names(fe, M, shapes: np.ndarray, frequencies: np.ndarray, sections) -> list[str]:
+def mode_names(fe, M, shapes: np.ndarray, frequencies: np.ndarray, sections, reference=None) -> list[str]:
     """Names of the modes ``shapes`` (n_dof, m; full numbering, any order) at ``frequencies`` (Hz).
 
     Parameters
@@ -37,12 +37,25 @@ def mode_names(fe, M, shapes: np.ndarray, frequencies: np.ndarray, sections) -> 
     fe : the model (node groups).  M : its full-numbering mass matrix.
     shapes : mode shapes (real or complex).  frequencies : (m,) their frequencies (Hz).
     sections : the model's aerodynamic strips.
+    reference : the blade's structural identities (:class:`~windflutter.system.identity.
+        StructuralReference`): a blade mode is then named as method p names it, by the blade's own
+        mode it is most of (``"2nd flap collective"``, ``"1st torsion asymmetric"``), not by its
+        rank in frequency; tower modes keep :func:`~windflutter.structure.labels.label_modes`'s names.
     """
-    from windflutter.structure.labels import label_modes
+    from windflutter.structure.labels import blade_motion_components, label_modes
 
     f = np.asarray(frequencies, float)
     order = np.argsort(f, kind="stable")
-    names = label_modes(fe, M, real_shapes(shapes)[:, order], sections)
+    X = real_shapes(shapes)[:, order]
+    names = label_modes(fe, M, X, sections)
+    if reference is not None and sections is not None and sections.n_sections:
+        from windflutter.system.identity import frozen_blade_identities, identity_name
+
+        ids = frozen_blade_identities(sections, blade_motion_components(sections, X), reference)
+        for j, ident in enumerate(ids):
+            if ident is not None and "tower" not in names[j]:
+                family, order_, whirl = ident
+                names[j] = identity_name(family, whirl, order_)
     out = [""] * len(f)
     for j, i in enumerate(order):
         out[i] = names[j]

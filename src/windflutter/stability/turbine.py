@@ -208,6 +208,23 @@ class TurbineStability:
         self._models: dict[float, tuple] = {}
 
     # -- model -----------------------------------------------------------------------------
+    def reference(self):
+        """The blade's structural identities (:func:`windflutter.system.identity.structural_reference`:
+        its standstill modes, named), from the blade alone meshed as this model's blades, cached:
+        the names of method p, for the tracked modes of the frozen-azimuth searches."""
+        if getattr(self, "_reference", None) is None:
+            from windflutter.mesh.settings import MeshSettings
+            from windflutter.mesh.turbine import build_model
+            from windflutter.structure.assembly import assemble
+            from windflutter.system.identity import StructuralReference, blade_reference
+
+            settings = MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": "rotor_blade",
+                                       "pitch": 0.0})
+            fe, sections = build_model(self.turbine, settings)
+            named, sig, norms = blade_reference(assemble(fe), sections)
+            self._reference = StructuralReference(blade=named, signatures=sig, norms=norms)
+        return self._reference
+
     def pitch_at(self, wind_speed: float) -> float:
         """Blade pitch (rad) from the operating curve (0 without one)."""
         oc = self.turbine.operating_curve
@@ -291,14 +308,17 @@ class TurbineStability:
 
         sys_ref = system_at(grid[0])
         M = am.structure.M
-        named = structural_names(sys_ref, fe, M, sections) if o.method == "pk" else None  # only p-k tracks
+        ref = self.reference()
+        named = structural_names(sys_ref, fe, M, sections, ref) if o.method == "pk" else None  # only p-k tracks
         if o.method == "pk":
-            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, fe, M, sections, named=named)
+            # (the count by the frequency-order names of the seed's labels: the tracked set, and so the
+            # onsets, as before the identities)
+            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, fe, M, sections)
             on = pk_search(system_at, grid, n_track=min(n_track, am.size), n_eig=o.n_eig, xtol=o.tolerance_rpm,
                            stop_at_onset=not o.full_sweep)
         else:
             on = thesis_search(system_at, grid, n_eig=o.n_eig)
-        labels, mode = self._names(on, system_at, fe, M, sections, named)
+        labels, mode = self._names(on, system_at, fe, M, sections, named, ref)
         if mode is not None and on.divergence is not None and on.flutter > on.divergence:
             # reported like a V-g plot shows it, but the stability limit is the divergence: beyond
             # it the linearization about the undeformed rotor describes no equilibrium
@@ -315,13 +335,15 @@ class TurbineStability:
 
 
     @staticmethod
-    def _names(on, system_at, fe, M, sections, named):
+    def _names(on, system_at, fe, M, sections, named, reference=None):
         """Names of the tracked modes and of the flutter mode (:mod:`~windflutter.stability.tracking`).
 
         A tracked mode is named as the structural mode (``Ks(Omega), M`` at the first rotor speed,
         no aerodynamics) it is closest to by MAC: the aerodynamic coupling there can already make
-        a torsion mode's strips move more in flap than in twist.  The flutter mode is the tracked
-        mode it grew from; without one (the thesis search), its shape at onset, without an order."""
+        a torsion mode's strips move more in flap than in twist.  The flutter mode is named ``"grew
+        from -> at onset"``: the tracked mode it grew from and, where it differs, the identity of its
+        shape at the onset (the blade's identities ``reference``, as method p names its modes);
+        without a tracked mode (the thesis search), its identity at the onset."""
         labels = []
         if on.vectors0 is not None and named is not None:
             # a mode without a free root at the first grid point (lost there) has no shape yet
@@ -337,23 +359,45 @@ class TurbineStability:
                     labels[have[r]] = struct_names[c]
         mode = None
         if on.flutter is None:
-            pass
-        elif on.flutter_mode is not None and on.flutter_mode < len(labels) and labels[on.flutter_mode] != "lost":
-            mode = labels[on.flutter_mode]
-        elif on.flutter_vector is not None:
-            s_on = system_at(on.flutter)
-            f = [on.flutter_frequency / (2 * math.pi)]
-            mode = mode_names(fe, M, s_on.expand(on.flutter_vector)[:, None], f, sections)[0].split(" ", 1)[-1]
+            return labels, mode
+        onset = None
+        if on.flutter_vector is not None and reference is not None:  # its identity at the onset
+            onset = onset_identity(system_at(on.flutter), np.asarray(on.flutter_vector), fe, M, sections, reference)
+        if on.flutter_mode is not None and on.flutter_mode < len(labels) and labels[on.flutter_mode] != "lost":
+            start = labels[on.flutter_mode]
+            mode = start if onset is None or onset == start else f"{start} -> {onset}"
+        else:
+            mode = onset
         return labels, mode
 
 
-def structural_names(system, fe, M, sections):
+def onset_identity(system, x: np.ndarray, fe, M, sections, reference) -> str:
+    """The name of the mode ``x`` (working basis) of ``system`` as method p names a lightly damped
+    mode (:func:`windflutter.system.identity.participations`): its strain energy ``omega_k^2
+    |a_k|^2`` over the structural modes of ``system`` without aerodynamics (``a_k = v_k^T M x``,
+    mass-normalized), summed per identity (:func:`structural_names` with the blade's ``reference``),
+    the largest."""
+    w2, V = structural_eig(system)
+    _, Mw = system.structural_pencil()
+    Mw = Mw.toarray() if hasattr(Mw, "toarray") else np.asarray(Mw)
+    a = V.T @ (0.5 * (Mw + Mw.T)) @ x
+    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
+    names = mode_names(fe, M, np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1), f, sections,
+                       reference)
+    energy: dict = {}
+    for name, e in zip(names, np.maximum(w2, 0.0) * np.abs(a) ** 2):
+        energy[name] = energy.get(name, 0.0) + float(e)
+    return max(energy, key=energy.get)
+
+
+def structural_names(system, fe, M, sections, reference=None):
     """``(f (Hz), V, names)``: the modes of ``Ks(Omega), M`` of ``system`` (working basis) and their
-    names (:func:`~windflutter.stability.tracking.mode_names`)."""
+    names (:func:`~windflutter.stability.tracking.mode_names`, by the blade's identities
+    ``reference`` when given)."""
     w2, V = structural_eig(system)
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
     X = np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1)
-    return f, V, mode_names(fe, M, X, f, sections)
+    return f, V, mode_names(fe, M, X, f, sections, reference)
 
 
 def auto_tracked(system, fe, M, sections, factor: float = 1.25, named=None) -> int:

@@ -101,11 +101,13 @@ def identity_name(family: str, whirl: str, order: int) -> str:
 @dataclass
 class StructuralReference:
     """The blade's standstill modes (``blade``: (family, order, frequency Hz) in frequency order,
-    ``signatures``: their unit strip-motion signatures, columns) and the support's modes (``Phi_s``
-    mass-normalized in support coordinates, ``support``: (family, order, frequency Hz))."""
+    ``signatures``: their unit strip-motion signatures, columns; ``norms``: the signatures' norms of
+    the mass-normalized modes) and the support's modes (``Phi_s`` mass-normalized in support
+    coordinates, ``support``: (family, order, frequency Hz))."""
 
     blade: list
     signatures: np.ndarray
+    norms: np.ndarray | None = None
     support: list = field(default_factory=list)
     Phi_s: np.ndarray | None = None
 
@@ -121,12 +123,14 @@ class StructuralReference:
         return next((f for fam, o, f in self.blade if fam == family and o == 1), float("nan"))
 
 
-def strip_signatures(sections, comps: np.ndarray) -> np.ndarray:
+def strip_signatures(sections, comps: np.ndarray, norms: bool = False):
     """(3 ns, n) unit-norm signatures of strip motions ``comps`` (3, ns, n) (flap, edge, torsion x a
-    quarter chord), weighted by the square root of the strip widths."""
+    quarter chord), weighted by the square root of the strip widths (``norms``: also their norms
+    before the scaling)."""
     s = comps * np.sqrt(np.asarray(sections.width, float))[None, :, None]
     s = s.reshape(-1, comps.shape[-1])
-    return s / np.maximum(np.linalg.norm(s, axis=0), 1e-300)[None, :]
+    n = np.maximum(np.linalg.norm(s, axis=0), 1e-300)
+    return (s / n[None, :], n) if norms else s / n[None, :]
 
 
 def strip_family(sections, comps: np.ndarray) -> list[str]:
@@ -161,7 +165,8 @@ def blade_reference(struct, sections, max_hz: float | None = None):
         keep = keep[(f <= 3.0 * max_hz) | (keep < MIN_REFERENCE_MODES)]
     fams = [fams[i] for i in keep]
     named = [(fam, o, float(f[i])) for fam, o, i in zip(fams, _ordered(fams), keep)]
-    return named, strip_signatures(sections, comps[:, :, keep])
+    sig, norms = strip_signatures(sections, comps[:, :, keep], norms=True)
+    return named, sig, norms
 
 
 def support_reference(support) -> tuple[list, np.ndarray | None]:
@@ -185,9 +190,9 @@ def structural_reference(blade, support, max_hz: float | None = None) -> Structu
     """The reference of a turbine model: ``blade`` a :class:`~windflutter.system.blade.RotorBlade`
     (its standstill structure; the pitch does not change its modes in its own frame), ``support`` the
     support model or None."""
-    named, sig = blade_reference(blade.struct, blade.sections, max_hz)
+    named, sig, norms = blade_reference(blade.struct, blade.sections, max_hz)
     sup, Phi_s = support_reference(support)
-    return StructuralReference(blade=named, signatures=sig, support=sup, Phi_s=Phi_s)
+    return StructuralReference(blade=named, signatures=sig, norms=norms, support=sup, Phi_s=Phi_s)
 
 
 # ------------------------------------------------------------------------------------------------
@@ -354,3 +359,41 @@ def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: boo
     other = next(((n, s) for n, s in rec.participation if n != mine.name), None)
     rec.mixed = rec.share < MIXED_SHARE
     rec.name = mine.name if not rec.mixed or other is None else f"{mine.name} + {other[0]}"
+
+
+# ------------------------------------------------------------------------------------------------
+# the seed's frozen-azimuth models (methods pk and thesis): the same identities, whirl collective /
+# asymmetric
+# ------------------------------------------------------------------------------------------------
+def frozen_blade_identities(sections, comps: np.ndarray, reference: StructuralReference) -> list:
+    """``(family, order, whirl)`` of each mode of a frozen-azimuth rotor model by its blades' strip
+    motion ``comps`` (3, ns, n: :func:`~windflutter.structure.labels.blade_motion_components` of the
+    whole model, strips tagged by ``sections.blade``): each blade's motion is expanded in the
+    reference modes' strip signatures (least squares), the reference mode with the largest summed
+    square amplitude over the blades names it (meant for structural modes, nearly pure: the strain
+    weighting of :func:`participations` would weight up the least-squares noise of the high
+    reference modes), and its blade amplitudes ``c_b`` give the whirl --
+    ``collective`` when the collective part carries more than half (``N mean(c)^2 > sum c^2 / 2``),
+    else ``asymmetric`` (a frozen azimuth has no whirl).  None for every mode when the blades' strips
+    do not match the reference's."""
+    blade = np.asarray(sections.blade)
+    nb = int(blade.max()) + 1 if blade.size else 0
+    R = reference.signatures
+    w = np.sqrt(np.asarray(sections.width, float))
+    per = [np.flatnonzero(blade == b) for b in range(nb)]
+    if not nb or any(3 * len(ix) != R.shape[0] for ix in per):
+        return [None] * comps.shape[-1]
+    C = []
+    for ix in per:
+        s = (comps[:, ix, :] * w[ix][None, :, None]).reshape(3 * len(ix), -1)
+        C.append(np.linalg.lstsq(R, s, rcond=None)[0])  # (n_ref, n)
+    C = np.stack(C)  # (nb, n_ref, n)
+    energy = np.sum(np.abs(C) ** 2, axis=0)
+    out = []
+    for i in range(comps.shape[-1]):
+        j = int(np.argmax(energy[:, i]))
+        c = C[:, j, i]
+        fam, order, _ = reference.blade[j]
+        whirl = "collective" if nb * abs(np.mean(c)) ** 2 > 0.5 * np.sum(np.abs(c) ** 2) else "asymmetric"
+        out.append((fam, order, whirl))
+    return out
