@@ -27,6 +27,7 @@ from windflutter.aero.strip import AeroOptions
 from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, DAMPING_MODELS, REDUCTIONS, SEARCH_METHODS
 from windflutter.errors import InputError, check_choice
 from windflutter.linalg_tools import mac_matrix
+from windflutter.mesh.turbine import build_model as build_blade  # the blade alone (never a test's edited model)
 from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.stability.search import Onset, pk_search, structural_eig, thesis_search
@@ -214,13 +215,12 @@ class TurbineStability:
         the names of method p, for the tracked modes of the frozen-azimuth searches."""
         if getattr(self, "_reference", None) is None:
             from windflutter.mesh.settings import MeshSettings
-            from windflutter.mesh.turbine import build_model
             from windflutter.structure.assembly import assemble
             from windflutter.system.identity import StructuralReference, blade_reference
 
             settings = MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": "rotor_blade",
                                        "pitch": 0.0})
-            fe, sections = build_model(self.turbine, settings)
+            fe, sections = build_blade(self.turbine, settings)
             named, sig, norms = blade_reference(assemble(fe), sections)
             self._reference = StructuralReference(blade=named, signatures=sig, norms=norms)
         return self._reference

@@ -378,11 +378,12 @@ def frozen_blade_identities(sections, comps: np.ndarray, reference: StructuralRe
     do not match the reference's."""
     blade = np.asarray(sections.blade)
     nb = int(blade.max()) + 1 if blade.size else 0
-    R = reference.signatures
     w = np.sqrt(np.asarray(sections.width, float))
     per = [np.flatnonzero(blade == b) for b in range(nb)]
-    if not nb or any(3 * len(ix) != R.shape[0] for ix in per):
+    if not nb or any(3 * len(ix) != reference.signatures.shape[0] for ix in per):
         return [None] * comps.shape[-1]
+    # the lowest reference modes, at most one per strip: the fit stays three times overdetermined
+    R = reference.signatures[:, :len(per[0])]
     C = []
     for ix in per:
         s = (comps[:, ix, :] * w[ix][None, :, None]).reshape(3 * len(ix), -1)
