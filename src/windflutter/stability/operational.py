@@ -8,8 +8,9 @@ the first-order system with aerodynamic states are its damped modes -- valid at 
 no frequency matching is needed (the p-method; the seed's p-k and 8-k searches remain as methods
 ``pk`` and ``thesis`` on the seed's frozen-azimuth model, :mod:`windflutter.stability.turbine`).
 
-* Modes are named (:mod:`windflutter.system.modes`) and followed along the rotor speed by the MAC
-  of their physical signatures.
+* Modes are named by their structural identity (:mod:`windflutter.system.identity`), each sweep
+  point continuing the previous one's, and followed along the rotor speed by their identities (the
+  Campbell arrays) and by the MAC of their physical signatures (the root searches).
 * Flutter: the first rotor speed where a followed mode's damping ratio turns negative (the
   drivetrain's rigid-body root excluded), located by Brent's method on that mode.
 * Divergence: the blades' static stiffness in the rotating frame with the aerodynamic stiffness at
@@ -150,13 +151,14 @@ class OperationalStability:
             if rpm_grid is None else np.asarray(rpm_grid, float)
         return np.concatenate([[om_op], g[g > om_op + 1e-9]])
 
-    def _modes(self, wind_speed: float, rpm: float, pitch: float):
+    def _modes(self, wind_speed: float, rpm: float, pitch: float, previous=None):
         """``(PointSystem, modes)`` at a rotor speed, the last :data:`POINT_CACHE` kept: the root
         searches start from the two sweep points that bracket a crossing, and the flutter search ends
-        on a point it evaluated (a shell point costs 3-5 s)."""
+        on a point it evaluated (a shell point costs 3-5 s).  ``previous``: the modes of the previous
+        sweep point, whose identities these continue (:func:`~windflutter.system.modes.point_modes`)."""
         ps, entry = self._point(wind_speed, rpm, pitch)
         if entry[1] is None:
-            entry[1] = [m for m in point_modes(ps, max_hz=self.max_hz(pitch)) if not m.rigid]
+            entry[1] = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous) if not m.rigid]
         return ps, entry[1]
 
     def _point(self, wind_speed: float, rpm: float, pitch: float):
@@ -184,7 +186,7 @@ class OperationalStability:
         flutter = None
         for i, rpm in enumerate(grid):
             try:
-                ps, modes = self._modes(wind_speed, rpm, pitch)
+                ps, modes = self._modes(wind_speed, rpm, pitch, previous=sweep[-1][1] if sweep else None)
             except ModelError as exc:  # no steady state (e.g. it diverges at this overspeed)
                 if not sweep:
                     raise
