@@ -290,6 +290,11 @@ def polar(alpha: np.ndarray, cl: np.ndarray, cd: np.ndarray, tc: float, field: s
     """
     af = alpha_field or f"{field}.alpha"
     bounded_count(alpha.size, af, notes.source)
+    for name, v in (("alpha", alpha), ("Cl", cl), ("Cd", cd)):  # a NaN passes every bound below
+        bad = ~np.isfinite(np.asarray(v, dtype=float))
+        if bad.any():
+            i = int(np.argmax(bad))
+            notes.error(af if name == "alpha" else f"{field} {name}", f"{v[i]} (row {i + 1})", "finite numbers")
     raw = alpha / (np.pi / 180.0) if unit == "deg" else alpha
     if unit == "deg" and np.max(np.abs(raw)) <= np.pi * (1 + 1e-5) and np.ptp(raw) > 1.0:  # 6-digit files
         notes.error(af, f"{raw.min():.4g} .. {raw.max():.4g}", "angles of attack in degrees (these look like radians)")
