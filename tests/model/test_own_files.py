@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import shutil
+import warnings
 from pathlib import Path
 
 import pytest
@@ -77,3 +78,30 @@ def test_deck_without_supplement_names_the_key(tmp_path, capsys):
     err = [ln for ln in capsys.readouterr().err.splitlines() if "error" in ln]
     assert rc == 2 and len(err) == 1, err
     assert "windflutter.operating_curve" in err[0] and "NREL-5MW_Onshore.windflutter.yaml" in err[0]
+
+
+def test_wind_speed_outside_the_operating_curve_warns():
+    """Above cut-out (or below cut-in) the curve's end point is used, and said so once per point."""
+    import numpy as np
+
+    from windflutter.errors import ValidityWarning
+    from windflutter.model.turbine import OperatingCurve
+    from windflutter.stability.turbine import TurbineStability
+
+    oc = OperatingCurve(wind_speed=np.array([3.0, 11.4, 25.0]), rotor_speed=np.array([0.72, 1.27, 1.27]),
+                        pitch=np.radians([0.0, 0.0, 23.0]), source="test table")
+    with pytest.warns(ValidityWarning, match=r"V = 30 m/s is outside the operating curve \(3-25 m/s, test table\).*"
+                      r"25 m/s \(12.13 RPM, 23.00 deg\)"):
+        oc.warn_outside(30.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        oc.warn_outside(25.0)
+        oc.warn_outside(3.0)
+
+    class Stub:
+        operating_curve = oc
+
+    ts = TurbineStability.__new__(TurbineStability)
+    ts.turbine = Stub()
+    with pytest.warns(ValidityWarning, match="V = 2 m/s is outside"):
+        assert ts.pitch_at(2.0) == 0.0

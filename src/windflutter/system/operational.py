@@ -343,6 +343,7 @@ class OperationalModel:
         oc = self.turbine.operating_curve
         if oc is None:
             raise missing_curve_error(self.turbine)
+        oc.warn_outside(float(wind_speed))
         return float(oc.rotor_speed_at(wind_speed)), float(oc.pitch_at(wind_speed))
 
     def steady(self, rb: RotorBlade, wind_speed: float, omega: float):
