@@ -21,6 +21,21 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 
 
+def machine() -> str:
+    """The machine the timings are from: CPU model, cores usable, OS, Python (printed first)."""
+    import platform
+
+    cpu = platform.processor() or platform.machine()
+    try:
+        with open("/proc/cpuinfo", encoding="utf-8") as fh:
+            cpu = next((ln.split(":", 1)[1].strip() for ln in fh if ln.startswith("model name")), cpu)
+    except OSError:
+        pass
+    usable = len(os.sched_getaffinity(0)) if hasattr(os, "sched_getaffinity") else os.cpu_count()
+    return (f"machine: {cpu}, {usable} of {os.cpu_count()} cores usable, {platform.platform()}, "
+            f"Python {platform.python_version()}")
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--quick", action="store_true", help="reduced problem sizes where supported")
@@ -38,6 +53,7 @@ def main(argv: list[str] | None = None) -> int:
     env["PYTHONPATH"] = os.pathsep.join(filter(None, [str(src), env.get("PYTHONPATH", "")]))
     if args.quick:
         env["WINDFLUTTER_BENCH_QUICK"] = "1"
+    print(machine(), flush=True)
     summary = []
     for script in scripts:
         cmd = [sys.executable, str(script)]

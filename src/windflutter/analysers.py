@@ -188,8 +188,8 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
 
 
 def _with_validity_notes(fn: Callable, *args, **kw):
-    """``(fn(*args, **kw), notes)``: the messages of the
-    :class:`~windflutter.errors.ValidityWarning` s raised inside (a model used outside its range,
+    r"""``(fn(*args, **kw), notes)``: the messages of the
+    :class:`~windflutter.errors.ValidityWarning`\ s raised inside (a model used outside its range,
     e.g. the BEM in the propeller-brake state), each with the lowest rotor speed it was raised at
     (``"... [from 17.31 RPM]"``, :func:`validity_from_rpm`), kept with the point (its ``reason``,
     shown in the report beside ``ok``); every warning is still shown as usual, each note once."""

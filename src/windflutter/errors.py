@@ -59,11 +59,16 @@ class InputWarning(UserWarning):
 class ValidityWarning(UserWarning):
     """A model used outside its range of validity (e.g. momentum theory in the propeller-brake
     state); the message says where and what the result then depends on.  ``rotor_speed_rpm``: the
-    rotor speed at which it was found (RPM), when there is one."""
+    rotor speed at which it was found (RPM), when there is one; ``wind_speed`` (m/s) and ``kind``
+    (the message without the wind speed): a command prints one line per kind listing the wind
+    speeds (:func:`windflutter.cli.warn.one_line_warnings`)."""
 
-    def __init__(self, message: str, rotor_speed_rpm: float | None = None):
+    def __init__(self, message: str, rotor_speed_rpm: float | None = None, wind_speed: float | None = None,
+                 kind: str | None = None):
         super().__init__(message)
         self.rotor_speed_rpm = rotor_speed_rpm
+        self.wind_speed = wind_speed
+        self.kind = kind
 
 
 def one_line(text: object) -> str:

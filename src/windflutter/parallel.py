@@ -212,9 +212,24 @@ def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
     _die_with_parent()
     # for the life of the worker process, also for BLAS libraries it loads later (windflutter.threads)
     set_process_threads(blas_threads)
-    # a warning in a worker reaches the user's terminal: one line, like the command's own
-    warnings.formatwarning = _one_line_warning
+    worker_warning_display()
     _WORKER_FN = _cp.loads(fn_bytes)
+
+
+def worker_warning_display() -> None:
+    """A worker process's warnings reach the user's terminal in one line, like the command's own;
+    a warning of a kind at a wind speed (a ValidityWarning with ``kind`` and ``wind_speed``) is not
+    printed: it returns with the point's notes and the command prints one line per kind
+    (:mod:`windflutter.cli.warn`)."""
+    warnings.formatwarning = _one_line_warning
+    shown = warnings.showwarning
+
+    def show(message, category, filename, lineno, file=None, line=None):
+        if getattr(message, "kind", None) and getattr(message, "wind_speed", None) is not None:
+            return
+        shown(message, category, filename, lineno, file, line)
+
+    warnings.showwarning = show
 
 
 def _one_line_warning(message, category, filename, lineno, line=None) -> str:  # noqa: ARG001

@@ -137,22 +137,26 @@ def test_missing_file_and_unknown_name(tmp_path):
     assert "nrel5mw" in str(exc.value)
 
 
-def test_missing_lumped_masses_are_recorded_and_refused_for_the_turbine(tmp_path):
+def test_missing_lumped_masses_are_assumed_with_a_warning(tmp_path):
     """A windIO file without hub/nacelle masses and no supplement must not silently give zero:
-    it loads (a blade alone needs no masses), records what is missing, and every model that
-    needs the masses is refused naming the field."""
+    it loads with the masses assumed from the rotor diameter (issue 34; formerly every model
+    with a hub was refused), one warning each naming the assumption and the key that gives
+    the turbine's own (tests/model/test_own_files.py checks the scaling)."""
+    from windflutter.model.consistency import DEFAULT_MASS_PER_D3
+
     d = v2()
     d.pop("windflutter")
     p = tmp_path / "no_masses.yaml"
     p.write_text(yaml.safe_dump(d))
-    t = load_turbine(p)
-    assert {"hub.mass", "nacelle.mass"} <= set(t.missing)
-    assert not np.isfinite(t.hub.mass)
-    t.require("blade")
-    for part in ("turbine", "tower", "rotor"):
-        with pytest.raises(InputError) as exc:
-            t.require(part)
-        assert exc.value.field == "hub.mass" and "no_masses.yaml" in str(exc.value)
+    with pytest.warns(Warning) as rec:
+        t = load_turbine(p)
+    assert not {"hub.mass", "nacelle.mass"} & set(t.missing)
+    assert t.hub.mass == pytest.approx(DEFAULT_MASS_PER_D3["hub"] * t.rotor_diameter ** 3)
+    for part in ("hub", "nacelle"):
+        hits = [str(w.message) for w in rec if f"{part}.mass: not in the files" in str(w.message)]
+        assert len(hits) == 1 and "no_masses.yaml" in hits[0] and "assumed" in hits[0]
+    for part in ("blade", "turbine", "tower", "rotor"):
+        t.require(part)
 
 
 def test_supplement_errors_name_the_block(tmp_path):

@@ -131,3 +131,19 @@ def test_an_onset_whose_point_kept_a_validity_note_is_said_so():
     assert "caution" not in vd.headline(ds)
     ds["reason"] = ds["reason"].copy(data=["", "at V = 20.0 m/s ... [from 18.50 RPM]"])
     assert f"caution: {vd.CAVEAT}" in vd.headline(ds)
+
+
+def test_sweep_instability_in_operation_and_a_damped_campbell_do_not_contradict(stable_campbell):
+    """Issue 34: "UNSTABLE IN OPERATION" (a sweep onset at or below the operating rotor speed of its
+    wind speed) above "least damped mode in operation: ζ = +0.80 %" read as a contradiction; the
+    Campbell line now says which operating points it covered and whose the instability is."""
+    ds = synthetic_run(flutter_rpm=(11.0, 14.0))
+    ds["operating_rpm"] = ("operating", [8.0, 11.5])
+    ds = ds.assign_coords(operating_wind_speed=("operating", [5.0, 10.0]))
+    lines = headline(ds, stable_campbell).splitlines()
+    assert lines[0] == "verdict: UNSTABLE IN OPERATION"
+    assert lines[2].startswith("least damped mode in operation: 1st edge BW, ζ = 0.80 %")
+    assert "every mode damped at the Campbell's operating points (V = " in lines[2]
+    assert "the instability above is the rotor-speed sweep's at V = 10 m/s" in lines[2]
+    # a stable verdict keeps the plain line
+    assert "every mode damped" not in headline(synthetic_run(flutter_rpm=(20.0, 19.0)), stable_campbell)

@@ -395,7 +395,7 @@ def rotor_extent(sections: AeroSections, rotor: RotorGeometry) -> tuple[float, f
 
 def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed: float, omega: float,
                        n_blades: int | None = None, pitch: float = 0.0, air_density: float = 1.225,
-                       cone: bool = False, **kw) -> BEMResult:
+                       cone: bool = False, warn: bool = True, **kw) -> BEMResult:
     """:func:`bem_induction` for the strips of a built model (every strip of every blade).
 
     Parameters
@@ -407,6 +407,8 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
     cone : each strip sees the normal wind projected on its own plane, ``V cos gamma_j`` with the
         local cone angle ``sin gamma_j = e_span . shaft`` (``normal_factor`` of
         :func:`bem_induction`; the coned BEM of a deflected blade); False (default): ``V``.
+    warn : warn when the result leaves momentum theory (:func:`warn_outside_momentum_theory`);
+        False for a caller that warns when it uses the result (a cache).
 
     The wind component normal to the rotor plane, ``V |wind . shaft|``, drives the momentum
     balance (shaft tilt); radii, radial widths and tip/hub radius come from the strip geometry
@@ -434,7 +436,8 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
         kw["normal_factor"] = np.sqrt(np.maximum(1.0 - sg**2, 1e-12))
     res = bem_induction(sections.radius, sections.chord, theta, sections.polars, sections.airfoil, vn, omega,
                         int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
-    _warn_outside_momentum_theory(res, float(wind_speed), float(omega))
+    if warn:
+        warn_outside_momentum_theory(res, float(wind_speed), float(omega))
     return res
 
 
@@ -443,11 +446,13 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
 MOMENTUM_LIMITS = {"a": 0.99, "ap": -0.1}
 
 
-def _warn_outside_momentum_theory(res: BEMResult, wind_speed: float, omega: float = float("nan")) -> None:
+def warn_outside_momentum_theory(res: BEMResult, wind_speed: float, omega: float = float("nan")) -> None:
     """One :class:`~windflutter.errors.ValidityWarning` per wind speed when a converged strip of
     ``res`` lies outside momentum theory (:data:`MOMENTUM_LIMITS`): at fixed pitch far above the
     operating tip-speed ratio the rotor enters the propeller-brake state, where the BEM induction,
-    and every result built on it, is not physics but the model's extrapolation."""
+    and every result built on it, is not physics but the model's extrapolation.  The warning
+    carries the wind speed, the rotor speed and its kind (the text without the wind speed), so a
+    command prints one line for all its wind speeds."""
     ok = np.asarray(res.converged, bool)
     if not ok.any():
         return
@@ -458,7 +463,8 @@ def _warn_outside_momentum_theory(res: BEMResult, wind_speed: float, omega: floa
     if np.nanmax(a) < MOMENTUM_LIMITS["a"] and np.nanmin(ap) > MOMENTUM_LIMITS["ap"]:
         return
     # the text names the wind speed only (one line per wind speed); the rotor speed goes with the object
-    warnings.warn(ValidityWarning(f"at V = {wind_speed:.1f} m/s the BEM induction leaves momentum theory at high rotor speed "
-                  f"(axial induction reaches 1 or tangential induction falls below {MOMENTUM_LIMITS['ap']}: the "
-                  "propeller-brake state); onsets in that range depend on the induction model (compare with "
-                  "solver.induction: false)", rotor_speed_rpm=omega * 30.0 / np.pi), stacklevel=3)
+    kind = ("the BEM induction leaves momentum theory at high rotor speed (axial induction reaches 1 or tangential "
+            f"induction falls below {MOMENTUM_LIMITS['ap']}: the propeller-brake state); onsets in that range depend "
+            "on the induction model (compare with solver.induction: false)")
+    warnings.warn(ValidityWarning(f"at V = {wind_speed:.1f} m/s {kind}", rotor_speed_rpm=omega * 30.0 / np.pi,
+                                  wind_speed=float(wind_speed), kind=kind), stacklevel=3)

@@ -225,3 +225,43 @@ SOLVER_FLAGS = (
     Flag("--drivetrain", "model.drivetrain"),
     Flag("--damping", "damping.model"),
 )
+
+# --------------------------------------------------------------------------------------------
+# every other config field that changes a result: a flag derived from its name
+# --------------------------------------------------------------------------------------------
+#: sections whose flags are the bare field names (``--basis-modes``); the fields of the other
+#: sections carry the section (``--damping-tower-ratio``, ``--operating-rated-rpm``)
+BARE_SECTIONS = ("", "solver", "model", "rotor_speed")
+#: config fields without a flag: set by a command's own flags (``--wind-speeds``, ``--aero``,
+#: ``--method``, ``--model``, ``--rpm``, ``--physics``) or changing no result (text, output files)
+NO_FLAG = ("wind_speeds", "aero", "method", "model.type", "title", "output.") + tuple(RPM_PATHS) + (
+    "solver.geometric_stiffness", "solver.rigid_sections")
+
+
+def derived_flag(path: str) -> Flag:
+    """The flag of config field ``path``: ``--`` and its name with ``-`` for ``_``, after its
+    section's name unless the section is one of :data:`BARE_SECTIONS`."""
+    head, _, last = path.rpartition(".")
+    name = last if head in BARE_SECTIONS else f"{head}_{last}"
+    kind = field_spec(path).kind
+    return Flag("--" + name.replace("_", "-"), path, metavar={"float": "X", "int": "N"}.get(kind))
+
+
+def derived_flags(sections: tuple[str, ...], taken: tuple[Flag, ...]) -> tuple[Flag, ...]:
+    """Derived flags of the fields of ``sections`` (``""``: top level) that neither
+    :data:`NO_FLAG` nor a flag of ``taken`` covers."""
+    from windflutter.config import declared_fields  # noqa: PLC0415
+
+    have = {f.path for f in taken if f.path}
+    out = []
+    for path, _, _ in declared_fields():
+        head = path.rpartition(".")[0]
+        if head in sections and path not in have and not any(path == n or (n.endswith(".") and path.startswith(n))
+                                                              for n in NO_FLAG):
+            out.append(derived_flag(path))
+    return tuple(out)
+
+
+SOLVER_FLAGS = SOLVER_FLAGS + derived_flags(("", "solver", "model", "rotor_speed", "damping"), SOLVER_FLAGS)
+#: ``run`` only: the Campbell of the run and the operating margins of its verdict
+RUN_FLAGS = derived_flags(("campbell", "operating"), ())

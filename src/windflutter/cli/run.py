@@ -12,7 +12,7 @@ import argparse
 import sys
 from pathlib import Path
 
-from windflutter.cli.options import SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error, rpm_flag
+from windflutter.cli.options import RUN_FLAGS, SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error, rpm_flag
 from windflutter.config import load_config
 from windflutter.errors import InputError
 
@@ -23,7 +23,7 @@ FLAGS = (
     Flag("--method", "method", nargs="+", help="override the search methods"),
     Flag("--model", "model.type", help="override the model type"),
     rpm_flag(),
-) + SOLVER_FLAGS
+) + SOLVER_FLAGS + RUN_FLAGS
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
@@ -119,6 +119,7 @@ def run(args: argparse.Namespace) -> int:
         from windflutter.parallel import check_scheduler_address  # noqa: PLC0415
 
         check_scheduler_address(args.scheduler, "--scheduler")
+    from windflutter.cli.warn import curve_rpm, gather_notes, operating_rotor_speed  # noqa: PLC0415
     from windflutter.workflow import RunInterrupted, run as run_workflow  # noqa: PLC0415
 
     turbine = load_turbine_for(args.turbine, config.solver.backend)
@@ -144,6 +145,9 @@ def run(args: argparse.Namespace) -> int:
               + (f" -c {args.config}" if args.config else "") + f" -o {exc.outdir} --resume",
               file=sys.stderr)
         return 130
+    if "reason" in ds:  # the points' range warnings: one line per kind (a worker process prints none)
+        gather_notes(ds["reason"].values)
+    operating_rotor_speed(curve_rpm(turbine))
     status = [str(s) for s in ds["status"].values] if "status" in ds else []
     n_failed = sum(s != "ok" for s in status)
     print(f"windflutter run: {len(status)} operating points, {n_failed} failed")

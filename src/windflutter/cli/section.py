@@ -15,6 +15,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+from windflutter.cli.wing import LIFT_SLOPE
 from windflutter.config import field_spec
 from windflutter.schema import Spec, is_number
 
@@ -40,7 +41,7 @@ def _positive(upper: float, unit: str) -> Spec:
 #: physical ranges of the section file's numbers (the section checks kinds and consistency)
 BOUNDS = {
     "semi_chord": _positive(1e3, "m"), "elastic_axis": Spec("float", lower=-1.0, upper=1.0, unit="semi-chords"),
-    "air_density": field_spec("air_density"), "lift_slope": _positive(20.0, "1/rad"),
+    "air_density": field_spec("air_density"), "lift_slope": LIFT_SLOPE,
     "mass": _positive(1e7, "kg/m"), "static_moment": Spec("float", lower=-1e7, upper=1e7, unit="kg m/m"),
     "inertia": _positive(1e8, "kg m^2/m"), "plunge_stiffness": _positive(1e13, "N/m^2"),
     "pitch_stiffness": _positive(1e13, "N"), "mass_ratio": _positive(1e6, "-"),

@@ -55,6 +55,7 @@ def options_from_args(args: argparse.Namespace):
 
 
 def run(args: argparse.Namespace) -> int:
+    from windflutter.cli.warn import curve_rpm, operating_rotor_speed
     from windflutter.files import check_output_file, prepare_output_file
     from windflutter.model.windio import load_turbine
     from windflutter.stability.build import stability_analysis
@@ -63,6 +64,7 @@ def run(args: argparse.Namespace) -> int:
     if args.plot is not None:  # before the analysis
         check_output_file(args.plot, "--plot", PLOT_EXTENSIONS)
     turbine = load_turbine(args.turbine)
+    operating_rotor_speed(curve_rpm(turbine))  # range warnings say: inside the operating range or overspeed
     ts = stability_analysis(turbine, config, config.aero[0], config.method[0])
     points = [ts.analyse_operating_point(v) for v in config.wind_speeds]
     if args.plot:

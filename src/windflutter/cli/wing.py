@@ -14,12 +14,17 @@ def _positive(upper: float, unit: str) -> Spec:
     return Spec("float", lower=0.0, lower_open=True, upper=upper, unit=unit)
 
 
+#: lift slope (1/rad) of a wing or section file: thin-airfoil theory gives 2 pi, real airfoils 5-7,
+#: a low-aspect-ratio wing less; below 0.1 (1/60 of 2 pi) the aerodynamic forces vanish and no onset
+#: can be found (a slope of 1e-300 gave all-null results without a word), above 20 it is no airfoil
+LIFT_SLOPE = Spec("float", lower=0.1, upper=20.0, unit="1/rad")
+
 #: physical ranges and sizes of the wing file's fields (WingConfig checks kinds and consistency)
 BOUNDS = {
     "span": _positive(1e4, "m"), "chord": _positive(1e3, "m"),
     "bending_stiffness": _positive(1e13, "N m^2"), "torsion_stiffness": _positive(1e13, "N m^2"),
     "mass": _positive(1e6, "kg/m"), "inertia": _positive(1e7, "kg m^2/m"),
-    "air_density": field_spec("air_density"), "lift_slope": _positive(20.0, "1/rad"),
+    "air_density": field_spec("air_density"), "lift_slope": LIFT_SLOPE,
     "n_elements": Spec("int", lower=1, upper=MAX_BLADE_ELEMENTS), "n_modes": Spec("int", lower=2, upper=MAX_MODES),
     "speed_min": _positive(1e4, "m/s"), "speed_max": _positive(1e4, "m/s"), "speed_step": _positive(1e4, "m/s"),
 }

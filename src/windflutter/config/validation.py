@@ -7,6 +7,7 @@ from __future__ import annotations
 import copy
 import functools
 import math
+import warnings
 from dataclasses import fields, replace
 from importlib import resources
 from pathlib import Path
@@ -14,7 +15,7 @@ from typing import Any
 
 from windflutter.config.declarations import (
     _RENAMED, MAX_BLADE_ELEMENTS, MAX_GRID_POINTS, MAX_RPM, AnalysisConfig, field_spec)
-from windflutter.errors import InputError
+from windflutter.errors import InputError, InputWarning
 from windflutter.schema import Spec, check_keys
 
 
@@ -101,7 +102,22 @@ def _rule_operating(c: AnalysisConfig, given: set[str], src: str | None) -> Anal
     return c
 
 
-RULES = (_rule_rotor_range, _rule_damping, _rule_solver, _rule_mesh, _rule_operating)
+#: air density (kg/m^3) of wind-turbine sites: sea level to 3000 m, -30 to +45 degC; outside it a
+#: run is computed (the density is allowed up to MAX_AIR_DENSITY) with one warning
+AIR_DENSITY_USUAL = (0.7, 1.5)
+
+
+def _rule_air_density(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
+    lo, hi = AIR_DENSITY_USUAL
+    if not lo <= c.air_density <= hi:
+        where = f"{src}: " if src else ""
+        warnings.warn(f"{where}air_density = {c.air_density:g} kg/m^3 is outside the {lo:g}-{hi:g} kg/m^3 of "
+                      "wind-turbine sites (sea level to 3000 m, -30 to +45 degC); the aerodynamic forces scale "
+                      "with it", InputWarning, stacklevel=4)
+    return c
+
+
+RULES = (_rule_rotor_range, _rule_damping, _rule_solver, _rule_mesh, _rule_operating, _rule_air_density)
 
 
 def config_from_dict(data: dict | None, source: str | None = None,

@@ -21,11 +21,55 @@ from windflutter.model.plausibility import Notes
 from windflutter.model.turbine import Turbine
 
 
+#: lumped mass per rotor diameter cubed (kg/m^3) assumed when the files give none: the geometric
+#: mean over the bundled reference turbines (NREL 5 MW, IEA 10, 15 and 22 MW: hub 0.0285, 0.0105,
+#: 0.0049, 0.0053; nacelle 0.120, 0.0705, 0.0459, 0.0359), each of which lies within a factor 3.1
+#: (hub) and 2 (nacelle) of it (``tests/model/test_own_files.py`` keeps these numbers true)
+DEFAULT_MASS_PER_D3 = {"hub": 0.0094, "nacelle": 0.061}
+#: where a file gives the mass, for the warning
+_MASS_KEYS = {"hub": "components.hub.elastic_properties.mass (windIO) or a supplement's hub.mass",
+              "nacelle": "components.drivetrain.elastic_properties.mass (windIO) or a supplement's nacelle.mass"}
+
+
+def default_mass(turbine: Turbine, name: str, notes: Notes) -> float:
+    """The assumed lumped mass (kg) of ``name`` (``"hub"`` or ``"nacelle"``) from the rotor diameter
+    (:data:`DEFAULT_MASS_PER_D3`), with one warning naming the assumption; NaN without a diameter."""
+    D = turbine.rotor_diameter
+    if not (np.isfinite(D) and D > 0):
+        return float("nan")
+    c = DEFAULT_MASS_PER_D3[name]
+    m = c * D**3
+    notes.warn(f"{name}.mass", f"not in the files: {m:.4g} kg assumed, {c} kg/m^3 x rotor_diameter^3 (the geometric "
+               f"mean of the reference turbines; theirs lie within a factor {3.1 if name == 'hub' else 2} of it); "
+               f"give {_MASS_KEYS[name]} for the turbine's own")
+    return float(m)
+
+
+def structural_damping(t: Turbine, notes: Notes) -> None:
+    """One warning when the files give the blade no structural damping (or all of it zero): a
+    ``damping.model: file`` analysis then has an undamped blade, and an edgewise mode with little
+    aerodynamic damping may come out unstable where the real blade's damping would not."""
+    d = t.blade.damping
+    ratios = [] if d is None else [*np.ravel(d.flap_ratio), *np.ravel(d.edge_ratio)]
+    if d is not None and ((d.mu is not None and np.any(np.asarray(d.mu) > 0)) or np.any(np.asarray(ratios) > 0)):
+        return
+    where = f" ({d.source})" if d is not None and d.source else ""
+    notes.warn("blade structural damping", f"zero{where}: with damping.model file the blade is undamped and its "
+               "edgewise modes may be reported unstable; give the blade's damping (windIO structural_damping.mu, a "
+               "supplement) or set damping.model / damping.ratio")
+
+
 def finish_turbine(turbine: Turbine, files: tuple[str, ...] = ()) -> Turbine:
     """Defaults, missing data, consistency checks; returns the completed turbine."""
     notes_out = list(turbine.notes)
     hub, nac = turbine.hub, turbine.nacelle
     missing = [m for m in turbine.missing]
+    notes = Notes(turbine.source)
+    notes.items = list(turbine.warnings)
+    if not np.isfinite(hub.mass):
+        hub = dataclasses.replace(hub, mass=default_mass(turbine, "hub", notes))
+    if not np.isfinite(nac.mass):
+        nac = dataclasses.replace(nac, mass=default_mass(turbine, "nacelle", notes))
     for name, val in (("hub.mass", hub.mass), ("nacelle.mass", nac.mass)):
         if not np.isfinite(val) and name not in missing:
             missing.append(name)
@@ -44,9 +88,8 @@ def finish_turbine(turbine: Turbine, files: tuple[str, ...] = ()) -> Turbine:
         notes_out.append("not in the files: " + ", ".join(missing))
     t = dataclasses.replace(turbine, hub=hub, nacelle=nac, notes=tuple(notes_out), missing=tuple(missing),
                             input_files=tuple(dict.fromkeys(turbine.input_files + tuple(files))))
-    notes = Notes(t.source)
-    notes.items = list(t.warnings)
     rigid_body_inertias(t, t.source)
+    structural_damping(t, notes)
     rotor_geometry(t, notes)
     lumped_masses(t, notes)
     blade_scale(t, notes)

@@ -173,6 +173,8 @@ class FastFile:
                 break
             if len(nums) < n_col:
                 self.error(f"{field} row {len(out) + 1}", s[:60], f"{n_col} numbers")
+            if not np.all(np.isfinite(nums[:n_col])):  # NaN / inf would pass every later bound
+                self.error(f"{field} row {len(out) + 1}", s[:60], f"{n_col} finite numbers")
             out.append(nums[:n_col])
         if len(out) != n:
             self.error(field, f"{len(out)} rows", f"{n} rows of {n_col} numbers")

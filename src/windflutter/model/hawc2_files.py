@@ -58,8 +58,8 @@ def read_st(path: str | Path, main_set: int, sub_set: int) -> dict[str, np.ndarr
                 n = int(tok[1])
             except (IndexError, ValueError):
                 raise InputError(f"st {where} header", lines[i].strip()[:60], "'$set n_rows comment'", str(p)) from None
-            if not 0 < n <= MAX_STATIONS:
-                raise InputError(f"st {where} rows", n, f"between 1 and {MAX_STATIONS}", str(p))
+            if not 1 < n <= MAX_STATIONS:
+                raise InputError(f"st {where} rows", n, f"between 2 (a beam has two ends) and {MAX_STATIONS}", str(p))
             rows = [numbers(ln) for ln in lines[i + 1:i + 1 + n]]
             for k, r in enumerate(rows):
                 if r is None or len(r) < 19:
@@ -67,6 +67,9 @@ def read_st(path: str | Path, main_set: int, sub_set: int) -> dict[str, np.ndarr
                         if r is not None and len(r) >= 30 else ""
                     raise InputError(f"st {where} row {k + 1}", (lines[i + 1 + k].strip()[:60]),
                                      "19 numbers: " + " ".join(ST_COLUMNS) + more, str(p))
+                if len(r) != len(rows[0]) or not np.all(np.isfinite(r)):  # HAWC2 reads free format:
+                    raise InputError(f"st {where} row {k + 1}", lines[i + 1 + k].strip()[:60],  # a shifted row
+                                     f"{len(rows[0])} finite numbers, as row 1", str(p))
             if len(rows) < n:
                 raise InputError(f"st {where}", f"{len(rows)} rows", f"{n} rows", str(p))
             a = np.array([r[:19] for r in rows], dtype=float)
@@ -99,9 +102,14 @@ def read_ae(path: str | Path, set_no: int) -> dict[str, np.ndarray]:
         if not 0 < n <= MAX_STATIONS:
             raise InputError(f"ae set {no} rows", n, f"between 1 and {MAX_STATIONS}", str(p))
         if no == set_no:
+            if n < 2:
+                raise InputError(f"ae set {set_no} rows", n, "at least 2 (root and tip)", str(p))
             tab = [numbers(ln) for ln in rows[i + 1:i + 1 + n]]
             if len(tab) < n or any(t is None or len(t) < 4 for t in tab):
                 raise InputError(f"ae set {set_no}", f"{len(tab)} rows", f"{n} rows of r, chord, t/c (%), pc set", str(p))
+            bad = next((k for k, t in enumerate(tab) if not np.all(np.isfinite(t[:4]))), None)
+            if bad is not None:
+                raise InputError(f"ae set {set_no} row {bad + 1}", rows[i + 1 + bad].strip()[:60], "finite numbers", str(p))
             a = np.array([t[:4] for t in tab], dtype=float)
             return {"r": a[:, 0], "chord": a[:, 1], "tc": a[:, 2] / 100.0, "pc_set": a[:, 3].astype(int)}
         i += n + 1
@@ -146,6 +154,9 @@ def _profile(lines: list[str], i: int, p: Path) -> tuple[Profile, int]:
     if len(tab) < n or any(t is None or len(t) < 4 for t in tab):
         raise InputError(f"pc profile at line {i + 1}", " ".join(head[3:])[:40], f"{n} rows of alpha, cl, cd, cm", str(p))
     a = np.array([t[:4] for t in tab], dtype=float)
+    if not np.all(np.isfinite(a)):
+        k = int(np.argmax(~np.all(np.isfinite(a), axis=1)))
+        raise InputError(f"pc profile at line {i + 1} row {k + 1}", lines[i + 1 + k].strip()[:60], "finite numbers", str(p))
     order = np.argsort(a[:, 0], kind="stable")
     a = a[order][np.concatenate([[True], np.diff(a[order, 0]) > 0])]
     name = " ".join(head[3:4]) or f"pc{head[0]}"

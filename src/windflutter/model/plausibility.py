@@ -177,6 +177,50 @@ def modal_ratios(values, field: str, notes: Notes) -> None:
         notes.warn(field, f"{v.max():.0%} of critical: unusually high structural damping")
 
 
+# ---------------------------------------------------------------------------------------- control
+#: tip speed (m/s) of the maximum rotor speed: at or above the speed of sound impossible (rpm given
+#: where rad/s is expected?), outside 40-130 m/s unusual (today's reference turbines: NREL 5 MW 80,
+#: IEA 10 MW 90, IEA 15 MW 95, IEA 22 MW 105 m/s)
+TIP_SPEED_IMPOSSIBLE = 340.0
+TIP_SPEED_USUAL = (40.0, 130.0)
+#: usual design tip-speed ratio
+TSR_USUAL = (3.0, 15.0)
+
+
+def control_limits(c, where: dict, radius: float, notes: Notes, radius_name: str = "assembly.rotor_diameter / 2") -> None:
+    """The control block's limits against each other and the rotor radius (m).
+
+    ``c`` is a :class:`~windflutter.model.turbine.ControlSettings` (SI), ``where`` maps its
+    fields to ``(key in the file, value as written)`` for the messages.  Impossible: cut-out at or
+    below cut-in, a minimum rotor speed above the maximum, a tip speed at or above the speed of
+    sound (at ``radius``, named ``radius_name``); unusual: tip speeds and TSR outside the ranges
+    above."""
+    def name(f):
+        return where[f][0]
+
+    def given(f):
+        return f in where and np.isfinite(getattr(c, f))
+
+    if given("cut_in") and given("cut_out") and not c.cut_out > c.cut_in:
+        notes.error(name("cut_out"), where["cut_out"][1], f"a cut-out wind speed above cut-in ({c.cut_in:g} m/s)")
+    if given("min_rotor_speed") and given("max_rotor_speed") and c.min_rotor_speed > c.max_rotor_speed:
+        notes.error(name("min_rotor_speed"), where["min_rotor_speed"][1],
+                    f"a minimum rotor speed at most the maximum ({name('max_rotor_speed')} = "
+                    f"{where['max_rotor_speed'][1]:g})")
+    for f, w in (("max_rotor_speed", c.max_rotor_speed * radius), ("max_tip_speed", c.max_tip_speed)):
+        if not given(f):
+            continue
+        if w >= TIP_SPEED_IMPOSSIBLE:
+            notes.error(name(f), where[f][1], f"a tip speed below the speed of sound (this one gives {w:.4g} m/s at "
+                        f"{radius_name} = {radius:.4g} m; rpm given where rad/s is expected, or a wrong radius?)")
+        lo, hi = TIP_SPEED_USUAL
+        if not lo <= w <= hi:
+            notes.warn(name(f), f"{where[f][1]:g} gives a tip speed of {w:.3g} m/s, outside the {lo:g}-{hi:g} m/s "
+                       "of built multi-MW turbines")
+    if given("tsr") and not TSR_USUAL[0] <= c.tsr <= TSR_USUAL[1]:
+        notes.warn(name("tsr"), f"tip-speed ratio {c.tsr:g} is outside the usual {TSR_USUAL[0]:g}-{TSR_USUAL[1]:g}")
+
+
 # ----------------------------------------------------------------------------------- blade shape
 def span_axis(g: np.ndarray, z: np.ndarray, field: str, notes: Notes) -> None:
     """The span coordinate (m) must increase from root to tip at every station (a folded axis is
@@ -246,6 +290,11 @@ def polar(alpha: np.ndarray, cl: np.ndarray, cd: np.ndarray, tc: float, field: s
     """
     af = alpha_field or f"{field}.alpha"
     bounded_count(alpha.size, af, notes.source)
+    for name, v in (("alpha", alpha), ("Cl", cl), ("Cd", cd)):  # a NaN passes every bound below
+        bad = ~np.isfinite(np.asarray(v, dtype=float))
+        if bad.any():
+            i = int(np.argmax(bad))
+            notes.error(af if name == "alpha" else f"{field} {name}", f"{v[i]} (row {i + 1})", "finite numbers")
     raw = alpha / (np.pi / 180.0) if unit == "deg" else alpha
     if unit == "deg" and np.max(np.abs(raw)) <= np.pi * (1 + 1e-5) and np.ptp(raw) > 1.0:  # 6-digit files
         notes.error(af, f"{raw.min():.4g} .. {raw.max():.4g}", "angles of attack in degrees (these look like radians)")

@@ -243,6 +243,23 @@ class OperatingCurve:
         """Blade pitch (rad) at wind speed(s) ``v`` (m/s), linear interpolation."""
         return np.interp(v, self.wind_speed, self.pitch)
 
+    def warn_outside(self, v: float) -> None:
+        """A :class:`~windflutter.errors.ValidityWarning` when ``v`` (m/s) lies outside the curve:
+        its end point's rotor speed and pitch are used there (a wind speed above cut-out silently
+        took the 25 m/s pitch before)."""
+        import warnings
+
+        from windflutter.errors import ValidityWarning
+
+        lo, hi = float(self.wind_speed[0]), float(self.wind_speed[-1])
+        if lo - 1e-9 <= v <= hi + 1e-9:
+            return
+        end = lo if v < lo else hi
+        warnings.warn(ValidityWarning(
+            f"V = {v:g} m/s is outside the operating curve ({lo:g}-{hi:g} m/s, {self.source or 'the turbine files'}): "
+            f"the rotor speed and pitch of its end at {end:g} m/s ({self.rotor_speed_at(end) * 30 / np.pi:.2f} RPM, "
+            f"{np.degrees(self.pitch_at(end)):.2f} deg) are used"), stacklevel=3)
+
     @property
     def rated_rotor_speed(self) -> float:
         return float(np.max(self.rotor_speed))

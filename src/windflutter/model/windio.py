@@ -145,7 +145,8 @@ def _read_parts(data: dict, k: Keys, r: Reader, version: str, notes: pl.Notes) -
     tower = windio_parts.tower(r.mapping(comps, "components", "tower"), r, k, materials)
     hub = windio_parts.hub(r.mapping(comps, "components", "hub"), r, k, data)
     nac = windio_parts.nacelle(comps, r, k, tower)
-    control = windio_parts.control(data.get("control"), r, k)
+    radius = 0.5 * r.number(asm, "assembly", "rotor_diameter", positive=True)
+    control = windio_parts.control(data.get("control"), r, k, radius, notes)
     orient = str(asm.get("rotor_orientation", "upwind")).lower()
     rated_speed = control.max_rotor_speed
     ctrl = data.get("control") or {}
@@ -155,7 +156,7 @@ def _read_parts(data: dict, k: Keys, r: Reader, version: str, notes: pl.Notes) -
         name=str(data.get("name", Path(r.source or "turbine").stem)),
         n_blades=int(r.number(asm, "assembly", "number_of_blades", positive=True)),
         hub_height=r.number(asm, "assembly", "hub_height", positive=True),
-        rotor_diameter=r.number(asm, "assembly", "rotor_diameter", positive=True),
+        rotor_diameter=2.0 * radius,
         rated_power=r.number(asm, "assembly", "rated_power", positive=True),
         rated_rotor_speed=float(rated_speed),
         blade=blade, tower=tower, hub=hub, nacelle=nac, airfoils=foils, materials=materials,

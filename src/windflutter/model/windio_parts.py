@@ -149,35 +149,52 @@ def nacelle(comps: dict, r: Reader, k: Keys, tower: Tower) -> Nacelle:
 
 
 # -------------------------------------------------------------------------------------- control
-def control(c: Any, r: Reader, k: Keys) -> ControlSettings:
+#: control fields that must be positive when given (a negative maximum rotor speed, cut-in or TSR
+#: is not a controller); the minimum rotor speed may be zero, the pitch limits negative
+_POSITIVE = ("cut_in", "cut_out", "max_tip_speed", "max_pitch_rate", "tsr", "max_rotor_speed")
+
+
+def control(c: Any, r: Reader, k: Keys, radius: float | None = None, notes: pl.Notes | None = None) -> ControlSettings:
+    """The ``control`` block (windIO 1 nested keys or the 2.1 flat keys), SI.  Signs are checked
+    here (an :class:`InputError` names the key and the file's value); with the rotor ``radius``
+    (m) and ``notes`` the limits are checked against each other and for plausibility
+    (:func:`windflutter.model.plausibility.control_limits`)."""
     if not isinstance(c, dict):
         return ControlSettings()
     p = "control"
     sup = c.get("supervisory") or {}
     pit = c.get("pitch") or {}
     tq = c.get("torque") or {}
+    where: dict[str, tuple[str, float]] = {}  # field -> (key in the file, value as written)
 
-    def num(d, q, key, scale=1.0, default=np.nan):
-        if key not in d:
+    def num(field_, d, q, key, scale=1.0, default=np.nan):
+        if not isinstance(d, dict) or key not in d:
             return default
-        return r.number(d, q, key) * scale
+        raw = r.number(d, q, key, positive=field_ in _POSITIVE, nonneg=field_ == "min_rotor_speed")
+        where[field_] = (join(q, key), raw)
+        return raw * scale
 
     kw = dict(
-        cut_in=num(sup, f"{p}.supervisory", "Vin"),
-        cut_out=num(sup, f"{p}.supervisory", "Vout"),
-        max_tip_speed=num(sup, f"{p}.supervisory", "maxTS"),
-        min_pitch=num(pit, f"{p}.pitch", "min_pitch", k.angle, 0.0),
-        max_pitch=num(pit, f"{p}.pitch", "max_pitch", k.angle),
-        max_pitch_rate=num(pit, f"{p}.pitch", "max_pitch_rate", k.angle),
-        tsr=num(tq, f"{p}.torque", "tsr"),
-        min_rotor_speed=num(tq, f"{p}.torque", "VS_minspd", k.speed),
-        max_rotor_speed=num(tq, f"{p}.torque", "VS_maxspd", k.speed),
+        cut_in=num("cut_in", sup, f"{p}.supervisory", "Vin"),
+        cut_out=num("cut_out", sup, f"{p}.supervisory", "Vout"),
+        max_tip_speed=num("max_tip_speed", sup, f"{p}.supervisory", "maxTS"),
+        min_pitch=num("min_pitch", pit, f"{p}.pitch", "min_pitch", k.angle, 0.0),
+        max_pitch=num("max_pitch", pit, f"{p}.pitch", "max_pitch", k.angle),
+        max_pitch_rate=num("max_pitch_rate", pit, f"{p}.pitch", "max_pitch_rate", k.angle),
+        tsr=num("tsr", tq, f"{p}.torque", "tsr"),
+        min_rotor_speed=num("min_rotor_speed", tq, f"{p}.torque", "VS_minspd", k.speed),
+        max_rotor_speed=num("max_rotor_speed", tq, f"{p}.torque", "VS_maxspd", k.speed),
     )
+    if isinstance(tq, dict) and "max_torque_rate" in tq:  # not used; a negative rate is no controller
+        r.number(tq, f"{p}.torque", "max_torque_rate", positive=True)
     # windIO 2.1 flat control keys (rpm / deg)
     flat = {"min_rotor_speed": ("min_rotor_speed", RPM), "max_rotor_speed": ("max_rotor_speed", RPM),
             "min_pitch_limit": ("min_pitch", DEG), "max_pitch_limit": ("max_pitch", DEG),
             "max_pitch_rate": ("max_pitch_rate", DEG), "optimal_tsr": ("tsr", 1.0)}
     for key, (field_, scale) in flat.items():
         if key in c and not isinstance(c[key], dict):
-            kw[field_] = r.number(c, p, key) * scale
-    return ControlSettings(**kw)
+            kw[field_] = num(field_, c, p, key, scale)
+    out = ControlSettings(**kw)
+    if radius is not None and notes is not None:
+        pl.control_limits(out, where, radius, notes)
+    return out

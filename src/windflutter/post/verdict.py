@@ -242,5 +242,19 @@ def headline(ds: xr.Dataset | None = None, campbell=None) -> str:
     elif v.status == NO_INSTABILITY:
         lines.append(f"first instability: none found{searched_text(v)}")
     if campbell is not None:
-        lines.append(f"least damped mode in operation: {least_damped_text(v.least_damped)}")
+        lines.append(f"least damped mode in operation: {least_damped_text(v.least_damped)}{_campbell_scope(v, campbell)}")
     return "\n".join(lines)
+
+
+def _campbell_scope(v: Verdict, campbell) -> str:
+    """When the verdict's instability in operation is the sweep's and the operating-point Campbell
+    found every mode damped, the Campbell line says which wind speeds it covered, so the two lines
+    do not read as a contradiction (issue 34: "UNSTABLE IN OPERATION" above "least damped ... ζ > 0")."""
+    f, ld = v.first, v.least_damped
+    if (v.status != UNSTABLE_IN_OPERATION or f is None or f.kind == "negative damping" or ld is None
+            or not ld["damping_ratio"] >= 0):
+        return ""
+    ws = as_campbell_dataset(campbell)["wind_speed"].values
+    return (f" -- every mode damped at the Campbell's operating points (V = {fmt.sig(float(np.min(ws)))}-"
+            f"{fmt.sig(float(np.max(ws)))} m/s); the instability above is the rotor-speed sweep's at V = "
+            f"{fmt.sig(f.wind_speed)} m/s, at or below that wind speed's operating rotor speed")

@@ -16,12 +16,13 @@ points. It changes nothing else (same projection, same search), so it is a drop-
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
 
-from windflutter.errors import InputError
+from windflutter.errors import InputError, ValidityWarning
 from windflutter.solve.aeroelastic import AeroelasticModel
 from windflutter.solve.reduction import static_correction_modes
 
@@ -66,12 +67,14 @@ class MTAAeroelasticModel(AeroelasticModel):
         TT = T.T.tocsr()
         TV = T @ V
         loads = []
-        for p in points:
-            if len(p) != 3:
-                raise InputError("mta_points", p, "(wind_speed m/s, rotor_speed rad/s, frequency rad/s)")
-            strip = self.strip(float(p[0]), float(p[1]))
-            for A in strip.matrices(float(p[2])):
-                loads.append(np.asarray(TT @ (A @ TV)))
+        with warnings.catch_warnings():  # the basis's own points are not analysed: no validity
+            warnings.simplefilter("ignore", ValidityWarning)  # warnings about them (issue 34)
+            for p in points:
+                if len(p) != 3:
+                    raise InputError("mta_points", p, "(wind_speed m/s, rotor_speed rad/s, frequency rad/s)")
+                strip = self.strip(float(p[0]), float(p[1]))
+                for A in strip.matrices(float(p[2])):
+                    loads.append(np.asarray(TT @ (A @ TV)))
         # static responses with the stiffness at the lowest reference speed (the structure at
         # rest, omega_ref[0] = 0 by default).  At the largest (40 RPM, several times the rated
         # speed) the initial stress of every resultant (rigid_sections) turns the responses' shape

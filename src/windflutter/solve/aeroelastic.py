@@ -185,15 +185,19 @@ class AeroelasticModel:
 
     def bem(self, wind_speed: float, omega_rot: float):
         """Steady BEM state (:class:`~windflutter.aero.induction.BEMResult`) at (V m/s, Omega rad/s),
-        cached per operating point."""
+        cached per operating point.  Its validity warning is given at every use, cached or not (a
+        point first met by the reduction basis, whose warnings are not shown, still warns when a
+        search uses it)."""
+        from windflutter.aero.induction import sections_induction, warn_outside_momentum_theory
+
         key = (float(wind_speed), float(omega_rot))
         if key not in self._induction_cache:
-            from windflutter.aero.induction import sections_induction
-
             self._induction_cache[key] = sections_induction(
                 self.sections, self.rotor_geometry, wind_speed, omega_rot, n_blades=self.n_blades,
-                pitch=self.pitch, air_density=self.air_density, high_thrust=self.high_thrust)
-        return self._induction_cache[key]
+                pitch=self.pitch, air_density=self.air_density, high_thrust=self.high_thrust, warn=False)
+        res = self._induction_cache[key]
+        warn_outside_momentum_theory(res, float(wind_speed), float(omega_rot))
+        return res
 
     def operating_point(self, wind_speed: float, omega_rot: float) -> OperatingPoint:
         induction = None

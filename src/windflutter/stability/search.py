@@ -23,10 +23,10 @@ from scipy.optimize import brentq
 
 from windflutter.errors import InputError
 from windflutter.linalg_tools import mac, mac_matrix
-from windflutter.stability.pk_roots import (STATIC_DENSE_LIMIT, THESIS_K, FrequencyDomainSystem,  # noqa: F401
-                                            Onset, PencilSystem, _dense, _excluded, _pencil, _qep,
-                                            _solve_near_singular, newton_mode, pk_mode, static_min_eig,
-                                            structural_eig)
+from windflutter.stability.pk_roots import (STATIC_DENSE_LIMIT, STATIC_K, THESIS_K,  # noqa: F401
+                                            FrequencyDomainSystem, Onset, PencilSystem, _dense, _excluded,
+                                            _pencil, _qep, _solve_near_singular, newton_mode, pk_mode,
+                                            static_frequency, static_min_eig, structural_eig)
 
 
 _LOST = (complex(np.nan, np.nan), None)
@@ -221,7 +221,8 @@ def _cluster_onset(system_at, pa, pb, ca, cb, g, n_eig, xtol):
 
 def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_eig: int = 20,
               xtol: float = 1e-3, min_frequency: float = 1e-3, divergence: bool = True,
-              stop_at_onset: bool = True, max_refine: int = 3, zeta_tol: float = NEUTRAL_ZETA) -> Onset:
+              stop_at_onset: bool = True, max_refine: int = 3, zeta_tol: float = NEUTRAL_ZETA,
+              static_k: float = STATIC_K) -> Onset:
     """p-k search over increasing ``params``.
 
     With ``stop_at_onset=False`` the whole grid is swept (Campbell data in ``eigenvalues``).
@@ -236,6 +237,8 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
     n_track : number of lowest structural modes followed.
     xtol : tolerance of the onset parameter (same unit as params).
     min_frequency : a mode with Im(lambda) below this (rad/s) is static, not flutter.
+    static_k : so is a mode whose reduced frequency at 75 % span is below this (:data:`STATIC_K`);
+        a static crossing is found as divergence (the static stiffness turning singular).
     zeta_tol : a mode is unstable when its damping ratio is below ``-zeta_tol`` (see
         :data:`NEUTRAL_ZETA`): an undamped mode without aerodynamic coupling (e.g. a tower mode
         of a model whose tower top is held) has ``Re(lambda) = +-1e-15`` and is not flutter.
@@ -272,6 +275,9 @@ def pk_search(system_at: Callable[[float], object], params, n_track: int = 8, n_
                 for g in _clusters(ca, cb):
                     g = [i for i in g if ca[i][1] is not None and cb[i][1] is not None]
                     new = [i for i in g if _unstable(cb[i][0], zeta_tol) and cb[i][0].imag > min_frequency]
+                    if new:  # a static root (reduced frequency below static_k) is divergence, not flutter
+                        w_static = static_frequency(system_at(pb), static_k)
+                        new = [i for i in new if cb[i][0].imag >= w_static]
                     if not new:
                         continue
                     if any(_unstable(ca[i][0], zeta_tol) for i in g):
@@ -311,11 +317,16 @@ def thesis_select(system, k_values=THESIS_K, n_eig: int = 20):
     return best
 
 
-def thesis_search(system_at: Callable[[float], object], params, k_values=THESIS_K, n_eig: int = 20) -> Onset:
+def thesis_search(system_at: Callable[[float], object], params, k_values=THESIS_K, n_eig: int = 20,
+                  static_k: float = STATIC_K) -> Onset:
     """The seed's search (ch. 3.3.2) over the stepped ``params``.
 
     Flutter: first grid point whose selected eigenvalue has ``Re >= 0`` (the seed's step 7,
-    no interpolation).  Divergence: ``Im`` of the selected eigenvalue changes sign between grid
+    no interpolation) and a reduced frequency of at least ``static_k`` (:data:`STATIC_K`, at
+    75 % span).  Below it the root is static: its crossing is divergence, at the parameter where
+    ``Re`` of the selected eigenvalue, linearly interpolated from the previous grid point, is
+    zero (the grid point itself when ``Re`` was already >= 0 there).  Divergence is also found
+    as in the seed: ``Im`` of the selected eigenvalue changes sign between grid
     points -> linear interpolation of the parameter at ``Im = 0`` and of ``Re`` there; accepted if
     ``Re > 0``; when ``Im`` never changes sign, a quadratic through the smallest ``|Im|`` point
     and its neighbours is tried (the seed's note and fig. 3.17).
@@ -324,9 +335,15 @@ def thesis_search(system_at: Callable[[float], object], params, k_values=THESIS_
     sel = []
     res = Onset(params=params, method="thesis")
     for ip, p in enumerate(params):
-        lam, x, k = thesis_select(system_at(p), k_values, n_eig)
+        system = system_at(p)
+        lam, x, k = thesis_select(system, k_values, n_eig)
         sel.append(lam)
-        if res.flutter is None and lam.real >= 0:
+        if lam.real >= 0 and abs(lam.imag) < static_frequency(system, static_k):
+            if res.divergence is None:  # a static root crossing: divergence, not flutter at ~0 Hz
+                a = sel[-2] if ip > 0 else None
+                t = 1.0 if a is None or a.real >= 0 else a.real / (a.real - lam.real)
+                res.divergence = float(p if a is None else params[ip - 1] + t * (p - params[ip - 1]))
+        elif res.flutter is None and lam.real >= 0:
             res.flutter, res.flutter_frequency, res.flutter_vector = float(p), float(abs(lam.imag)), x
         if ip > 0 and res.divergence is None:
             a, b = sel[-2], sel[-1]

@@ -228,7 +228,10 @@ class TurbineStability:
     def pitch_at(self, wind_speed: float) -> float:
         """Blade pitch (rad) from the operating curve (0 without one)."""
         oc = self.turbine.operating_curve
-        return float(oc.pitch_at(wind_speed)) if oc is not None else 0.0
+        if oc is None:
+            return 0.0
+        oc.warn_outside(float(wind_speed))
+        return float(oc.pitch_at(wind_speed))
 
     def model(self, pitch: float):
         """(fe, sections, AeroelasticModel) at blade pitch ``pitch`` (rad), cached."""

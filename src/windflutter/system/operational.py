@@ -48,6 +48,19 @@ PARTS = ("turbine", "rotor")
 DRIVETRAINS = ("flexible", "rigid", "locked")
 
 
+def missing_curve_error(turbine) -> InputError:
+    """The error for a turbine without an operating curve: it names the supplement key that gives
+    one and the file it goes in (an OpenFAST deck or HAWC2 model carries no operating curve)."""
+    src = str(getattr(turbine, "source", "") or "")
+    stem = src.rsplit("/", 1)[-1].rsplit(".", 1)[0] if src else "TURBINE"
+    return InputError("windflutter.operating_curve", None,
+                      "an operating curve (wind speed -> rotor speed, pitch) for the operating points: the turbine "
+                      "files give none; add 'windflutter: {operating_curve: {file: TABLE.csv, format: openfast_csv}}' "
+                      "(or an inline table of wind_speed, rotor_speed_rpm, pitch_deg) in a supplement "
+                      f"{stem}.windflutter.yaml next to the turbine file (docs/turbine_input.md), or analyse "
+                      "without one with --method pk or thesis (pitch 0)", src or None)
+
+
 @dataclass(frozen=True)
 class OperationalOptions:
     """How the operating-point model is built.
@@ -340,7 +353,8 @@ class OperationalModel:
         """(rotor speed rad/s, pitch rad) of the turbine's operating curve at ``wind_speed``."""
         oc = self.turbine.operating_curve
         if oc is None:
-            raise InputError("operating curve", None, "a turbine with an operating curve (rotor speed, pitch)")
+            raise missing_curve_error(self.turbine)
+        oc.warn_outside(float(wind_speed))
         return float(oc.rotor_speed_at(wind_speed)), float(oc.pitch_at(wind_speed))
 
     def steady(self, rb: RotorBlade, wind_speed: float, omega: float):
