@@ -181,7 +181,15 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
     aero = next(a for a, m in config.cases if m == "p")
     case = getattr(analyser, "_cases", {}).get((aero, "p")) if analyser is not None else None
     oc = turbine.operating_curve
-    winds = [v for v in config.wind_speeds if oc.wind_speed[0] - 1e-9 <= v <= oc.wind_speed[-1] + 1e-9]
+    lo, hi = float(oc.wind_speed[0]), float(oc.wind_speed[-1])
+    winds = [v for v in config.wind_speeds if lo - 1e-9 <= v <= hi + 1e-9]
+    dropped = [v for v in config.wind_speeds if v not in winds]
+    if dropped:
+        from windflutter.errors import InputWarning  # noqa: PLC0415
+
+        warnings.warn(f"the operating-point Campbell covers the operating curve's {lo:g}-{hi:g} m/s: wind speeds "
+                      f"{', '.join(f'{v:g}' for v in dropped)} m/s left out of it (no operating point there; the "
+                      "stability map still analyses them)", InputWarning, stacklevel=2)
     if not winds:
         return None
     return service(turbine, config, winds, model=case.model if case is not None else None)

@@ -46,7 +46,9 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
     from windflutter.system.campbell import campbell
 
     if getattr(turbine, "operating_curve", None) is None:
-        raise InputError("operating curve", None, "a turbine with an operating curve (wind, rotor speed, pitch)")
+        from windflutter.system.operational import missing_curve_error
+
+        raise missing_curve_error(turbine)
     om = model if model is not None else campbell_model(turbine, config)
     max_hz = config.campbell.max_hz if config.campbell.max_hz is not None else om.reference().default_max_hz()
     return campbell(om.turbine, wind_speeds, max_hz=max_hz, model=om, progress=progress)

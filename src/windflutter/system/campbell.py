@@ -146,7 +146,9 @@ def default_wind_speeds(turbine) -> np.ndarray:
     """The operating curve's wind speeds within 3-25 m/s (its own range if narrower)."""
     oc = turbine.operating_curve
     if oc is None:
-        raise InputError("operating curve", None, "a turbine with an operating curve (wind, rotor speed, pitch)")
+        from windflutter.system.operational import missing_curve_error
+
+        raise missing_curve_error(turbine)
     v = np.asarray(oc.wind_speed, float)
     sel = v[(v >= 3.0 - 1e-9) & (v <= 25.0 + 1e-9)]
     return sel if sel.size else v
