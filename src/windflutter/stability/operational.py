@@ -106,18 +106,23 @@ def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
 
 
 def flutter_label(sweep, rpm: float, mode) -> str:
-    """The flutter mode's name: the identity it had in operation (followed back from the onset to the
-    operating rotor speed, the first sweep point, by the MAC of its signature), and ``" -> "`` the one
-    it has at the onset where the two differ (``post.fmt.flutter_label`` reads both)."""
-    ref = mode.signature
-    here = mode
+    """The flutter mode's name: the identity it had in operation (the first sweep point, the
+    operating rotor speed) and ``" -> "`` the one it has at the onset where the two differ
+    (``post.fmt.flutter_label`` reads both).  A mode whose identity at the onset is present at the
+    operating rotor speed had it in operation (the sweep points continue their identities); else it is
+    followed back from the onset by the MAC of its signature."""
+    onset = mode.identity_name
+    first = sweep[0][1] if sweep else []
+    if mode.identity is not None and any(m.identity == mode.identity for m in first):
+        return onset
+    ref, here = mode.signature, mode
     for r, modes in reversed([(r, m) for r, m in sweep if r <= rpm]):
         if not modes:
             continue
         mac = mac_matrix(ref[:, None], np.stack([x.signature for x in modes], 1))[0]
         here = modes[int(np.argmax(mac))]
         ref = here.signature
-    start, onset = here.identity_name, mode.identity_name
+    start = here.identity_name
     return onset if start == onset else f"{start} -> {onset}"
 
 
