@@ -17,16 +17,14 @@ linearized about the deflected shape in three steps (docs/steady_state.md, "Shel
 2. **The deformed structure**: the shell FE model re-assembled on that geometry (elastic stiffness
    ``K_d``, mass, Coriolis and spin softening of the deformed blade, the files' damping), and the
    strips' motion map with its lever arms turned by the nodal rotations.
-3. **The steady stress** on the deformed structure: the linear solution ``K_d u_e = F_d`` under the
-   loads of the deformed blade -- the centrifugal loads of its deformed mass and the steady strip
-   loads brought to the nodes through the turned motion map.  A blade is a cantilever: its
-   section resultants (axial force, shear, torsion, bending moments) are fixed by equilibrium with
-   those loads on that geometry, and the linear shell distributes them over its walls.  Only the
-   stress of ``u_e`` is used: the membrane initial-stress matrix ``K_sigma`` of its resultants
-   (:func:`windflutter.structure.prestress.geometric_stiffness`) and the hub links' tensioned-bar
-   term of its root reaction.  Because that stress balances the deformed blade's loads exactly,
-   the rigid rotation of the blade about the shaft keeps zero stiffness (tested); a stress taken
-   from the undeformed blade would not balance them.
+3. **The steady stress** is the shell's own, that of its steady state: the membrane resultants
+   ``(Nxx, Nyy, Nxy)`` of each element in its material frame, carried with the element to the
+   deformed geometry, give the membrane initial-stress matrix there
+   (:func:`windflutter.structure.prestress.membrane_geometric_stiffness`); the root reaction,
+   turned with its nodes, the hub links' tensioned-bar term.  (A linear solution of the deformed
+   blade under its own loads was tried for the stress and rejected: on the bent geometry it
+   crushes the thin tip panels with hoop stresses twice those of the steady state, and the IEA
+   22 MW blade buckled locally at 11 m/s -- docs/steady_state.md.)
 
 ``K_d + K_sigma - Omega^2 K_r`` then plays the role that the co-rotational beam's Hessian plays
 for beam blades.  The aerodynamic operator acts on the deflected strips, as for beams.
@@ -47,7 +45,8 @@ from windflutter.steady.exact import deformed_motion_map
 from windflutter.steady.geometry import (Deflection, blade_strips, deflection, rotation_matrices, rotation_vectors,
                                          strip_motion)
 from windflutter.structure.assembly import assemble
-from windflutter.structure.prestress import geometric_stiffness, static_solve
+from windflutter.structure.prestress import membrane_geometric_stiffness
+from windflutter.structure.shell import shell_membrane_resultants
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 
 __all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade"]
@@ -65,7 +64,6 @@ class DeflectedShell:
     ksigma : (n_dof, n_dof) CSR membrane initial-stress matrix of the steady stress.
     klink : (3, 3) hub-link geometric stiffness of the root reaction (N m/rad).
     nodes : (n, 3) deformed node positions (m); ``rotations`` (n, 3, 3) the nodes' finite rotations.
-    u_stress : (n_dof,) the linear solution on the deformed structure whose stress is the steady stress.
     """
 
     blade: RotorBlade
@@ -74,7 +72,6 @@ class DeflectedShell:
     klink: np.ndarray
     nodes: np.ndarray
     rotations: np.ndarray
-    u_stress: np.ndarray
 
 
 def station_frames(sections, defl: Deflection):
@@ -126,6 +123,12 @@ def carried_nodes(X: np.ndarray, frames, fixed: np.ndarray | None = None):
     return x, Rn
 
 
+def _turned(f: np.ndarray, Rn: np.ndarray) -> np.ndarray:
+    """Nodal vectors (n_dof,) turned with their nodes' rotations."""
+    f = np.asarray(f, float).reshape(-1, 2, 3)
+    return np.einsum("nab,nkb->nka", Rn, f).reshape(-1)
+
+
 def _deformed_fe(fe, x: np.ndarray, Rn: np.ndarray):
     """``fe`` on the carried nodes: material directions, diaphragm normals and lumped masses turned."""
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
@@ -166,10 +169,11 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     st_d = assemble(fe_d, check=False)
     blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe_d, mu))
     mm = deformed_motion_map(rb.sections.motion_map, Rn)
-    f = blade.centrifugal_load(omega) + mm.T @ strip_loads.reshape(-1)
-    u_e = static_solve(st_d, f)
-    ksigma = geometric_stiffness(fe_d, u_e)
-    klink = link_geometric_stiffness(fe_d, st_d.K @ u_e - f, blade.hub_node)
+    # the steady stress: the membrane resultants of the shell's own steady state, carried with their
+    # elements; the root reaction turned with its nodes for the hub links
+    ksigma = membrane_geometric_stiffness(fe_d, shell_membrane_resultants(fe, u))
+    reaction = steady.f_internal - steady.load if steady is not None else rb.struct.K @ u - rb.centrifugal_load(omega)
+    klink = link_geometric_stiffness(fe_d, _turned(reaction, Rn), blade.hub_node)
     blade.sections = dataclasses.replace(sections, motion_map=mm)
     st_out = dataclasses.replace(steady, sections=blade.sections, Ksigma=ksigma) if steady is not None else None
-    return DeflectedShell(blade=blade, steady=st_out, ksigma=ksigma, klink=klink, nodes=x, rotations=Rn, u_stress=u_e)
+    return DeflectedShell(blade=blade, steady=st_out, ksigma=ksigma, klink=klink, nodes=x, rotations=Rn)
