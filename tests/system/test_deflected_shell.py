@@ -157,3 +157,46 @@ def test_deflected_shell_operating_point(shell_point, shell_model):
     f1 = sorted(m.frequency_hz for m in modes)
     n = min(len(f0), len(f1), 8)
     np.testing.assert_allclose(f1[:n], f0[:n], rtol=0.08)
+
+
+@pytest.mark.slow
+def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
+    """IEA 22 MW at 11 m/s (near rated), default meshes: the shell blade's steady tip flap against
+    the co-rotational beam's (the windIO 6x6 tables) within 6 % (measured +5.5 %: 21.57 m against
+    20.44 m).  The elastic tip twist is NOT compared: -3.5 deg against -5.4 deg, the layup's
+    torsion and bend--twist coupling against the 6x6 tables' (docs/steady_state.md)."""
+    from windflutter.model import load_turbine
+
+    t = load_turbine("iea22mw")
+    flap = {}
+    for model in ("beam", "shell"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            om = OperationalModel(t, OperationalOptions(model=model, part="rotor"))
+            omega, pitch = om.operating_point(11.0)
+            st = om.steady(om.blade(pitch), 11.0, omega)
+        flap[model] = st.tip_flap
+    assert flap["shell"] == pytest.approx(flap["beam"], rel=0.06)
+
+
+@pytest.mark.slow
+def test_iea22mw_shell_second_edge_fw_damping_follows_the_beam():
+    """The issue's case: the IEA 22 MW shell's 2nd edge FW at 8-13 m/s.  Linearized about the
+    undeformed blade it lost its damping (1.0, 0.1, -0.6 % at 8, 9, 10 m/s); about the deflected
+    shape it is within 0.5 point of the beam model's (measured 0.35 point at most: 1.9-2.3 % against
+    1.7-2.1 %), and no mode below 2 Hz but the drivetrain's free rotation has negative damping."""
+    from windflutter.model import load_turbine
+    from windflutter.system.modes import point_modes
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t = load_turbine("iea22mw")
+        models = {m: OperationalModel(t, OperationalOptions(model=m, structure="deflected")) for m in ("beam", "shell")}
+        for V in (8.0, 10.0, 13.0):
+            z = {}
+            for m, om in models.items():
+                modes = point_modes(om.at(V), max_hz=2.0)
+                assert all(x.damping_ratio > 0 for x in modes if not x.rigid and x.family != "drivetrain"), (m, V)
+                fw = [x for x in modes if x.family == "edge" and x.order == 2 and x.whirl == "FW"]
+                z[m] = fw[0].damping_ratio
+            assert abs(z["shell"] - z["beam"]) < 0.005, (V, z)
