@@ -53,6 +53,21 @@ def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
 
 
 @functools.lru_cache(maxsize=16384)
+def _cached_shellprop(p: ShellProperty):
+    return pyfe3d_shellprop(p)
+
+
+def _shellprop(p: ShellProperty, index: int):
+    """:func:`pyfe3d_shellprop` cached by value (read only by the element routines; a deflected
+    shell blade is re-assembled at every operating point)."""
+    try:
+        return _cached_shellprop(p)
+    except InputError:
+        pyfe3d_shellprop(p, index)  # the same error, naming the property's index
+        raise
+
+
+@functools.lru_cache(maxsize=16384)
 def _laminate_ab(p: ShellProperty) -> tuple[tuple, tuple]:
     sp = pyfe3d_shellprop(p)
     return ((sp.A11, sp.A12, sp.A16), (sp.A12, sp.A22, sp.A26), (sp.A16, sp.A26, sp.A66)), \
@@ -78,7 +93,7 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
     pid = np.asarray(fe.shell_prop, dtype=np.int64)
     matdir = np.asarray(fe.shell_matdir, dtype=float)
     ne = conn.shape[0]
-    props = [pyfe3d_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
+    props = [_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
     data = Quad4Data()
     nk, nm = data.KC0_SPARSE_SIZE, data.M_SPARSE_SIZE
     mtype = 0 if mass == "consistent" else 1

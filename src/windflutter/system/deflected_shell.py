@@ -167,7 +167,7 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     x, Rn = carried_nodes(fe.nodes, station_frames(rb.sections, defl), fixed)
     fe_d = _deformed_fe(fe, x, Rn)
     st_d = assemble(fe_d, check=False)
-    blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe_d, mu))
+    blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe_d, mu, K=st_d.K))
     mm = deformed_motion_map(rb.sections.motion_map, Rn)
     # the steady stress: the membrane resultants of the shell's own steady state, carried with their
     # elements; the root reaction turned with its nodes for the hub links
