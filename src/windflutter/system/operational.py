@@ -210,7 +210,7 @@ class OperationalModel:
                 fe, st, sec = rotate_blade(fe, st, sec, R, root, self.rotor.hub_center, self.rotor.shaft_axis)
             mu = blade_mu(self.turbine) if self.options.damping == "file" else None
             self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis,
-                                           damping=blade_damping_matrix(fe, mu))
+                                           damping=blade_damping_matrix(fe, mu, K=st.K))
         return self._blades[key]
 
     def _blade0(self):
