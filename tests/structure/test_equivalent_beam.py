@@ -8,7 +8,7 @@ import pytest
 
 from windflutter.errors import InputError
 from windflutter.structure.equivalent_beam import ring_rigid_motion, segment_stiffness
-from tests.structure.shellmodels import iso, tube
+from shellmodels import iso, tube
 
 E, NU, T, R = 70e9, 0.3, 0.01, 1.0
 
