@@ -190,9 +190,11 @@ def test_stability_options_are_the_run_options():
 
 
 @pytest.mark.parametrize("solver, model, want", [
-    ({}, "shell", "undeformed"), ({"deflection": False}, "beam", "undeformed"),
+    ({}, "shell", "deflected"), ({"deflection": False}, "beam", "undeformed"),
+    ({"deflection": False}, "shell", "undeformed"),
     ({"structure": "undeformed"}, "beam", "undeformed"), ({"structure": "deflected"}, "beam", "deflected"),
-    ({"structure": "deflected"}, "shell", None), ({"structure": "deflected", "deflection": False}, "beam", None)])
+    ({"structure": "deflected"}, "shell", "deflected"), ({"structure": "deflected", "deflection": False}, "beam", None),
+    ({"structure": "deflected", "deflection": False}, "shell", None)])
 def test_structure_auto_and_its_limits(solver, model, want):
     # solver.structure: auto resolves by the model; an explicit deflected blade it cannot build is
     # refused naming the config field (no silent fall-back), when the config is read

@@ -130,8 +130,8 @@ def test_deflected_operating_point_has_the_same_structure_of_modes(nrel_point):
     assert np.array_equal(ps0.blade_system.K, ps.blade_system.K)
 
 
-@pytest.mark.parametrize("kw", [{"structure": "bent"}, {"structure": "deflected", "model": "shell"},
-                                {"structure": "deflected", "deflection": False}])
+@pytest.mark.parametrize("kw", [{"structure": "bent"}, {"structure": "deflected", "deflection": False},
+                                {"structure": "deflected", "deflection": False, "model": "shell"}])
 def test_structure_option_is_checked(kw):
     with pytest.raises(InputError, match="structure"):
         OperationalOptions(**kw)

@@ -202,9 +202,11 @@ class SolverConfig:
                              "linear structure with second-order load corrections (shell blades always)")
     structure: str = opt("auto", "choice", "method p: the blade structure the stability problem is linearized "
                          "about: deflected (beam blades: the co-rotational beam re-equilibrated under the steady "
-                         "loads, the geometric stiffness of every steady stress resultant), undeformed (the "
-                         "straight axis turned by the elastic twist, axial-force geometric stiffness) or auto "
-                         "(deflected for beam blades with solver.deflection, undeformed otherwise)",
+                         "loads, the geometric stiffness of every steady stress resultant; shell blades: the "
+                         "shell carried to its deflected steady shape and re-assembled there, with the membrane "
+                         "stress of the deformed blade's loads), undeformed (the straight axis turned by the "
+                         "elastic twist, the geometric stiffness of the undeformed blade's stress) or auto "
+                         "(deflected with solver.deflection, undeformed otherwise)",
                          choices=STRUCTURES)
     circulation: str = opt("jones", "choice", "method p: the rational approximation of Theodorsen's C(k) behind "
                            "the aerodynamic lag states: jones (R.T. Jones, 2 states per strip), rfa (Roger fit "

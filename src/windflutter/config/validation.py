@@ -78,9 +78,9 @@ def _rule_solver(c: AnalysisConfig, given: set[str], src: str | None) -> Analysi
     if s.aero_distribution == "skin" and c.model.type != "shell":
         raise InputError("solver.aero_distribution", "skin", "spline unless model.type is shell "
                          "(skin quads need a shell model)", src)
-    if s.structure == "deflected" and (c.model.type != "beam" or not s.deflection):
-        raise InputError("solver.structure", s.structure, "undeformed or auto unless model.type is beam and "
-                         "solver.deflection is true (the deflected shape is the co-rotational beam's)", src)
+    if s.structure == "deflected" and not s.deflection:
+        raise InputError("solver.structure", s.structure, "undeformed or auto unless solver.deflection is true "
+                         "(there is no deflected shape to linearize about)", src)
     return c
 
 

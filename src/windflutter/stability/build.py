@@ -68,13 +68,14 @@ def operational_options(config, aero: str):
 
 
 def resolved_structure(config) -> str:
-    """``solver.structure`` with ``auto`` resolved: ``deflected`` for beam blades linearized about the
-    deflected steady state (``solver.deflection``), ``undeformed`` otherwise (shell blades have no
-    co-rotational model yet).  An explicit ``deflected`` the model cannot build is refused by the
-    config's own rules (:func:`windflutter.config.check_config`)."""
-    m, s = config.model, config.solver
+    """``solver.structure`` with ``auto`` resolved: ``deflected`` for blades linearized about the
+    deflected steady state (``solver.deflection``; beams: :mod:`windflutter.system.deflected`,
+    shells: :mod:`windflutter.system.deflected_shell`), ``undeformed`` otherwise.  An explicit
+    ``deflected`` without a deflected state is refused by the config's own rules
+    (:func:`windflutter.config.check_config`)."""
+    s = config.solver
     if s.structure == "auto":
-        return "deflected" if m.type == "beam" and bool(s.deflection) else "undeformed"
+        return "deflected" if bool(s.deflection) else "undeformed"
     return s.structure
 
 

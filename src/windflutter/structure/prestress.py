@@ -201,3 +201,15 @@ def buckling_factors(struct: Structural, K_sigma: sp.spmatrix, n: int = 3) -> tu
     Q = Q[:, pos]
     order = np.argsort(lam)[:n]
     return lam[order], struct.expand(Q[:, order])
+
+
+def membrane_geometric_stiffness(fe: FEModel, resultants: np.ndarray) -> sp.csr_matrix:
+    """Geometric stiffness (full numbering, CSR, symmetric) of given shell membrane resultants
+    ``(Nxx, Nyy, Nxy)`` (ne, 3) (N/m, each element's material frame) on the geometry of ``fe``:
+    a stress field carried with its elements to another configuration of the same mesh."""
+    from windflutter.structure.shell import shell_membrane_kg
+
+    r, c, v = shell_membrane_kg(fe, None, resultants=resultants)
+    n = fe.n_dof
+    A = sp.coo_matrix((v, (r, c)), shape=(n, n)).tocsr()
+    return ((A + A.T) * 0.5).tocsr()

@@ -53,6 +53,21 @@ def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
 
 
 @functools.lru_cache(maxsize=16384)
+def _cached_shellprop(p: ShellProperty):
+    return pyfe3d_shellprop(p)
+
+
+def _shellprop(p: ShellProperty, index: int):
+    """:func:`pyfe3d_shellprop` cached by value (read only by the element routines; a deflected
+    shell blade is re-assembled at every operating point)."""
+    try:
+        return _cached_shellprop(p)
+    except InputError:
+        pyfe3d_shellprop(p, index)  # the same error, naming the property's index
+        raise
+
+
+@functools.lru_cache(maxsize=16384)
 def _laminate_ab(p: ShellProperty) -> tuple[tuple, tuple]:
     sp = pyfe3d_shellprop(p)
     return ((sp.A11, sp.A12, sp.A16), (sp.A12, sp.A22, sp.A26), (sp.A16, sp.A26, sp.A66)), \
@@ -78,7 +93,7 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
     pid = np.asarray(fe.shell_prop, dtype=np.int64)
     matdir = np.asarray(fe.shell_matdir, dtype=float)
     ne = conn.shape[0]
-    props = [pyfe3d_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
+    props = [_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
     data = Quad4Data()
     nk, nm = data.KC0_SPARSE_SIZE, data.M_SPARSE_SIZE
     mtype = 0 if mass == "consistent" else 1
@@ -225,8 +240,13 @@ def shell_membrane_resultants(fe: FEModel, u0: np.ndarray) -> np.ndarray:
     return np.einsum("eij,ej->ei", A[pid], eps) + np.einsum("eij,ej->ei", B[pid], kap)
 
 
-def shell_membrane_kg(fe: FEModel, u0: np.ndarray, directions: str = "all"):
+def shell_membrane_kg(fe: FEModel, u0: np.ndarray | None, directions: str = "all", resultants: np.ndarray | None = None):
     """COO triplets of the full membrane geometric stiffness of all shells.
+
+    The membrane resultants are those of the displacement ``u0``
+    (:func:`shell_membrane_resultants`), or given: ``resultants`` (ne, 3) ``(Nxx, Nyy, Nxy)`` (N/m)
+    in each element's material frame (e.g. the stress of another configuration of the same mesh,
+    carried with its elements).
 
     ``directions="normal"`` keeps only the element-normal translation (``(x) n n^T`` instead of
     ``(x) I3``), i.e. a plate-type KG like pyfe3d's; it exists to demonstrate (tests, docs) how
@@ -238,7 +258,9 @@ def shell_membrane_kg(fe: FEModel, u0: np.ndarray, directions: str = "all"):
     """
     if directions not in ("all", "normal"):
         raise InputError("directions", directions, "'all' or 'normal'")
-    Nres = shell_membrane_resultants(fe, u0)
+    Nres = shell_membrane_resultants(fe, u0) if resultants is None else np.asarray(resultants, float)
+    if Nres.shape != (len(fe.shell_conn), 3) or not np.all(np.isfinite(Nres)):
+        raise InputError("resultants", Nres.shape, f"finite ({len(fe.shell_conn)}, 3) membrane resultants (N/m)")
     Rf, xy, _ = shell_frames(fe)
     Nm = np.stack([np.stack([Nres[:, 0], Nres[:, 2]], -1), np.stack([Nres[:, 2], Nres[:, 1]], -1)], 1)
     ne = Nm.shape[0]

@@ -39,9 +39,10 @@ def blade_mu(turbine) -> np.ndarray | None:
 MU_FLOOR = 1e-6
 
 
-def blade_damping_matrix(fe, mu: np.ndarray | None) -> sp.csr_matrix | None:
+def blade_damping_matrix(fe, mu: np.ndarray | None, K=None) -> sp.csr_matrix | None:
     """Full-numbering damping matrix (N s/m) of the blade elements of ``fe`` for coefficients
-    ``mu``; None without coefficients."""
+    ``mu``; None without coefficients.  ``K``: the shell model's assembled stiffness, reused when
+    it has no springs (it is then the elements' stiffness)."""
     if mu is None:
         return None
     mu = np.asarray(mu, float)
@@ -52,7 +53,8 @@ def blade_damping_matrix(fe, mu: np.ndarray | None) -> sp.csr_matrix | None:
         _, K = assemble_matrices(replace(fe, beam_sections=secs, masses=[], springs=[]))
         return sp.csr_matrix(K)
     beta = float(max(mu[4], mu[5]))
-    _, K = assemble_matrices(replace(fe, masses=[], springs=[]))
+    if K is None or len(fe.springs):
+        _, K = assemble_matrices(replace(fe, masses=[], springs=[]))
     return sp.csr_matrix(beta * K)
 
 

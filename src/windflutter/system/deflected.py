@@ -99,7 +99,7 @@ def deflected_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None 
     """
     fe, struct = rb.fe, rb.struct
     if len(fe.shell_conn):
-        raise InputError("structure", "deflected", "beam blades (model: beam); shell blades linearize undeformed")
+        raise InputError("structure", "deflected", "beam blades here (shell blades: windflutter.system.deflected_shell)")
     omega = float(omega)
     if steady is not None:
         f_aero, u0 = np.asarray(steady.load_aero, float), np.asarray(steady.u, float)

@@ -85,10 +85,12 @@ class OperationalOptions:
     corotational : beam blades: the steady state on the co-rotational beam (exact for any reference
         line of the sections, :mod:`windflutter.steady.exact`); False: the linear structure with
         second-order load corrections (shell blades always).
-    structure : ``"undeformed"`` (the beam on its undeformed axis with the axial-force geometric
-        stiffness of the steady stress) or ``"deflected"`` (beam blades: the co-rotational beam
+    structure : ``"undeformed"`` (the blade on its undeformed geometry with the geometric stiffness
+        of the steady stress) or ``"deflected"`` (beam blades: the co-rotational beam
         re-equilibrated and linearized about the deflected shape, with the initial-stress matrix of
-        all its stress resultants, :mod:`windflutter.system.deflected`).
+        all its stress resultants, :mod:`windflutter.system.deflected`; shell blades: the shell
+        carried to its deflected steady shape and re-assembled there, with the membrane stress of
+        the deformed blade's loads, :mod:`windflutter.system.deflected_shell`).
     induction : steady BEM induction in the inflow.
     high_thrust : its thrust--induction relation (:mod:`windflutter.aero.momentum`): ``"buhl"``
         (OpenFAST AeroDyn's), ``"madsen"`` (HAWC2's and HAWCStab2's) or ``"momentum"``.
@@ -127,9 +129,9 @@ class OperationalOptions:
         from windflutter.aero.momentum import HIGH_THRUST
 
         check_choice("high_thrust", self.high_thrust, HIGH_THRUST)
-        if self.structure == "deflected" and (self.model != "beam" or not self.deflection):
-            raise InputError("structure", self.structure, "'undeformed' unless the blades are beams (model: beam) "
-                                                          "linearized about the deflected steady state (deflection on)")
+        if self.structure == "deflected" and not self.deflection:
+            raise InputError("structure", self.structure, "'undeformed' unless the blades are linearized about the "
+                                                          "deflected steady state (deflection on)")
         if self.aero == "default":
             from windflutter.aero.unsteady import UnsteadyOptions
 
@@ -223,7 +225,7 @@ class OperationalModel:
                 fe, st, sec = rotate_blade(fe, st, sec, R, root, self.rotor.hub_center, self.rotor.shaft_axis)
             mu = blade_mu(self.turbine) if self.options.damping == "file" else None
             self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis,
-                                           damping=blade_damping_matrix(fe, mu))
+                                           damping=blade_damping_matrix(fe, mu, K=st.K))
         return self._blades[key]
 
     def _blade0(self):
@@ -338,7 +340,9 @@ class OperationalModel:
         return {"frame": "ground-fixed (multi-blade coordinates)", "model": model, "part": o.part,
                 "drivetrain": o.drivetrain, "aerodynamics": aero,
                 "steady_state": steady,
-                "structure": ("linearized about the deflected shape (co-rotational beam, all stress resultants)"
+                "structure": (("linearized about the deflected shape (shell carried to it, membrane stress of "
+                               "its loads)" if o.model == "shell" else
+                               "linearized about the deflected shape (co-rotational beam, all stress resultants)")
                               if o.structure == "deflected" else "undeformed axis, axial-force geometric stiffness"),
                 "induction": f"steady BEM ({o.high_thrust} thrust-induction relation)" if o.induction else "none",
                 "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
@@ -388,8 +392,11 @@ class OperationalModel:
         if self.options.structure == "deflected":  # the blade rebuilt and linearized about its deflected shape
             from windflutter.system.damping import blade_mu
             from windflutter.system.deflected import deflected_blade
+            from windflutter.system.deflected_shell import deflected_shell_blade
 
-            d = deflected_blade(rb, st, omega, mu=blade_mu(self.turbine) if self.options.damping == "file" else None)
+            mu = blade_mu(self.turbine) if self.options.damping == "file" else None
+            build = deflected_shell_blade if len(rb.fe.shell_conn) else deflected_blade
+            d = build(rb, st, omega, mu=mu)
             rb, st, ksig, klink = d.blade, d.steady, d.ksigma, d.klink
         else:
             ksig, klink = self._prestress(rb, st, omega)

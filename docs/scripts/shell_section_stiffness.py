@@ -1,0 +1,82 @@
+"""Section stiffness of a turbine's shell blade, extracted from the shell FE model, against the file's 6x6.
+
+A segment of the shell blade (the elements between two stations) is cut out at 30, 50 and 70 % span;
+:func:`windflutter.structure.equivalent_beam.segment_stiffness` clamps its root ring, loads its tip
+ring and reads EA, GJ and the two bending stiffnesses between two interior rings (about the strips'
+reference points, section axes: the span, the chord, their normal).  Printed beside the turbine
+file's 6x6 at the same span.  docs/steady_state.md ("Shell blades") quotes it for the IEA 22 MW.
+
+    python docs/scripts/shell_section_stiffness.py [--turbine iea22mw] [--n-span 30]
+"""
+
+from __future__ import annotations
+
+import argparse
+import warnings
+
+import numpy as np
+
+from windflutter.mesh.settings import MeshSettings
+from windflutter.mesh.turbine import build_model
+from windflutter.model import load_turbine
+from windflutter.structure.equivalent_beam import segment_stiffness
+from windflutter.structure.fem import FEModel
+
+
+def stations(fe, sec):
+    """(points (ns+1, 3), station index of every node, node on its station plane)."""
+    p = np.asarray(sec.origin, float)
+    t = np.asarray(sec.e_span, float)
+    t /= np.linalg.norm(t, axis=1, keepdims=True)
+    w = np.asarray(sec.width, float)
+    P0 = np.vstack([p - 0.5 * w[:, None] * t, p[-1] + 0.5 * w[-1] * t[-1]])
+    T = np.vstack([t, t[-1:]])
+    X = np.asarray(fe.nodes, float)
+    D = np.einsum("nsi,si->ns", X[:, None, :] - P0[None], T)
+    st = np.argmin(np.abs(D), axis=1)
+    return P0, st, np.abs(D[np.arange(len(X)), st]) < 0.2 * w.min()
+
+
+def segment(fe, st, on, k0, k1):
+    """The sub-model of the elements between stations k0 and k1, and its ring of station k."""
+    conn = np.asarray(fe.shell_conn)
+    keep = np.all((st[conn] >= k0) & (st[conn] <= k1) & on[conn], axis=1)
+    used = np.unique(conn[keep])
+    mp = -np.ones(fe.n_nodes, int)
+    mp[used] = np.arange(len(used))
+    seg = FEModel(nodes=np.asarray(fe.nodes)[used], shell_conn=mp[conn[keep]],
+                  shell_prop=np.asarray(fe.shell_prop)[keep], shell_matdir=np.asarray(fe.shell_matdir)[keep],
+                  shell_properties=fe.shell_properties)
+    return seg, (lambda k: mp[np.flatnonzero(on & (st == k) & (mp >= 0))])
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--turbine", default="iea22mw")
+    ap.add_argument("--n-span", type=int, default=30)
+    args = ap.parse_args(argv)
+    t = load_turbine(args.turbine)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        fe, sec = build_model(t, MeshSettings(model="shell", part="blade", n_span=args.n_span))
+    P0, st, on = stations(fe, sec)
+    ns, bp = args.n_span, t.blade.beam
+    half, gap = max(3, ns // 10), max(2, ns // 15)
+    print(f"{args.turbine}, {ns} span elements: shell segment / file 6x6 - 1")
+    print("   s      EA     GJ  EI flap  EI edge")
+    for frac in (0.3, 0.5, 0.7):
+        k0 = int(frac * ns) - half
+        k1 = k0 + 2 * half
+        seg, ring = segment(fe, st, on, k0, k1)
+        ka, kb = k0 + gap, k1 - gap
+        j = (ka + kb) // 2
+        s = segment_stiffness(seg, ring(k0), ring(k1), (ring(ka), ring(kb)), (P0[ka], P0[kb]), axis=P0[kb] - P0[ka],
+                              e2=np.asarray(sec.e_chord)[j])
+        r = 0.5 * (ka + kb) / ns
+        f = [np.interp(r, bp.s, bp.stiffness[:, i, i]) for i in (0, 3, 5, 4)]  # EA, GJ, flap (about z), edge
+        ours = (s.EA, s.GJ, s.EI2, s.EI3)  # EI2: about the chord (flapwise bending), EI3: edgewise
+        print(f"{r:5.2f} " + " ".join(f"{o / v - 1:+7.1%}" for o, v in zip(ours, f)))
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,179 @@
+"""The shell blade linearized about its deflected steady state (``OperationalOptions(structure="deflected")``).
+
+The beam blade is re-equilibrated on the co-rotational beam and linearized about it
+(:mod:`windflutter.system.deflected`).  A shell blade has no co-rotational form here; it is
+linearized about the deflected shape in three steps (docs/steady_state.md, "Shell blades"):
+
+1. **The deflected shape** is the shell's own steady state (:func:`windflutter.steady.steady_state`:
+   the linear shell under centrifugal and BEM strip loads, its strip motions composed into
+   moderate rotations along the span, the deformed-configuration moments of the aerodynamic
+   loads).  Its strip chain gives a rigid frame -- a point and a finite rotation -- at every
+   station between strips (:func:`station_frames`).  Each shell node is carried rigidly with the
+   frame of its span position, interpolated between the two stations on either side of it
+   (:func:`carried_nodes`): ``x' = P'(s) + R(s) (x - P(s))``.  The material directions, the
+   diaphragms' normals and any lumped mass turn with their nodes.  The section's own in-plane
+   deformation (a few mm) is left out of the geometry; the span's bending, shortening and
+   elastic twist are in it.
+2. **The deformed structure**: the shell FE model re-assembled on that geometry (elastic stiffness
+   ``K_d``, mass, Coriolis and spin softening of the deformed blade, the files' damping), and the
+   strips' motion map with its lever arms turned by the nodal rotations.
+3. **The steady stress** is the shell's own, that of its steady state: the membrane resultants
+   ``(Nxx, Nyy, Nxy)`` of each element in its material frame, carried with the element to the
+   deformed geometry, give the membrane initial-stress matrix there
+   (:func:`windflutter.structure.prestress.membrane_geometric_stiffness`); the root reaction,
+   turned with its nodes, the hub links' tensioned-bar term.  (A linear solution of the deformed
+   blade under its own loads was tried for the stress and rejected: on the bent geometry it
+   crushes the thin tip panels with hoop stresses twice those of the steady state, and the IEA
+   22 MW blade buckled locally at 11 m/s -- docs/steady_state.md.)
+
+``K_d + K_sigma - Omega^2 K_r`` then plays the role that the co-rotational beam's Hessian plays
+for beam blades.  The aerodynamic operator acts on the deflected strips, as for beams.
+
+Units: SI (m, rad, N).
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+
+from windflutter.errors import InputError
+from windflutter.steady.exact import deformed_motion_map
+from windflutter.steady.geometry import (Deflection, blade_strips, deflection, rotation_matrices, rotation_vectors,
+                                         strip_motion)
+from windflutter.structure.assembly import assemble
+from windflutter.structure.prestress import membrane_geometric_stiffness
+from windflutter.structure.shell import shell_membrane_resultants
+from windflutter.system.blade import RotorBlade, link_geometric_stiffness
+
+__all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade"]
+
+
+@dataclass
+class DeflectedShell:
+    """The shell blade substructure linearized about its deflected shape.
+
+    Attributes
+    ----------
+    blade : :class:`~windflutter.system.blade.RotorBlade` on the deformed geometry.
+    steady : the steady state with the deformed blade's strip motion map and ``Ksigma = ksigma``
+        (None without one).
+    ksigma : (n_dof, n_dof) CSR membrane initial-stress matrix of the steady stress.
+    klink : (3, 3) hub-link geometric stiffness of the root reaction (N m/rad).
+    nodes : (n, 3) deformed node positions (m); ``rotations`` (n, 3, 3) the nodes' finite rotations.
+    """
+
+    blade: RotorBlade
+    steady: object
+    ksigma: sp.csr_matrix
+    klink: np.ndarray
+    nodes: np.ndarray
+    rotations: np.ndarray
+
+
+def station_frames(sections, defl: Deflection):
+    """Rigid frames at the ``ns + 1`` stations of a one-blade strip chain (root edge, the edges
+    between strips, tip edge): ``(P0 (ns+1, 3) undeformed points, P (ns+1, 3) deflected points,
+    R (ns+1, 3, 3) rotations, t (ns+1, 3) undeformed span directions)``, root to tip."""
+    chains = blade_strips(sections)
+    if len(chains) != 1:
+        raise InputError("sections.blade", len(chains), "the strips of one blade (part rotor_blade)")
+    idx = chains[0]
+    p = np.asarray(sections.origin, float)[idx]
+    t = np.asarray(sections.e_span, float)[idx]
+    t = t / np.linalg.norm(t, axis=1, keepdims=True)
+    w = np.asarray(sections.width, float)[idx]
+    R, R_cut = defl.R[idx], defl.R_cut[idx]
+    tip0 = p[-1] + 0.5 * w[-1] * t[-1]
+    P0 = np.vstack([defl.cut0[idx], tip0])
+    P = np.vstack([defl.cut[idx], defl.origin[idx][-1] + R[-1] @ (tip0 - p[-1])])
+    # the tip edge turns on from the last strip as much as the last strip from its inner edge
+    Rs = np.concatenate([R_cut, (R[-1] @ R_cut[-1].T @ R[-1])[None]])
+    ts = np.vstack([t[:1], 0.5 * (t[1:] + t[:-1]), t[-1:]])
+    ts /= np.linalg.norm(ts, axis=1, keepdims=True)
+    return P0, P, Rs, ts
+
+
+def carried_nodes(X: np.ndarray, frames, fixed: np.ndarray | None = None):
+    """Nodes ``X`` (n, 3) carried rigidly by the station frames (:func:`station_frames`): each node
+    between stations ``k`` and ``k + 1`` (signed distances to their planes ``d_k >= 0 > d_(k+1)``)
+    follows the frame interpolated at ``s = d_k / (d_k - d_(k+1))`` (points linearly, rotations
+    along the geodesic ``R_k exp(s log(R_k^T R_(k+1)))``); nodes inboard of the root or outboard
+    of the tip the end frames.  ``fixed`` node indices (clamped) stay.  Returns ``(x' (n, 3), R
+    (n, 3, 3))``."""
+    P0, P, Rs, ts = frames
+    X = np.asarray(X, float)
+    D = np.einsum("nsi,si->ns", X[:, None, :] - P0[None], ts)  # (n, n_st) signed distances
+    scale = 1e-9 * max(float(np.linalg.norm(P0[-1] - P0[0])), 1.0)
+    k = np.clip(np.sum(D >= -scale, axis=1) - 1, 0, len(P0) - 2)
+    rows = np.arange(len(X))
+    da, db = D[rows, k], D[rows, k + 1]
+    s = np.clip(np.where(np.abs(da - db) > 0, da / np.where(np.abs(da - db) > 0, da - db, 1.0), 0.0), 0.0, 1.0)
+    Ra, Rb = Rs[k], Rs[k + 1]
+    rel = rotation_vectors(np.einsum("nji,njk->nik", Ra, Rb))
+    Rn = Ra @ rotation_matrices(s[:, None] * rel)
+    p0 = (1 - s)[:, None] * P0[k] + s[:, None] * P0[k + 1]
+    p1 = (1 - s)[:, None] * P[k] + s[:, None] * P[k + 1]
+    x = p1 + np.einsum("nab,nb->na", Rn, X - p0)
+    if fixed is not None and len(fixed):
+        x[fixed], Rn[fixed] = X[fixed], np.eye(3)
+    return x, Rn
+
+
+def _turned(f: np.ndarray, Rn: np.ndarray) -> np.ndarray:
+    """Nodal vectors (n_dof,) turned with their nodes' rotations."""
+    f = np.asarray(f, float).reshape(-1, 2, 3)
+    return np.einsum("nab,nkb->nka", Rn, f).reshape(-1)
+
+
+def _deformed_fe(fe, x: np.ndarray, Rn: np.ndarray):
+    """``fe`` on the carried nodes: material directions, diaphragm normals and lumped masses turned."""
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    Re = rotation_matrices(np.mean(rotation_vectors(Rn.reshape(-1, 3, 3))[conn], axis=1)) if len(conn) else Rn[:0]
+    matdir = np.einsum("eab,eb->ea", Re, np.asarray(fe.shell_matdir, float)) if len(conn) else fe.shell_matdir
+    dia = [dataclasses.replace(d, normal=Rn[int(d.independent)] @ np.asarray(d.normal, float)) for d in fe.diaphragms]
+    masses = [dataclasses.replace(m, inertia=Rn[m.node] @ np.asarray(m.inertia, float) @ Rn[m.node].T,
+                                  offset=Rn[m.node] @ np.asarray(m.offset, float)) for m in fe.masses]
+    return dataclasses.replace(fe, nodes=x, shell_matdir=matdir, diaphragms=dia, masses=masses)
+
+
+def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None) -> DeflectedShell:
+    """The shell blade ``rb`` linearized about its deflected steady state (module docstring).
+
+    Parameters
+    ----------
+    rb : the undeformed shell blade substructure (at its pitch).
+    steady : its :class:`~windflutter.steady.SteadyState` (deflected), or None for the centrifugal
+        state alone (the linear centrifugal displacement carries the mesh).
+    omega : rotor speed (rad/s) about ``rb.axis``.
+    mu : the blade's damping coefficients (None: no damping).
+    """
+    from windflutter.system.damping import blade_damping_matrix
+
+    fe = rb.fe
+    if not len(fe.shell_conn):
+        raise InputError("model", "beam", "a shell blade (beam blades: windflutter.system.deflected)")
+    omega = float(omega)
+    if steady is not None:
+        u, strip_loads, sections = np.asarray(steady.u, float), np.asarray(steady.strip_loads, float), steady.sections
+    else:
+        u = rb.unit_prestress()[2] * omega**2
+        strip_loads, sections = np.zeros((rb.sections.n_sections, 6)), rb.sections
+    defl = deflection(rb.sections, strip_motion(rb.sections, u), finite=True)
+    fixed = np.array(sorted(n for n, c in fe.spc.items() if len(c) == 6), dtype=np.int64)
+    x, Rn = carried_nodes(fe.nodes, station_frames(rb.sections, defl), fixed)
+    fe_d = _deformed_fe(fe, x, Rn)
+    st_d = assemble(fe_d, check=False)
+    blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe_d, mu, K=st_d.K))
+    mm = deformed_motion_map(rb.sections.motion_map, Rn)
+    # the steady stress: the membrane resultants of the shell's own steady state, carried with their
+    # elements; the root reaction turned with its nodes for the hub links
+    ksigma = membrane_geometric_stiffness(fe_d, shell_membrane_resultants(fe, u))
+    reaction = steady.f_internal - steady.load if steady is not None else rb.struct.K @ u - rb.centrifugal_load(omega)
+    klink = link_geometric_stiffness(fe_d, _turned(reaction, Rn), blade.hub_node)
+    blade.sections = dataclasses.replace(sections, motion_map=mm)
+    st_out = dataclasses.replace(steady, sections=blade.sections, Ksigma=ksigma) if steady is not None else None
+    return DeflectedShell(blade=blade, steady=st_out, ksigma=ksigma, klink=klink, nodes=x, rotations=Rn)

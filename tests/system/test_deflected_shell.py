@@ -1,0 +1,202 @@
+"""The shell blade linearized about its deflected steady state (system/deflected_shell.py,
+``OperationalOptions(model="shell", structure="deflected")``): the mesh carried by the steady strip
+chain, invariance under a rigid motion, continuity with the undeformed linearization, the
+operating point, and (slow) the static deflection against the co-rotational beam."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+import pytest
+import scipy.linalg as sla
+
+from windflutter.linalg_tools import skew
+from windflutter.structure.assembly import assemble_matrices
+from windflutter.system.deflected_shell import _deformed_fe, carried_nodes, deflected_shell_blade, station_frames
+from windflutter.system.operational import OperationalModel, OperationalOptions
+
+RATED = 12.1 * np.pi / 30
+SMALL_MESH = {"n_span": 8, "n_chord": 16}
+
+
+@pytest.fixture(scope="module")
+def shell_model(nrel5mw_turbine):
+    """NREL 5 MW shell rotor (hub clamped) on a reduced mesh, linearized about the deflected shape."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # the layup is not the 6x6 tables' blade (known, warned)
+        om = OperationalModel(nrel5mw_turbine, OperationalOptions(model="shell", part="rotor", mesh=SMALL_MESH,
+                                                                  structure="deflected"))
+        om.blade(0.0)
+    return om
+
+
+def clamped_frequencies(blade, ksigma, klink, omega, k=6):
+    """The hub-clamped blade's lowest frequencies (Hz) and its (shaft rotation stiffness, shaft
+    inertia) with the rotating-frame and steady-stress terms."""
+    import scipy.sparse as sp
+    import scipy.sparse.linalg as spla
+
+    st = blade.struct
+    K = st.Kr + st.reduce(sp.csr_matrix(ksigma - omega**2 * blade.Kr1))
+    w2 = np.sort(spla.eigsh(K.tocsc(), k=k, M=st.Mr.tocsc(), sigma=-1.0, return_eigenvectors=False))
+    G = blade.Gamma
+    e = np.r_[0.0, 0.0, 0.0, blade.axis]
+    Kh = G.T @ (ksigma @ G) - omega**2 * (G.T @ (blade.Kr1 @ G))
+    Kh[3:6, 3:6] += klink
+    return np.sqrt(w2) / (2 * np.pi), e @ Kh @ e, e @ (G.T @ (st.M @ G)) @ e
+
+
+def test_at_rest_the_deflected_shell_is_the_undeformed_one(shell_model):
+    """No load: the same nodes, stiffness, mass and motion map; no initial stress."""
+    rb = shell_model.blade(0.0)
+    d = deflected_shell_blade(rb, None, 0.0)
+    assert np.array_equal(d.nodes, rb.fe.nodes)
+    assert abs(d.blade.struct.K - rb.struct.K).max() <= 1e-12 * abs(rb.struct.K).max()
+    assert abs(d.blade.struct.M - rb.struct.M).max() <= 1e-12 * abs(rb.struct.M).max()
+    assert abs(d.blade.sections.motion_map - rb.sections.motion_map).max() <= 1e-12
+    assert abs(d.ksigma).max() == 0.0 and np.abs(d.klink).max() == 0.0
+
+
+def test_a_rigid_motion_of_the_frames_moves_the_blade_rigidly(shell_model):
+    """Every station frame the same rigid motion (R0, c): each node goes to ``R0 x + c``, and the
+    shell re-assembled there (material axes turned) is the undeformed one turned, ``Q K Q^T``
+    (the element's frame invariance, 1e-10)."""
+    rb = shell_model.blade(0.0)
+    n = rb.sections.n_sections + 1
+    R0 = sla.expm(skew(np.array([0.3, -0.2, 0.5])))
+    c = np.array([1.0, -2.0, 0.5])
+    P0 = np.asarray(rb.sections.origin, float)[[0] * n] + np.linspace(0, 60, n)[:, None] * np.array([0, 0, 1.0])
+    frames = (P0, P0 @ R0.T + c, np.broadcast_to(R0, (n, 3, 3)).copy(), np.tile([0, 0, 1.0], (n, 1)))
+    X = np.asarray(rb.fe.nodes, float)
+    x, Rn = carried_nodes(X, frames)
+    np.testing.assert_allclose(x, X @ R0.T + c, atol=1e-9)
+    _, K = assemble_matrices(rb.fe)
+    _, Kd = assemble_matrices(_deformed_fe(rb.fe, x, Rn))
+    import scipy.sparse as sp
+
+    Q = sp.kron(sp.identity(2 * rb.fe.n_nodes), sp.csr_matrix(R0), format="csr")
+    assert abs(Kd - Q @ K @ Q.T).max() <= 1e-10 * abs(K).max()
+
+
+def test_nodes_between_stations_follow_the_interpolated_frame():
+    """A node a quarter of the way from station 0 to 1 (planes normal to z): its point is the
+    quarter point, its rotation a quarter of the relative rotation (about one axis: a quarter of the
+    angle); beyond the tip, the tip frame."""
+    R1 = sla.expm(skew(np.array([0.0, 0.4, 0.0])))
+    frames = (np.array([[0, 0, 0.0], [0, 0, 4.0]]), np.array([[0, 0, 0.0], [1.0, 0, 4.0]]),
+              np.stack([np.eye(3), R1]), np.tile([0, 0, 1.0], (2, 1)))
+    X = np.array([[0.5, 0.0, 1.0], [0.0, 0.3, 5.0]])
+    x, Rn = carried_nodes(X, frames)
+    Rq = sla.expm(skew(np.array([0.0, 0.1, 0.0])))
+    np.testing.assert_allclose(Rn[0], Rq, atol=1e-12)
+    np.testing.assert_allclose(x[0], np.array([0.25, 0, 1.0]) + Rq @ np.array([0.5, 0, 0]), atol=1e-12)
+    np.testing.assert_allclose(x[1], np.array([1.0, 0, 4.0]) + R1 @ np.array([0, 0.3, 1.0]), atol=1e-12)
+
+
+def test_spinning_shell_is_continuous_with_the_undeformed_linearization(shell_model):
+    """Centrifugal loads alone: the deflected linearization differs from the undeformed one by the
+    second order of the centrifugal deflection -- measured 1e-6 at 0.1 rad/s and 1.5e-4 at rated
+    speed on this mesh; tolerances 1e-5 and 1e-3.  The rigid rotation of the blade about the shaft
+    keeps the undeformed model's stiffness (its membrane-only initial stress leaves 1.04 % of
+    Omega^2 x the shaft inertia on this coarse mesh; the deflected one 1.04 % and 1.02 %):
+    within 0.1 % of Omega^2 x the shaft inertia."""
+    rb = shell_model.blade(0.0)
+    for omega, tol in ((0.1, 1e-5), (RATED, 1e-3)):
+        kg, kl, _ = rb.unit_prestress()
+        f0, k0, _ = clamped_frequencies(rb, kg * omega**2, kl * omega**2, omega)
+        d = deflected_shell_blade(rb, None, omega)
+        f1, k_shaft, i_shaft = clamped_frequencies(d.blade, d.ksigma, d.klink, omega)
+        np.testing.assert_allclose(f1, f0, rtol=tol)
+        assert abs(k_shaft - k0) < 1e-3 * omega**2 * i_shaft
+
+
+@pytest.fixture(scope="module")
+def shell_point(shell_model):
+    om = shell_model
+    omega, pitch = om.operating_point(11.0)
+    rb = om.blade(pitch)
+    st = om.steady(rb, 11.0, omega)
+    return rb, st, deflected_shell_blade(rb, st, omega), omega
+
+
+def test_the_mesh_follows_the_shell_steady_state(shell_point):
+    """At 11 m/s the carried nodes against the shell's own linear displacement ``u``: the same
+    motion up to the second order of the rotations and the sections' own deformation (measured
+    3.8 % of the largest motion, 2.9 m; tolerance 6 %), and each station's ring of skin nodes at its
+    steady frame: the strip points refitted from the carried nodes are the steady strips' points
+    (the moderate-rotation chain; measured 0.25 mm, tolerance 2 mm)."""
+    rb, st, d, _ = shell_point
+    u = st.u.reshape(-1, 6)[:, :3]
+    moved = d.nodes - np.asarray(rb.fe.nodes, float)
+    assert np.abs(moved - u).max() < 0.06 * np.abs(u).max()
+    fit = (rb.sections.motion_map @ np.hstack([moved, np.zeros_like(moved)]).ravel()).reshape(-1, 6)
+    shift = np.asarray(st.sections.origin) - np.asarray(rb.sections.origin)
+    assert np.abs(fit[:, :3] - shift).max() < 2e-3
+
+
+def test_deflected_shell_operating_point(shell_point, shell_model):
+    """The operating point on the deflected shell: stable (no mode below 3 Hz with negative damping),
+    the blade's clamped structure positive definite, and the same modes as the undeformed
+    linearization within 8 % in frequency (the deflection moves the edge modes most)."""
+    from windflutter.system.modes import point_modes
+
+    om = shell_model
+    ps = om.at(11.0)
+    M, K = ps.blade_structure
+    e = slice(6, None)
+    assert np.all(sla.eigh(K[e, e], M[e, e], eigvals_only=True) > 0)
+    modes = [m for m in point_modes(ps, max_hz=3.0) if not m.rigid]
+    assert modes and all(m.damping_ratio > 0 for m in modes)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        om0 = OperationalModel(om.turbine, OperationalOptions(model="shell", part="rotor", mesh=SMALL_MESH,
+                                                              structure="undeformed"))
+        ps0 = om0.at(11.0)
+    f0 = sorted(m.frequency_hz for m in point_modes(ps0, max_hz=3.0) if not m.rigid)
+    f1 = sorted(m.frequency_hz for m in modes)
+    n = min(len(f0), len(f1), 8)
+    np.testing.assert_allclose(f1[:n], f0[:n], rtol=0.08)
+
+
+@pytest.mark.slow
+def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
+    """IEA 22 MW at 11 m/s (near rated), default meshes: the shell blade's steady tip flap against
+    the co-rotational beam's (the windIO 6x6 tables) within 6 % (measured +5.5 %: 21.57 m against
+    20.44 m).  The elastic tip twist is NOT compared: -3.5 deg against -5.4 deg, the layup's
+    torsion and bend--twist coupling against the 6x6 tables' (docs/steady_state.md)."""
+    from windflutter.model import load_turbine
+
+    t = load_turbine("iea22mw")
+    flap = {}
+    for model in ("beam", "shell"):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            om = OperationalModel(t, OperationalOptions(model=model, part="rotor"))
+            omega, pitch = om.operating_point(11.0)
+            st = om.steady(om.blade(pitch), 11.0, omega)
+        flap[model] = st.tip_flap
+    assert flap["shell"] == pytest.approx(flap["beam"], rel=0.06)
+
+
+@pytest.mark.slow
+def test_iea22mw_shell_second_edge_fw_damping_follows_the_beam():
+    """The issue's case: the IEA 22 MW shell's 2nd edge FW at 8-13 m/s.  Linearized about the
+    undeformed blade it lost its damping (1.0, 0.1, -0.6 % at 8, 9, 10 m/s); about the deflected
+    shape it is within 0.5 point of the beam model's (measured 0.35 point at most: 1.9-2.3 % against
+    1.7-2.1 %), and no mode below 2 Hz but the drivetrain's free rotation has negative damping."""
+    from windflutter.model import load_turbine
+    from windflutter.system.modes import point_modes
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        t = load_turbine("iea22mw")
+        models = {m: OperationalModel(t, OperationalOptions(model=m, structure="deflected")) for m in ("beam", "shell")}
+        for V in (8.0, 10.0, 13.0):
+            z = {}
+            for m, om in models.items():
+                modes = point_modes(om.at(V), max_hz=2.0)
+                assert all(x.damping_ratio > 0 for x in modes if not x.rigid and x.family != "drivetrain"), (m, V)
+                fw = [x for x in modes if x.family == "edge" and x.order == 2 and x.whirl == "FW"]
+                z[m] = fw[0].damping_ratio
+            assert abs(z["shell"] - z["beam"]) < 0.005, (V, z)
