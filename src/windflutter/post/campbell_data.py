@@ -38,7 +38,8 @@ CAMPBELL_VARIABLES: dict[str, tuple[str | None, str]] = {
     "track_name": (None, "structural identity the track follows (its last mode's name for a track without one)"),
     "mode_name": (None, "name of the mode at this operating point: its identity, with its second participation "
                         "when mixed (empty: not found)"),
-    "family": (None, "mode family: flap, edge, torsion, tower_fa, tower_ss, tower_torsion, drivetrain, rigid, mixed"),
+    "family": (None, "mode family: flap, edge, torsion, tower_fa, tower_ss, tower_torsion, drivetrain, rigid, mixed, "
+                     "buckling (the prestressed blade statically unstable on its own)"),
     "whirl": (None, "whirl of the mode: BW, FW, collective, asymmetric or none"),
     "participation_1": (None, "the structural identity with the largest share of the mode"),
     "participation_2": (None, "the structural identity with the second largest share of the mode"),
@@ -213,7 +214,7 @@ def least_damped(ds: xr.Dataset, exclude_rigid: bool = True) -> dict | None:
     damping_ratio, track}`` (None without modes); the rigid-body drivetrain root left out."""
     z = np.where(present(ds), ds["damping_ratio"].values, np.nan)
     if exclude_rigid:
-        z = np.where(ds["rigid_body"].values == 1, np.nan, z)
+        z = np.where((ds["rigid_body"].values == 1) | (ds["family"].values == "buckling"), np.nan, z)
     if not np.any(np.isfinite(z)):
         return None
     i, t = np.unravel_index(int(np.nanargmin(z)), z.shape)
@@ -234,7 +235,7 @@ def least_damped_per_point(ds: xr.Dataset, exclude_rigid: bool = True) -> list[d
     """Per wind speed the least damped mode (:func:`cell` dict; None where a point has none)."""
     z = np.where(present(ds), ds["damping_ratio"].values, np.nan)
     if exclude_rigid:
-        z = np.where(ds["rigid_body"].values == 1, np.nan, z)
+        z = np.where((ds["rigid_body"].values == 1) | (ds["family"].values == "buckling"), np.nan, z)
     out: list[dict | None] = []
     for i in range(ds.sizes["wind_speed"]):
         row = z[i]
@@ -243,8 +244,10 @@ def least_damped_per_point(ds: xr.Dataset, exclude_rigid: bool = True) -> list[d
 
 
 def unstable(ds: xr.Dataset) -> list[dict]:
-    """Every mode with negative damping (rigid-body root excluded), by wind speed then damping."""
-    z = np.where(present(ds) & (ds["rigid_body"].values != 1), ds["damping_ratio"].values, np.nan)
+    """Every mode with negative damping (rigid-body root and the blade structure's own static
+    instabilities, family ``buckling``, excluded), by wind speed then damping."""
+    z = np.where(present(ds) & (ds["rigid_body"].values != 1) & (ds["family"].values != "buckling"),
+                 ds["damping_ratio"].values, np.nan)
     rows, cols = np.where(np.nan_to_num(z, nan=math.inf) < 0)
     found = sorted(zip(rows, cols), key=lambda rc: (rc[0], z[rc[0], rc[1]]))
     return [cell(ds, int(i), int(t)) for i, t in found]

@@ -83,15 +83,23 @@ class CampbellResult:
         best = None
         for p in self.points:
             for m in p.modes:
-                if exclude_rigid and m.rigid:
+                if exclude_rigid and (m.rigid or m.family == "buckling"):
                     continue
                 if best is None or m.damping_ratio < best[1].damping_ratio:
                     best = (p, m)
         return best
 
     def unstable(self):
-        """``[(point, mode)]`` with negative damping (the rigid-body drivetrain root excluded)."""
-        return [(p, m) for p in self.points for m in p.modes if m.damping_ratio < 0 and not m.rigid]
+        """``[(point, mode)]`` with negative damping (the rigid-body drivetrain root and the blade
+        structure's own static instabilities, :meth:`structure_unstable`, excluded)."""
+        return [(p, m) for p in self.points for m in p.modes
+                if m.damping_ratio < 0 and not m.rigid and m.family != "buckling"]
+
+    def structure_unstable(self):
+        """``[(point, mode)]`` made mostly of a statically unstable own mode of the prestressed blade
+        (no aerodynamics: a local buckling of the mesh, family ``buckling``) -- a defect of the FE
+        model at that operating point, not an aeroelastic instability."""
+        return [(p, m) for p in self.points for m in p.modes if m.family == "buckling"]
 
 
 def track_modes(points: list[CampbellPoint], min_mac: float = 0.5) -> list[Track]:

@@ -70,7 +70,9 @@ WHIRLS = ("collective", "BW", "FW")
 @dataclass(frozen=True)
 class Identity:
     """One structural identity: ``family`` (flap, edge, torsion, tower_fa, tower_ss, tower_torsion,
-    drivetrain, rigid), ``order`` (1st, 2nd ...; 0 for the drivetrain's), ``whirl`` (collective, BW,
+    drivetrain, rigid; buckling: an own mode of the prestressed blade that is statically unstable
+    without aerodynamics -- a local buckling of a shell mesh --, never an aeroelastic instability),
+    ``order`` (1st, 2nd ...; 0 for the drivetrain's), ``whirl`` (collective, BW,
     FW, asymmetric for blade modes; none otherwise)."""
 
     family: str
@@ -92,6 +94,8 @@ def identity_name(family: str, whirl: str, order: int) -> str:
         return "drivetrain rigid-body"
     if family == "other":
         return f"other {order}" if order else "other"
+    if family == "buckling":
+        return "blade structure unstable" + (f" {order}" if order > 1 else "")
     return f"{ordinal(order)} {family} {whirl}".rstrip()
 
 
@@ -234,7 +238,12 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
     top: dict = {}
     for fam, order, _ in reference.blade:
         top[fam] = max(top.get(fam, 0), order)
+    n_unstable = 0
     for c in np.argsort(w2):
+        if w2[c] < 0:  # the prestressed blade statically unstable without aerodynamics (a local buckling)
+            n_unstable += 1
+            ident[c] = ("buckling", n_unstable)
+            continue
         if ident[c] is not None:
             continue
         free = [r for r, (fam, order, _) in enumerate(reference.blade) if fam == fams[c] and (fam, order) not in used]
@@ -300,7 +309,7 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
             e_m = np.maximum(np.real(np.einsum("ij,ik,kj->j", qd.conj(), Md, qd)) - e_rig, 0.0)
             cols.append(np.where(heavy, e_m, e_k))
     if m and own is not None:  # blades: the point's own modes, per multi-blade coordinate
-        wj2 = np.where(heavy[None, :], 1.0, np.maximum(own.w2, 0.0)[:, None])
+        wj2 = np.where(heavy[None, :], 1.0, np.abs(own.w2)[:, None])
         A = [own.V.T @ (own.Me @ Q[nF + j * m: nF + (j + 1) * m]) for j in range(N)]
         e = {"collective": N * np.abs(A[0]) ** 2}
         if N >= 3:
@@ -310,7 +319,7 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
         if np.any(rest):
             e["asymmetric"] = N / 2 * rest
         e = {k: wj2 * v for k, v in e.items()}
-        known = {(fam, order) for fam, order, _ in reference.blade}
+        known = {(fam, order) for fam, order, _ in reference.blade} | {x for x in own.ident if x[0] == "buckling"}
         residual = np.zeros(Q.shape[1])
         for j, (fam, order) in enumerate(own.ident):
             for wh, ew in e.items():
@@ -351,6 +360,7 @@ def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: boo
         rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
         rec.rigid, rec.share, rec.mixed = False, 0.0, True
         rec.name = " + ".join(n for n, _ in rec.participation)
+        _mark_buckling(rec, ids[first], shares[first])
         return
     mine = ids[k]
     rec.identity, rec.family, rec.order, rec.whirl = mine, mine.family, mine.order, mine.whirl
@@ -359,6 +369,16 @@ def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: boo
     other = next(((n, s) for n, s in rec.participation if n != mine.name), None)
     rec.mixed = rec.share < MIXED_SHARE
     rec.name = mine.name if not rec.mixed or other is None else f"{mine.name} + {other[0]}"
+    _mark_buckling(rec, ids[first], shares[first])
+
+
+def _mark_buckling(rec, largest: Identity, share: float) -> None:
+    """A mode made mostly (half or more) of a statically unstable own mode of the prestressed blade
+    is that, whatever name the assignment gave it: family ``buckling``, never an aeroelastic
+    instability."""
+    if largest.family == "buckling" and share >= 0.5:
+        rec.family, rec.mixed = "buckling", False
+        rec.name = largest.name
 
 
 # ------------------------------------------------------------------------------------------------
