@@ -95,3 +95,28 @@ def config_field_cases() -> list[tuple[str, str, Any]]:
         for i, v in enumerate(values):
             cases.append((f"{name}#{i}", name, v))
     return cases
+
+
+#: a small analysis of the instant plug-in back-end, for the --resume cases
+RESUME_CONFIG = {"wind_speeds": [4, 10, 16], "aero": ["potential"],
+                 "rotor_speed": {"min_rpm": 2, "max_rpm": 26, "n_points": 7},
+                 "solver": {"backend": "instant", "n_tracked": 2},
+                 "output": {"plots": False, "report": False, "animations": False}}
+
+
+def recorded_run(tmp_path):
+    """``(config file, turbine file, output folder)``: a config file, a turbine file for the plug-in
+    (hashed by its bytes) and an output folder holding the record of a run of both."""
+    import yaml
+
+    from windflutter.config import load_config
+    from windflutter.post import runfolder
+
+    cfg = tmp_path / "analysis.yaml"
+    cfg.write_text(yaml.safe_dump(RESUME_CONFIG))
+    turbine = tmp_path / "turbine.txt"
+    turbine.write_text("toy rotor, radius 40 m\n")
+    out = tmp_path / "out"
+    out.mkdir()
+    runfolder.write_run_record(out, runfolder.run_record(load_config(cfg), str(turbine), str(turbine)))
+    return cfg, turbine, out

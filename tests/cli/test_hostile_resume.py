@@ -7,27 +7,14 @@ from __future__ import annotations
 import pytest
 import yaml
 
-from cli_cases import assert_one_line_error
+from cli_cases import RESUME_CONFIG, assert_one_line_error, recorded_run
 
-CFG = {"wind_speeds": [4, 10, 16], "aero": ["potential"],
-       "rotor_speed": {"min_rpm": 2, "max_rpm": 26, "n_points": 7},
-       "solver": {"backend": "instant", "n_tracked": 2},
-       "output": {"plots": False, "report": False, "animations": False}}
+CFG = RESUME_CONFIG
 
 
 @pytest.fixture
 def recorded(tmp_path):
-    from windflutter.config import load_config
-    from windflutter.post import runfolder
-
-    cfg = tmp_path / "analysis.yaml"
-    cfg.write_text(yaml.safe_dump(CFG))
-    turbine = tmp_path / "turbine.txt"
-    turbine.write_text("toy rotor, radius 40 m\n")
-    out = tmp_path / "out"
-    out.mkdir()
-    runfolder.write_run_record(out, runfolder.run_record(load_config(cfg), str(turbine), str(turbine)))
-    return cfg, turbine, out
+    return recorded_run(tmp_path)
 
 
 FLAG_CHANGES = [["--air-density", "1.1"], ["--damping-tower-ratio", "0.002"], ["--n-eig", "24"],
