@@ -14,7 +14,6 @@ from __future__ import annotations
 from typing import Any
 
 from windflutter.config import AnalysisConfig
-from windflutter.errors import InputError
 
 
 def campbell_model(turbine: Any, config: AnalysisConfig):

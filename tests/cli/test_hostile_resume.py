@@ -5,7 +5,6 @@ derived ones too) count as a changed config."""
 from __future__ import annotations
 
 import pytest
-import yaml
 
 from cli_cases import RESUME_CONFIG, assert_one_line_error, recorded_run
 

@@ -18,7 +18,6 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from windflutter.errors import InputError
 from windflutter.system.modes import ModeRecord, point_modes
 from windflutter.units import RPM
 
