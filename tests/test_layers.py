@@ -183,3 +183,83 @@ def test_the_checker_sees_every_kind_of_import(tmp_path):
 def test_layer_order_examples(importer, target, upward):
     layer = _layer_of()
     assert (layer[_unit(target)] > layer[_unit(importer)]) is upward
+
+
+def module_cycles(graph: dict[str, list[tuple[str, int]]]) -> list[list[str]]:
+    """The strongly connected components of more than one module of the import graph (Tarjan):
+    groups of modules that import each other, directly or round a circle, at module level or inside
+    functions alike.  A package ``__init__`` that re-exports its sub-modules is left out of the graph
+    (its sub-modules' imports of the package are how Python resolves them, not a design circle)."""
+    nodes = [m for m in graph]
+    inits = {m for m in graph if (SRC.parent / Path(*m.split("."))).is_dir()}
+    edges = {m: sorted({t for t, _ in graph[m] if t in graph and t not in inits and t != m}) for m in nodes
+             if m not in inits}
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    on: set[str] = set()
+    out: list[list[str]] = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        on.add(v)
+        for w in edges.get(v, []):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in on:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                on.discard(w)
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                out.append(sorted(comp))
+
+    for v in edges:
+        if v not in index:
+            visit(v)
+    return out
+
+
+def test_no_import_circles():
+    """No two modules of the package import each other, round any circle (issue 29: a circle inside
+    a layer, e.g. rotor/rotating.py <-> rotor/spin.py, was hidden by imports inside functions)."""
+    assert module_cycles(_graph()) == []
+
+
+def test_the_circle_check_can_fail():
+    graph = {"windflutter.rotor.a": [("windflutter.rotor.b", 3)], "windflutter.rotor.b": [("windflutter.rotor.a", 9)],
+             "windflutter.rotor.c": [("windflutter.rotor.a", 1)]}
+    assert module_cycles(graph) == [["windflutter.rotor.a", "windflutter.rotor.b"]]
+
+
+def private_imports(src: Path = SRC) -> list[str]:
+    """``from windflutter.x import _name`` in another module than ``windflutter.x`` (a private name
+    borrowed across modules: make it public in its module instead)."""
+    out = []
+    for path in sorted(src.rglob("*.py")):
+        for node in _statements(ast.parse(path.read_text(encoding="utf-8")).body):
+            if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("windflutter") or \
+                    isinstance(node, ast.ImportFrom) and node.level:
+                for alias in node.names:
+                    if alias.name.startswith("_") and not alias.name.startswith("__"):
+                        out.append(f"{_module_name(path, src)} (line {node.lineno}) imports {alias.name}")
+    return out
+
+
+def test_no_private_names_across_modules():
+    assert private_imports() == []
+
+
+def test_the_private_name_check_can_fail(tmp_path):
+    pkg = tmp_path / "windflutter"
+    pkg.mkdir()
+    (pkg / "__init__.py").write_text("")
+    (pkg / "a.py").write_text("def f():\n    from windflutter.b import _g\n")
+    assert private_imports(pkg) == ["windflutter.a (line 2) imports _g"]

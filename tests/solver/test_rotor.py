@@ -5,7 +5,9 @@ import pytest
 import scipy.sparse as sp
 
 from windflutter.aero.sections import RotorGeometry
-from windflutter.rotor.rotating import coriolis_and_softening, rotor_terms, skew
+from windflutter.linalg_tools import skew
+from windflutter.rotor.rotating import rotor_terms
+from windflutter.rotor.translational import coriolis_and_softening
 from windflutter.solve.qep import solve_qep
 from windflutter.structure.assembly import assemble
 from windflutter.structure.fem import BeamSection, FEModel

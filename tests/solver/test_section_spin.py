@@ -23,7 +23,7 @@ import pytest
 from scipy.spatial.transform import Rotation
 
 from windflutter.linalg_tools import skew
-from windflutter.rotor.rotating import coriolis_and_softening
+from windflutter.rotor.translational import coriolis_and_softening
 from windflutter.rotor.spin import inertia_moments, section_spin, spin_terms
 from windflutter.structure.assembly import assemble
 from windflutter.structure.beam import beam_frames

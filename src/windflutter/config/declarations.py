@@ -38,7 +38,7 @@ MAX_MODES = 500             # basis_modes, n_eig, n_tracked
 MAX_AIR_DENSITY = 2.0       # kg/m^3; dry air at -50 degC and 1050 hPa is 1.64
 
 # keys of earlier versions: a clear message instead of "unknown key"
-_RENAMED = {"solver": {
+RENAMED = {"solver": {
     "steady_loads": "renamed: solver.mean_loads (the mean-load terms, now on by default)",
     "n_modes": "renamed: solver.n_eig (eigenvalues per eigen-solve); the projection basis is solver.basis_modes",
     "shift_hz": "removed: the p-k search shifts each eigen-solve to the tracked mode's own frequency",

@@ -14,7 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from windflutter.config.declarations import (
-    _RENAMED, MAX_BLADE_ELEMENTS, MAX_GRID_POINTS, MAX_RPM, AnalysisConfig, field_spec)
+    RENAMED, MAX_BLADE_ELEMENTS, MAX_GRID_POINTS, MAX_RPM, AnalysisConfig, field_spec)
 from windflutter.errors import InputError, InputWarning
 from windflutter.schema import Spec, check_keys
 
@@ -30,7 +30,7 @@ def _merge(cls: type, data: Any, base: Any, prefix: str, src: str | None, given:
     if not isinstance(data, dict):
         what = "analysis settings" if not prefix else ", ".join(f.name for f in fields(cls))
         raise InputError(name, data, f"a mapping of {what}", src)
-    check_keys(prefix, data, {f.name for f in fields(cls)}, src, _RENAMED.get(prefix.rstrip(".")))
+    check_keys(prefix, data, {f.name for f in fields(cls)}, src, RENAMED.get(prefix.rstrip(".")))
     kw = {}
     for f in fields(cls):
         if f.name not in data:

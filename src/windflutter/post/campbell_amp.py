@@ -62,13 +62,13 @@ def write_amp(campbell, path, field: str = "--amp") -> Path:
         the result is not a Campbell result with modes (e.g. a dataset read back from a file), or the
         path cannot be written.
     """
-    from windflutter.post.campbell_export import _writable, cmb_tracks, write_table  # noqa: PLC0415
+    from windflutter.post.campbell_export import writable_path, cmb_tracks, write_table  # noqa: PLC0415
 
     if not hasattr(campbell, "points") or not hasattr(campbell, "tracks"):
         raise InputError(field, type(campbell).__name__, "a Campbell result with its modes (the .amp needs the "
                          "mode shapes, which a results file does not keep)")
     order, keep = cmb_tracks(campbell)
-    p = _writable(path, field)
+    p = writable_path(path, field)
     n = len(keep)
     cols = "".join(f"{2 + 2 * j:>14d}{3 + 2 * j:>14d}" for j in range(len(AMP_COLUMNS) * n))
     names = "".join(f"{f'{c} [{u}]':>14s}{'phase [deg]':>14s}" for c, u, _ in AMP_COLUMNS) * n

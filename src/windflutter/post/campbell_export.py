@@ -65,7 +65,7 @@ def _finite_or_none(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
-def _writable(path, field: str) -> Path:
+def writable_path(path, field: str) -> Path:
     p = Path(path)
     try:
         p.parent.mkdir(parents=True, exist_ok=True)
@@ -84,7 +84,7 @@ def write_csv(campbell, path, field: str = "--csv") -> Path:
     InputError
         the path is a folder or cannot be written.
     """
-    p = _writable(path, field)
+    p = writable_path(path, field)
     try:
         with open(p, "w", newline="", encoding="utf-8") as fh:
             w = csv.DictWriter(fh, fieldnames=CSV_FIELDS, lineterminator="\n")
@@ -148,7 +148,7 @@ def write_cmb(campbell, path, frequency: str = "damped", field: str = "--cmb") -
     if frequency not in _FREQUENCY_VARS:
         raise InputError("frequency", frequency, "'undamped' or 'damped'")
     ds = as_campbell_dataset(campbell)
-    p = _writable(path, field)
+    p = writable_path(path, field)
     keep = [t for t in range(ds.sizes["track"]) if present(ds)[:, t].any()]
     n = len(keep)
     num = "".join(f"{k + 1:>17d}" for k in range(n))

@@ -26,7 +26,8 @@ import scipy.sparse as sp
 
 from windflutter.aero_types import RotorGeometry
 from windflutter.errors import InputError, ModelError
-from windflutter.linalg_tools import skew
+from windflutter.rotor.spin import spin_terms
+from windflutter.rotor.translational import coriolis_and_softening, spin_operator
 from windflutter.structure.fem import FEModel
 
 
@@ -40,34 +41,6 @@ def rotating_nodes(fe: FEModel, group: str = "rotor") -> np.ndarray:
 def translational_dofs(nodes: np.ndarray) -> np.ndarray:
     """Global DOF indices (ux, uy, uz) of ``nodes``, node-major."""
     return (6 * np.asarray(nodes)[:, None] + np.arange(3)[None, :]).ravel()
-
-
-def _spin_operator(n_nodes: int, omega_vec: np.ndarray) -> sp.csr_matrix:
-    return sp.kron(sp.identity(n_nodes, format="csr"), sp.csr_matrix(skew(omega_vec)), format="csr")
-
-
-def coriolis_and_softening(M: sp.spmatrix, dofs: np.ndarray, omega_vec: np.ndarray):
-    """G and Kr (n_dof x n_dof sparse) from the translational mass of the DOFs ``dofs``.
-
-    Parameters
-    ----------
-    M : (n_dof, n_dof) structural mass matrix (kg), unconstrained numbering.
-    dofs : translational DOFs of the rotating part, node-major triplets (ux, uy, uz).
-    omega_vec : rotor speed vector (rad/s).
-    """
-    n = M.shape[0]
-    dofs = np.asarray(dofs, dtype=np.int64)
-    if dofs.size % 3:
-        raise InputError("dofs", dofs.size, "triplets of translational DOFs")
-    Mt = sp.csr_matrix(M)[dofs][:, dofs]
-    S = _spin_operator(dofs.size // 3, np.asarray(omega_vec, float))
-    Gt = (Mt @ S + S @ Mt).tocoo()
-    Krt = (S.T @ Mt @ S).tocoo()
-
-    def expand(A):
-        return sp.csr_matrix((A.data, (dofs[A.row], dofs[A.col])), shape=(n, n))
-
-    return expand(Gt), expand(Krt)
 
 
 def relative_to_reference(n_dof: int, dofs: np.ndarray, reference_node: int, n_comp: int = 3) -> sp.csr_matrix:
@@ -93,7 +66,7 @@ def centrifugal_load(M: sp.spmatrix, fe: FEModel, nodes: np.ndarray, omega_vec: 
     """Centrifugal nodal forces ``Fr = S^T Mt S R`` (N), full DOF vector, R = x - center."""
     dofs = translational_dofs(nodes)
     Mt = sp.csr_matrix(M)[dofs][:, dofs]
-    S = _spin_operator(nodes.size, np.asarray(omega_vec, float))
+    S = spin_operator(nodes.size, np.asarray(omega_vec, float))
     R = (np.asarray(fe.nodes, float)[nodes] - np.asarray(center, float)).ravel()
     f = np.zeros(M.shape[0])
     f[dofs] = S.T @ (Mt @ (S @ R))
@@ -156,8 +129,6 @@ def rotor_terms(fe: FEModel, struct, rotor_geometry: RotorGeometry, prestress: b
     M = struct.M
     dofs = translational_dofs(nodes)
     if rigid_sections:
-        from windflutter.rotor.spin import spin_terms
-
         G1, Kr1, f1 = spin_terms(fe, M, nodes, axis, np.asarray(rotor_geometry.hub_center, float))
     else:
         G1, Kr1 = coriolis_and_softening(M, dofs, axis)

@@ -39,8 +39,9 @@ import scipy.sparse as sp
 
 from windflutter.errors import InputError
 from windflutter.linalg_tools import congruence, skew
+from windflutter.rotor.translational import coriolis_and_softening
 from windflutter.structure.assembly import lumped_mass_matrices
-from windflutter.structure.beam import _GAUSS_W, _GAUSS_XI, _block_rotation, _shape_functions, beam_frames, element_dofs
+from windflutter.structure.beam import GAUSS_W, GAUSS_XI, block_rotation, shape_functions, beam_frames, element_dofs
 from windflutter.structure.fem import FEModel
 
 _EPS = np.zeros((3, 3, 3))
@@ -118,8 +119,8 @@ def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndar
     G = np.zeros((len(L), 12, 12))
     Kr, Me = np.zeros_like(G), np.zeros_like(G)
     f = np.zeros((len(L), 12))
-    for xi, wq in zip(_GAUSS_XI, _GAUSS_W):
-        N, _ = _shape_functions(L, xi)
+    for xi, wq in zip(GAUSS_XI, GAUSS_W):
+        N, _ = shape_functions(L, xi)
         X = np.einsum("eij,ej->ei", R, (1.0 - xi) * x0 + xi * x1)
         Gs, Ks, fs = section_spin(m, mc, Q, w_loc, X)
         wl = (wq * L)[:, None, None]
@@ -128,7 +129,7 @@ def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndar
         Me += wl * congruence(N, Ms)
         f[:, :6] += (wq * L * (1.0 - xi))[:, None] * fs  # loads lumped on the nodes (docstring)
         f[:, 6:] += (wq * L * xi)[:, None] * fs
-    T = _block_rotation(R)
+    T = block_rotation(R)
     G, Kr, Me = (congruence(T, A) for A in (G, Kr, Me))
     f = np.einsum("eki,ek->ei", T, f)
     return G, Kr, f, Me, element_dofs(conn)
@@ -146,9 +147,9 @@ def _lumped_terms(fe: FEModel, rotating: np.ndarray, axis: np.ndarray, center: n
 
 
 def _sparse(mats: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
-    from windflutter.structure.assembly import _coo
+    from windflutter.structure.assembly import coo_matrix_of
 
-    r, c, v = _coo(mats, dofs)
+    r, c, v = coo_matrix_of(mats, dofs)
     return sp.csr_matrix((v, (r, c)), shape=(n, n))
 
 
@@ -160,7 +161,6 @@ def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.n
     (module docstring); the rest of ``M`` (shells) enters by its translational block.  ``M`` may be
     None for a model of beams and lumped masses only (nothing else carries mass).
     """
-    from windflutter.rotor.rotating import coriolis_and_softening
 
     axis = np.asarray(axis, float)
     if not np.isclose(np.linalg.norm(axis), 1.0, atol=1e-6):

@@ -123,12 +123,12 @@ class PencilSystem:
         return self._ref
 
 
-def _qep(M, D, K, n_eig, shift=0.0):
+def qep(M, D, K, n_eig, shift=0.0):
     return solve_qep(M, D, K, shift=shift, n_eig=min(n_eig, 2 * M.shape[0]))
 
 
 # ---------------------------------------------------------------------------- p-k
-def _excluded(vals: np.ndarray, vecs: np.ndarray, exclude) -> np.ndarray:
+def excluded_roots(vals: np.ndarray, vecs: np.ndarray, exclude) -> np.ndarray:
     """Mask of the roots that are already taken by other tracked modes.
 
     A root is taken when it is close in value (5 %) *and* in shape (MAC > 0.9) to one of the
@@ -144,11 +144,11 @@ def _excluded(vals: np.ndarray, vecs: np.ndarray, exclude) -> np.ndarray:
     return out
 
 
-def _dense(A) -> np.ndarray:
+def dense(A) -> np.ndarray:
     return A.toarray() if hasattr(A, "toarray") else np.asarray(A)
 
 
-def _solve_near_singular(T, b):
+def solve_near_singular(T, b):
     """``T^-1 b`` for a ``T`` that is near-singular by design (inverse iteration); None if singular.
 
     Dense: LAPACK LU without the condition-number warning of ``solve``; sparse (full-order
@@ -165,7 +165,7 @@ def _solve_near_singular(T, b):
     return sla.lu_solve(lu, b, check_finite=False)
 
 
-def _pencil(system: FrequencyDomainSystem, lam, w):
+def pencil(system: FrequencyDomainSystem, lam, w):
     """``T(lam)`` at frequency ``w`` and ``x -> T'(lam) x``."""
     return system.newton_pencil(lam, w)
 
@@ -191,8 +191,8 @@ def newton_mode(system, lam0: complex, x0: np.ndarray, tol: float = 1e-8, maxite
     x = np.asarray(x0, dtype=complex)
     c = x.conj() / np.vdot(x, x).real  # normalisation c^H x = 1
     for it in range(maxiter):
-        T, Tp = _pencil(system, lam, max(lam.imag, 0.0))
-        y = _solve_near_singular(T, Tp(x))
+        T, Tp = pencil(system, lam, max(lam.imag, 0.0))
+        y = solve_near_singular(T, Tp(x))
         cy = np.nan if y is None else c @ y
         if not (np.isfinite(cy) and cy != 0):
             return lam, x, False
@@ -210,12 +210,12 @@ def _pick_root(system, w: float, x, exclude, n_eig: int):
     key = (w, n_eig)
     if key not in cache:
         M, D, K = system.matrices(w)
-        cache[key] = _qep(M, D, K, n_eig, shift=1j * w)
+        cache[key] = qep(M, D, K, n_eig, shift=1j * w)
     e = cache[key]
     vals, vecs = e.values, e.vectors
     phys = vals.imag >= -1e-9 * max(1.0, abs(w))
     if exclude:
-        phys &= ~_excluded(vals, vecs, exclude)
+        phys &= ~excluded_roots(vals, vecs, exclude)
     if not np.any(phys):
         return None
     vals, vecs = vals[phys], vecs[:, phys]
@@ -314,7 +314,7 @@ def static_min_eig(system) -> float:
     ``1 / min |mu|``), the whole spectrum only if that does not converge.
     """
     M, D, K = system.matrices(0.0)
-    Kd, Md = _dense(K).real, _dense(M).real
+    Kd, Md = dense(K).real, dense(M).real
     sM, _ = np.linalg.slogdet(Md)
     if Kd.shape[0] > STATIC_DENSE_LIMIT:
         lu, piv = sla.lu_factor(Kd, check_finite=False)
@@ -337,5 +337,5 @@ def static_min_eig(system) -> float:
 
 def structural_eig(system: FrequencyDomainSystem):
     """Eigenpairs ``(w^2, V)`` of the structural pencil ``(Ks(Omega), M)`` of ``system``, dense."""
-    K, M = (_dense(A) for A in system.structural_pencil())
+    K, M = (dense(A) for A in system.structural_pencil())
     return sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T))

@@ -24,8 +24,8 @@ from scipy.optimize import brentq
 from windflutter.errors import InputError
 from windflutter.linalg_tools import mac, mac_matrix
 from windflutter.stability.pk_roots import (STATIC_DENSE_LIMIT, STATIC_K, THESIS_K,  # noqa: F401
-                                            FrequencyDomainSystem, Onset, PencilSystem, _dense, _excluded,
-                                            _pencil, _qep, _solve_near_singular, newton_mode, pk_mode,
+                                            FrequencyDomainSystem, Onset, PencilSystem, dense, excluded_roots,
+                                            pencil, qep, solve_near_singular, newton_mode, pk_mode,
                                             static_frequency, static_min_eig, structural_eig)
 
 
@@ -310,7 +310,7 @@ def thesis_select(system, k_values=THESIS_K, n_eig: int = 20):
     for k in k_values:
         w = k * U75 / b75
         M, D, K = system.matrices(w)
-        e = _qep(M, D, K, n_eig, shift=0.0)
+        e = qep(M, D, K, n_eig, shift=0.0)
         i = int(np.argmin(np.abs(e.values.imag)))
         if best is None or abs(e.values[i].imag) < abs(best[0].imag):
             best = (e.values[i], e.vectors[:, i], k)

@@ -36,7 +36,7 @@ import scipy.sparse as sp
 from windflutter.rotor.rotating import rotating_nodes
 from windflutter.rotor.spin import spin_terms
 from windflutter.steady.fixedpoint import aitken, strip_change
-from windflutter.steady.geometry import Deflection, _inner_edges, blade_strips, rotation_matrices, rotation_vectors
+from windflutter.steady.geometry import Deflection, inner_edges, blade_strips, rotation_matrices, rotation_vectors
 from windflutter.structure.assembly import assemble_matrices
 from windflutter.structure.corotational import BeamConfiguration, deformed_model, reference_configuration
 
@@ -113,7 +113,7 @@ def configuration_deflection(sections, fe, config: BeamConfiguration) -> Deflect
     t = t / np.linalg.norm(t, axis=1, keepdims=True)
     cut0 = np.empty((ns, 3))
     for idx in blade_strips(sections):
-        cut0[idx] = _inner_edges(p[idx], t[idx], np.asarray(sections.width, float)[idx])
+        cut0[idx] = inner_edges(p[idx], t[idx], np.asarray(sections.width, float)[idx])
     cut = origin + np.einsum("jab,jb->ja", Rs, cut0 - p)
     motion = np.hstack([origin - p, theta])
     return Deflection(motion=motion, origin=origin, shift=origin - p, R=Rs, cut0=cut0, cut=cut, R_cut=Rs)

@@ -114,7 +114,7 @@ class Deflection:
     R_cut: np.ndarray
 
 
-def _inner_edges(p, t, w):
+def inner_edges(p, t, w):
     """Undeformed inner-edge points: mean of the outer edge inboard and the inner edge (root: inner edge)."""
     inner = p - 0.5 * w[:, None] * t
     cut = inner.copy()
@@ -127,7 +127,7 @@ def _compose(p, t, w, motion):
     undeformed and deflected inner edges, rotations at the inner edges."""
     uu, th = motion[:, :3], motion[:, 3:]
     n = len(p)
-    cut0 = _inner_edges(p, t, w)
+    cut0 = inner_edges(p, t, w)
     th_root = th[0] - (th[1] - th[0]) * w[0] / (w[0] + w[1]) if n > 1 else 0.5 * th[0]
     u_root = uu[0] + np.cross(th[0], cut0[0] - p[0])
     # piece j runs from the previous point (root edge for j = 0) to strip point j: its undeformed
@@ -166,7 +166,7 @@ def deflection(sections: AeroSections, motion: np.ndarray, finite: bool = True) 
         if finite:
             out = _compose(p[idx], t[idx], w[idx], motion[idx])
         else:
-            c0 = _inner_edges(p[idx], t[idx], w[idx])
+            c0 = inner_edges(p[idx], t[idx], w[idx])
             th = motion[idx, 3:]
             thc = th.copy()
             thc[1:] = 0.5 * (th[1:] + th[:-1])

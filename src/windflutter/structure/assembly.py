@@ -131,7 +131,7 @@ def rigid_body_vectors(nodes: np.ndarray, center: np.ndarray | None = None) -> n
     return R.reshape(6 * n, 6)
 
 
-def _coo(mats: np.ndarray, dofs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def coo_matrix_of(mats: np.ndarray, dofs: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """COO triplets of element matrices (ne, k, k) with DOF numbers (ne, k)."""
     k = dofs.shape[1]
     r = np.repeat(dofs, k, axis=1).ravel()
@@ -199,7 +199,7 @@ def assemble_matrices(fe: FEModel, shell_mass: str = "consistent") -> tuple[sp.c
 
     def add(target, mats, dofs):
         if len(mats):
-            r, c, v = _coo(mats, dofs)
+            r, c, v = coo_matrix_of(mats, dofs)
             target[0].append(r)
             target[1].append(c)
             target[2].append(v)

@@ -33,9 +33,9 @@ from windflutter.linalg_tools import congruence
 from windflutter.structure.fem import FEModel
 
 _E1X = np.array([[0.0, 0.0, 0.0], [0.0, 0.0, -1.0], [0.0, 1.0, 0.0]])  # S(e1): S(e1) b = e1 x b
-_GAUSS_XI, _GAUSS_W = np.polynomial.legendre.leggauss(4)
-_GAUSS_XI = 0.5 * (_GAUSS_XI + 1.0)
-_GAUSS_W = 0.5 * _GAUSS_W
+GAUSS_XI, GAUSS_W = np.polynomial.legendre.leggauss(4)
+GAUSS_XI = 0.5 * (GAUSS_XI + 1.0)
+GAUSS_W = 0.5 * GAUSS_W
 
 
 def beam_frames(fe: FEModel) -> tuple[np.ndarray, np.ndarray]:
@@ -91,7 +91,7 @@ def _section_arrays(fe: FEModel) -> tuple[np.ndarray, np.ndarray]:
     return np.array(C_inv).reshape(-1, 6, 6), np.array(Ms).reshape(-1, 6, 6)
 
 
-def _block_rotation(R: np.ndarray) -> np.ndarray:
+def block_rotation(R: np.ndarray) -> np.ndarray:
     """(nb, 12, 12) block-diagonal rotation global -> local."""
     nb = R.shape[0]
     T = np.zeros((nb, 12, 12))
@@ -123,7 +123,7 @@ def beam_tip_stiffness(L: np.ndarray, C_inv: np.ndarray) -> np.ndarray:
     return np.linalg.inv(F)
 
 
-def _shape_functions(L: np.ndarray, xi: float) -> tuple[np.ndarray, np.ndarray]:
+def shape_functions(L: np.ndarray, xi: float) -> tuple[np.ndarray, np.ndarray]:
     """Section motion N (nb, 6, 12) and transverse slopes dN (nb, 2, 12) at xi in [0, 1].
 
     Rows of N: u, v, w, theta_x, theta_y, theta_z (local); rows of dN: v', w'.
@@ -165,8 +165,8 @@ def beam_local_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray
     K_loc = congruence(H, Kt)
     M_loc = np.zeros_like(K_loc)
     Mse = Ms[sec]
-    for xi, w in zip(_GAUSS_XI, _GAUSS_W):
-        N, _ = _shape_functions(L, xi)
+    for xi, w in zip(GAUSS_XI, GAUSS_W):
+        N, _ = shape_functions(L, xi)
         M_loc += (w * L)[:, None, None] * congruence(N, Mse)
     return K_loc, M_loc, L, R
 
@@ -180,7 +180,7 @@ def beam_global_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarra
     dofs : (nb, 12) int, global DOF numbers.
     """
     K_loc, M_loc, L, R = beam_local_matrices(fe)
-    T = _block_rotation(R)
+    T = block_rotation(R)
     K_e = congruence(T, K_loc)
     M_e = congruence(T, M_loc)
     dofs = element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))
@@ -202,7 +202,7 @@ def beam_axial_force(fe: FEModel, u0: np.ndarray) -> np.ndarray:
     Kt = beam_tip_stiffness(L, C_inv[np.asarray(fe.beam_section, dtype=np.int64)])
     dofs = element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))
     ue = np.asarray(u0, dtype=float)[dofs]
-    ul = np.einsum("eij,ej->ei", _block_rotation(R), ue)
+    ul = np.einsum("eij,ej->ei", block_rotation(R), ue)
     P = np.einsum("eij,ejk,ek->ei", Kt, _H(L), ul)
     return P[:, 0]
 
@@ -211,9 +211,9 @@ def beam_geometric_matrices(fe: FEModel, N_axial: np.ndarray) -> tuple[np.ndarra
     """Geometric stiffness (nb, 12, 12) in global axes for axial forces N_axial (N) and DOFs."""
     L, R = beam_frames(fe)
     KG_loc = np.zeros((L.shape[0], 12, 12))
-    for xi, w in zip(_GAUSS_XI, _GAUSS_W):
-        _, dN = _shape_functions(L, xi)
+    for xi, w in zip(GAUSS_XI, GAUSS_W):
+        _, dN = shape_functions(L, xi)
         KG_loc += (w * L * N_axial)[:, None, None] * np.einsum("eki,ekj->eij", dN, dN)
-    T = _block_rotation(R)
+    T = block_rotation(R)
     KG = congruence(T, KG_loc)
     return KG, element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))

@@ -325,12 +325,12 @@ def beam_tangent(fe: FEModel, config: BeamConfiguration, resultants: np.ndarray 
 def linear_resultants(fe: FEModel, u: np.ndarray) -> np.ndarray:
     """(nb, 12) local end loads ``K_loc T u_e`` of the linear elements for the displacement ``u``
     (section frames of the reference configuration)."""
-    from windflutter.structure.beam import _block_rotation
+    from windflutter.structure.beam import block_rotation
 
     un = _check_u(fe, u).reshape(-1)
     el = _Elements(fe)
     _, R0 = beam_frames(fe)
-    ul = np.einsum("eij,ej->ei", _block_rotation(R0), un[el.dofs])
+    ul = np.einsum("eij,ej->ei", block_rotation(R0), un[el.dofs])
     return np.einsum("eij,ej->ei", el.K_loc, ul)
 
 
@@ -429,9 +429,9 @@ def internal_forces(fe: FEModel, config: BeamConfiguration, tangent: BeamTangent
 def _spring_stiffness(fe: FEModel) -> sp.csr_matrix | None:
     if not fe.springs:
         return None
-    from windflutter.structure.assembly import spring_matrices, _coo
+    from windflutter.structure.assembly import spring_matrices, coo_matrix_of
 
     gk, gd, tk, td = spring_matrices(fe)
-    parts = [_coo(m, d) for m, d in ((gk, gd), (tk, td)) if len(m)]
+    parts = [coo_matrix_of(m, d) for m, d in ((gk, gd), (tk, td)) if len(m)]
     r, c, v = (np.concatenate(z) for z in zip(*parts))
     return sp.coo_matrix((v, (r, c)), shape=(fe.n_dof, fe.n_dof)).tocsr()
