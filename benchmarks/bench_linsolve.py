@@ -1,7 +1,7 @@
 """Sparse LU backends on a complex shell-like system: SuperLU (baseline) vs kvxopt UMFPACK.
 
 The matrix is Q(s) = s^2 M + s D + K of the synthetic clamped tube of
-``windflutter.solve.testproblems.tube_qep`` (4-node quads, 6 DOF/node: the sparsity of a CQUAD4
+``benchmarks/testproblems.py::tube_qep`` (4-node quads, 6 DOF/node: the sparsity of a CQUAD4
 shell model) with complex element-local aero-like coupling, at a shift s near a structural
 frequency. Full size: 40 x 104 free nodes = 24,960 DOF (the thesis's NREL 5 MW model has
 26,136). ``--quick``: 3,600 DOF.
@@ -23,7 +23,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _benchutil import QUICK, header, isolated, table  # noqa: E402
 
 from windflutter.solve.linsolve import Factorizer, available_backends  # noqa: E402
-from windflutter.solve.testproblems import tube_qep  # noqa: E402
+from testproblems import tube_qep  # noqa: E402
 
 N_SOLVES = 60  # a shift-invert Arnoldi run for 20 eigenvalues applies the inverse ~40-120 times
 

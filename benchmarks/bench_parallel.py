@@ -1,6 +1,6 @@
 """Independent operating points: serial (baseline) vs 2 local worker processes vs Dask.
 
-Each task is ``windflutter.solve.testproblems.demo_point``: build a shell-like tube model, compute
+Each task is ``benchmarks/testproblems.py::demo_point``: build a shell-like tube model, compute
 its structural modes at the task's rotor speed, reduce and solve the coupled QEP -- the shape of
 one operating point of a stability map. 8 tasks (``--quick``: 4 smaller ones). Results of all
 modes are compared bit for bit with the serial run. The Dask case starts a
@@ -22,7 +22,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _benchutil import QUICK, header, maxrss_mb, table  # noqa: E402
 
 from windflutter.parallel import run_tasks  # noqa: E402
-from windflutter.solve.testproblems import demo_point  # noqa: E402
+from testproblems import demo_point  # noqa: E402
 
 N_TASKS = 4 if QUICK else 8
 TASK = dict(n_around=10, n_along=12, n_modes=20, n_eig=10, repeat=1) if QUICK else \

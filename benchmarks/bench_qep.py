@@ -1,6 +1,6 @@
 """Full-order shift-invert QEP solve (20 eigenvalues) with each sparse LU of ``linsolve``.
 
-Matrix: the synthetic clamped tube of ``windflutter.solve.testproblems.tube_qep`` (4-node quads,
+Matrix: the synthetic clamped tube of ``benchmarks/testproblems.py::tube_qep`` (4-node quads,
 6 DOF/node: the sparsity of a CQUAD4 shell model), 40 x 104 free nodes = 24,960 complex DOF
 (``--quick``: 12 x 20 = 1,440), with Rayleigh damping, gyroscopic and complex element-local
 aero-like coupling; shift ``i omega`` near the lowest structural frequencies, as in a p-k step.
@@ -34,7 +34,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parent))
 from _benchutil import QUICK, header, isolated, table  # noqa: E402
 
 from windflutter.solve.linsolve import available_backends  # noqa: E402
-from windflutter.solve.testproblems import tube_qep  # noqa: E402
+from testproblems import tube_qep  # noqa: E402
 
 SIZE = (12, 20) if QUICK else (40, 104)
 N_EIG = 20

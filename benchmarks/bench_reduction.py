@@ -1,6 +1,6 @@
 """Full-order vs modally reduced eigen-solve of a complex shell-like QEP.
 
-Model: the synthetic clamped tube of ``windflutter.solve.testproblems.tube_qep`` (40 x 104
+Model: the synthetic clamped tube of ``benchmarks/testproblems.py::tube_qep`` (40 x 104
 free nodes = 24,960 DOF, ``--quick``: 12 x 20 = 1,440 DOF) with Rayleigh damping, gyroscopic
 coupling and complex element-local aero-like coupling.
 
@@ -31,7 +31,7 @@ from _benchutil import QUICK, header, isolated, table  # noqa: E402
 
 
 from windflutter.solve import reduction as R  # noqa: E402
-from windflutter.solve.testproblems import tube_qep  # noqa: E402
+from testproblems import tube_qep  # noqa: E402
 
 N_EIG = 20
 N_CMP = 10

@@ -18,8 +18,9 @@ import pytest
 from windflutter import threads
 from windflutter.errors import InputError
 
-#: test folders whose modules the spawned Dask workers must import (the toy analyser plug-in)
-WORKER_PATH = (Path(__file__).parent / "workflow",)
+#: folders whose modules the spawned Dask workers must import (the toy analyser plug-in; the synthetic
+#: test problems of benchmarks/testproblems.py, which are not part of the package)
+WORKER_PATH = (Path(__file__).parent / "workflow", Path(__file__).parents[1] / "benchmarks")
 
 
 def pytest_report_header(config):

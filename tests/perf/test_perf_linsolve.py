@@ -7,7 +7,7 @@ import scipy.sparse as sp
 from windflutter.errors import InputError, ModelError
 from windflutter.solve import linsolve
 from windflutter.solve.linsolve import Factorizer, as_operator, available_backends, factorize
-from windflutter.solve.testproblems import tube_qep
+from testproblems import tube_qep
 
 HAVE_UMF = "umfpack" in available_backends()
 

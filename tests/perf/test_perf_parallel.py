@@ -9,7 +9,7 @@ import pytest
 
 from windflutter.errors import InputError
 from windflutter.parallel import TaskResult, iter_tasks, run_tasks
-from windflutter.solve.testproblems import demo_point
+from testproblems import demo_point
 
 TASKS = [{"speed": s, "n_around": 4, "n_along": 3, "n_modes": 8} for s in (0.5, 0.0, 1.5, 1.0, 2.0)]
 

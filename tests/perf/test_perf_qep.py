@@ -3,7 +3,7 @@ dense companion solve, plus reproducibility and symbolic reuse.
 
 Reference: ``solve_qep_dense`` (LAPACK on the 2n companion form, no factorization, no Krylov
 space) of a 288-DOF clamped tube with Rayleigh damping, gyroscopic and complex element-local
-coupling (``windflutter.solve.testproblems.tube_qep``). Tolerance 1e-9 relative: both are
+coupling (``benchmarks/testproblems.py::tube_qep``). Tolerance 1e-9 relative: both are
 backward-stable on a well-conditioned problem; only round-off (~1e-13 here) separates them, while
 a wrong operator or a wrong shift handling would give O(1) errors.
 """
@@ -17,7 +17,7 @@ import scipy.sparse.linalg as spla
 from windflutter.errors import InputError
 from windflutter.solve import qep
 from windflutter.solve.linsolve import available_backends
-from windflutter.solve.testproblems import tube_qep
+from testproblems import tube_qep
 
 SHIFT = 0.05 + 0.8j
 N_EIG = 12

@@ -11,7 +11,7 @@ import scipy.linalg as sla
 
 from windflutter.errors import InputError
 from windflutter.solve import reduction as R
-from windflutter.solve.testproblems import tube_qep
+from testproblems import tube_qep
 
 N_CHECK = 8  # lowest eigenvalues compared
 

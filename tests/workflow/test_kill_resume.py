@@ -112,10 +112,16 @@ def test_ctrl_c_while_storing_is_held_until_the_files_are_written():
     from windflutter.workflow import _sigint_deferred
 
     steps = []
-    with pytest.raises(KeyboardInterrupt):
-        with _sigint_deferred():
-            os.kill(os.getpid(), signal.SIGINT)
-            time.sleep(0.05)
-            steps.append("written")
-    assert steps == ["written"]
-    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    # Python's own Ctrl-C handler for the test, whatever the runner installed (a runner that ignores
+    # SIGINT would otherwise swallow the interrupt); the guard must restore the handler it found
+    saved = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            with _sigint_deferred():
+                os.kill(os.getpid(), signal.SIGINT)
+                time.sleep(0.05)
+                steps.append("written")
+        assert steps == ["written"]
+        assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
+    finally:
+        signal.signal(signal.SIGINT, saved)

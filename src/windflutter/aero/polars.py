@@ -112,13 +112,3 @@ def fit_polar(polar: Polar, max_range: float = np.radians(12.0), slope_fraction:
     cma = float(np.linalg.lstsq(A, cm[sel], rcond=None)[0][0]) if cm.shape == a.shape else 0.0
     return PolarFit(cla, cda, float(a0), float(a[lo]), float(a[hi]), hi - lo + 1, polar.name, cma)
 
-
-def fit_table(polars: list[Polar]) -> list[dict]:
-    """Fits of several polars as rows (degrees for ranges) for reports."""
-    rows = []
-    for p in polars:
-        f = fit_polar(p)
-        rows.append({"airfoil": f.name, "cl_alpha_per_rad": f.cl_alpha, "cd_alpha_per_rad": f.cd_alpha,
-                     "alpha0_deg": np.degrees(f.alpha_zero_lift), "range_deg": (np.degrees(f.alpha_min),
-                     np.degrees(f.alpha_max)), "n_points": f.n_points})
-    return rows

@@ -37,20 +37,6 @@ def arc_covers(arc: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarra
     return np.where(full, True, np.where(end >= start, direct, wrapped))
 
 
-def element_center_arc(arc_nodes: np.ndarray, conn_j: np.ndarray) -> np.ndarray:
-    """Centre arc of skin elements from the chordwise node indices of their two edges.
-
-    Parameters
-    ----------
-    arc_nodes : (n_chord,) arc of the chordwise grid points (same at all stations).
-    conn_j : (ne, 2) chordwise indices (j, j+1 mod n) of each element.
-    """
-    a = arc_nodes[conn_j[:, 0]]
-    b = arc_nodes[conn_j[:, 1]]
-    b = np.where(b <= a, b + 1.0, b)
-    return np.mod(0.5 * (a + b), 1.0)
-
-
 def arc_overlap_fraction(e0: np.ndarray, e1: np.ndarray, start: np.ndarray, end: np.ndarray) -> np.ndarray:
     """Fraction of the element arc interval ``[e0, e1]`` (``e1 > e0``, may exceed 1 at the
     trailing edge) covered by the layer ``[start, end)`` (wrapping through 1 -> 0 if

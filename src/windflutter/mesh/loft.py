@@ -124,56 +124,12 @@ def segmented_grid(keys: np.ndarray, counts: np.ndarray) -> np.ndarray:
     return np.concatenate(parts)
 
 
-def interpolate_stack(eta_af: np.ndarray, shapes: np.ndarray, eta: np.ndarray) -> np.ndarray:
-    """Linear interpolation of resampled airfoil shapes along the span.
-
-    Parameters
-    ----------
-    eta_af : (na,) non-dimensional span positions of the given airfoils, increasing.
-    shapes : (na, m, 2) airfoils resampled at the same arc positions.
-    eta : (k,) positions where shapes are wanted.
-
-    Returns
-    -------
-    (k, m, 2) shapes.
-    """
-    eta_af = np.asarray(eta_af, dtype=float)
-    j = np.clip(np.searchsorted(eta_af, eta, side="right") - 1, 0, len(eta_af) - 2)
-    w = np.clip((eta - eta_af[j]) / np.maximum(eta_af[j + 1] - eta_af[j], 1e-300), 0.0, 1.0)
-    return (1.0 - w)[:, None, None] * shapes[j] + w[:, None, None] * shapes[j + 1]
-
-
 def chord_frame(twist: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Unit chord (LE -> TE) and suction-side normal in blade axes (x_b, y_b, z_b) for twist (rad)."""
     t = np.asarray(twist, dtype=float)
     e_c = np.stack([np.sin(t), np.cos(t), np.zeros_like(t)], axis=-1)
     e_n = np.stack([np.cos(t), -np.sin(t), np.zeros_like(t)], axis=-1)
     return e_c, e_n
-
-
-def section_points(
-    xy: np.ndarray, chord: float, twist: float, pitch_axis: float, ref_point: np.ndarray
-) -> np.ndarray:
-    """Place a unit airfoil in the blade frame.
-
-    Parameters
-    ----------
-    xy : (m, 2) unit-chord airfoil (x from LE, y towards suction side).
-    chord : chord (m).
-    twist : twist (rad), positive towards feather.
-    pitch_axis : chordwise position of the reference (pitch) axis from the LE, fraction of chord.
-    ref_point : (3,) reference-axis point in blade axes (m).
-
-    Returns
-    -------
-    (m, 3) coordinates in blade axes (m).
-    """
-    e_c, e_n = chord_frame(np.array(twist))
-    return (
-        np.asarray(ref_point, dtype=float)[None, :]
-        + chord * (xy[:, 0:1] - pitch_axis) * e_c[None, :]
-        + chord * xy[:, 1:2] * e_n[None, :]
-    )
 
 
 def loft(

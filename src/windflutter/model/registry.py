@@ -115,7 +115,3 @@ def load_turbine(path_or_name: str | Path, validate: bool = True, fmt: str | Non
         raise InputError("turbine file", f"{size} bytes", f"a file under {MAX_FILE_BYTES // 2**20} MiB", str(path))
     return reader_for(path, fmt).load(path, validate)
 
-
-def describe_readers() -> str:
-    """One line per reader (for help texts)."""
-    return "\n".join(f"{r.name}: {r.description} ({', '.join(r.suffixes)})" for r in _READERS)

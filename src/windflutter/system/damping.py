@@ -106,17 +106,6 @@ def tower_ratio(turbine) -> float:
     return float(vals.mean()) if vals.size else 0.0
 
 
-def stiffness_proportional(K, M, zeta: float) -> np.ndarray | None:
-    """``beta K`` with ``beta = zeta / (pi f_1)`` at the first mode of the dense pencil (K, M)."""
-    if zeta <= 0:
-        return None
-    import scipy.linalg as sla
-
-    w2 = sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T), eigvals_only=True, subset_by_index=[0, 0])[0]
-    w1 = np.sqrt(max(w2, 0.0))
-    return (2.0 * zeta / w1) * K if w1 > 0 else None
-
-
 def element_subset(fe, prefix: str):
     """``fe`` with only the elements whose region name starts with ``prefix`` (no masses or springs):
     for assembling a damping matrix of one part of a model."""

@@ -1,22 +1,16 @@
-"""Modes of the multi-blade system and their names in the field's terms.
+"""Modes of the multi-blade system: their eigenvalues, shapes and amplitudes, and their names.
 
 For an eigenpair ``(lambda, x)`` of the first-order system (``x = [q, q', z]``, ``q`` over the
-ground-fixed coordinates and the multi-blade coordinates of the blades) the kinetic-energy shares
-of the groups -- support, drivetrain (azimuth and generator), blade collective, blade cyclic --
-come from the diagonal blocks of the mass matrix.  Then
-
-* **family**: the group with most energy; support modes are ``tower_fa`` / ``tower_ss`` /
-  ``tower_torsion`` by the tower nodes' motion (along the wind, across it, twist about the tower
-  axis); blade modes ``flap`` / ``edge`` / ``torsion`` by the strips' motion (flapwise, edgewise,
-  twist times a quarter chord), :func:`windflutter.structure.labels.blade_motion_components`;
-* **whirl** of a blade mode: ``collective`` when the collective coordinates carry more energy than
-  the cyclic ones, otherwise forward (``FW``) or backward (``BW``) whirl from the phase of the
-  cosine and sine coordinates: with ``eta_b = eta_c cos psi_b + eta_s sin psi_b`` and
-  ``e^{i omega t}``, ``eta_s = -i eta_c`` is a pattern turning with the rotor (FW, at the
-  rotating-frame frequency + Omega) and ``eta_s = +i eta_c`` against it (BW, - Omega);
-* **order**: rank in frequency among the modes of the same family and whirl at the point.
-
-Names: ``"1st flap BW"``, ``"2nd edge collective"``, ``"1st tower fore-aft"``, ``"drivetrain"``.
+ground-fixed coordinates and the multi-blade coordinates of the blades) :func:`classify` gives the
+kinetic-energy shares of the groups (support, drivetrain, blades; diagonal blocks of the mass
+matrix), the physical signature that tracking compares (:func:`mode_signature`) and the blade-tip
+and tower-top amplitudes in HAWCStab2's terms.  The name -- family, order and whirl -- is the mode's
+structural identity, its participation in the turbine's own structural modes
+(:mod:`windflutter.system.identity`, :func:`identify_modes`): ``"1st flap BW"``, ``"2nd edge
+collective"``, ``"1st tower fore-aft"``, ``"drivetrain"``, ``"2nd edge BW + 2nd tower side-side"``
+for a mixed mode.  Whirl: with ``eta_b = eta_c cos psi_b + eta_s sin psi_b`` and ``e^{i omega t}``,
+``eta_s = -i eta_c`` is a pattern turning with the rotor (FW, at the rotating-frame frequency +
+Omega) and ``eta_s = +i eta_c`` against it (BW, - Omega).
 """
 
 from __future__ import annotations
@@ -25,15 +19,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from windflutter.structure.labels import blade_motion_components, frame_components, ordinal
+from windflutter.structure.labels import blade_motion_components, frame_components
 
-FAMILIES = ("flap", "edge", "torsion", "tower_fa", "tower_ss", "tower_torsion", "drivetrain", "other")
-WHIRLS = ("BW", "FW", "collective", "none")
-#: a drivetrain-dominated mode whose blades carry at least this share of the kinetic energy is
-#: named by its blade motion (the collective edge mode turning the rotor against the generator,
-#: HAWCStab2's "sym. edge"), not "drivetrain"
-BLADE_SHARE_DRIVETRAIN = 0.2
-_TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
 
 
 @dataclass
@@ -62,7 +49,6 @@ class ModeRecord:
     energy: dict = field(default_factory=dict)
     rigid: bool = False
     signature: np.ndarray | None = field(default=None, repr=False)
-    blade_family: tuple | None = field(default=None, repr=False)
     tip: np.ndarray | None = field(default=None, repr=False)
     tower_top: np.ndarray | None = field(default=None, repr=False)
     #: the structural identity given (:class:`windflutter.system.identity.Identity`), its share of the
@@ -144,19 +130,6 @@ def _block_energy(q: np.ndarray, M: np.ndarray, sl: slice) -> float:
     return float(np.real(np.vdot(v, M[sl, sl] @ v))) if v.size else 0.0
 
 
-def _tower_family(ps, qs: np.ndarray) -> str:
-    """FA / SS / torsion of a support motion ``qs`` (support coordinates): kinetic energy (mass
-    diagonal of the support model) in translations along the wind (x), across it (y) and in
-    twist about the vertical (rz), over every support node (tower, nacelle, hub)."""
-    sm = ps.support
-    u = np.asarray(sm.expand @ qs)
-    md = np.asarray(sm.struct.M.diagonal())
-    e = (md * np.abs(u) ** 2).reshape(-1, 6).sum(axis=0)
-    if e[5] > max(e[0], e[1]):
-        return "tower_torsion"
-    return "tower_fa" if e[0] >= e[1] else "tower_ss"
-
-
 def _blade_components(ps, q_eta: list[np.ndarray]) -> np.ndarray:
     """(3, ns, k) flap, edge and torsion (x quarter chord) motion of the strips for each of the
     ``k`` multi-blade coordinates (blade frame, the blade's fixed-interface deformation)."""
@@ -182,12 +155,6 @@ def _tip_components(ps, q_eta: list[np.ndarray]) -> np.ndarray | None:
     return ps.tip_basis @ np.stack(q_eta, 1)
 
 
-def _blade_family(comps: np.ndarray, width: np.ndarray) -> str:
-    """flap / edge / torsion: the largest strip-motion energy of :func:`_blade_components`."""
-    en = np.sum(np.abs(comps) ** 2 * width[None, :, None], axis=(1, 2))
-    return ("flap", "edge", "torsion")[int(np.argmax(en))]
-
-
 def _unit_block(v: np.ndarray, weight: float) -> np.ndarray:
     v = np.asarray(v, complex).ravel()
     nv = np.linalg.norm(v)
@@ -209,15 +176,6 @@ def mode_signature(ps, q: np.ndarray, energy: dict, comps: np.ndarray | None) ->
     return np.concatenate(parts)
 
 
-def _rigid_drivetrain(q: np.ndarray, labels: list) -> bool:
-    """The rotor and generator turn together (the drivetrain's rigid-body mode, aerodynamically
-    damped in operation), rather than against each other (shaft torsion)."""
-    if "generator" not in labels:
-        return True
-    a, g = q[labels.index("azimuth")], q[labels.index("generator")]
-    return bool(abs(a - g) < 0.5 * max(abs(a), abs(g), 1e-300))
-
-
 def _amplitudes(ps, q: np.ndarray, tip: np.ndarray | None, ns: int) -> dict:
     """``tip`` (:func:`_tip_components` of the mode) and ``tower_top`` of :class:`ModeRecord` for the
     mode ``q`` scaled to unit norm."""
@@ -233,7 +191,8 @@ def _amplitudes(ps, q: np.ndarray, tip: np.ndarray | None, ns: int) -> dict:
 
 
 def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
-    """Family, whirl and energy shares of one eigenpair of ``ps.mbc`` (a :class:`PointSystem`)."""
+    """Energy shares, signature and amplitudes of one eigenpair of ``ps.mbc`` (a :class:`PointSystem`);
+    family ``other`` until :func:`identify_modes` names it."""
     mb = ps.mbc
     n = mb.M.shape[0]
     q = x[:n]
@@ -247,29 +206,12 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     groups["blade"] = float(sum(e_coord))
     tot = max(sum(groups.values()), 1e-300)
     energy = {k: v / tot for k, v in groups.items()}
-    top = max(groups, key=groups.get)
     shape = q / max(np.linalg.norm(q), 1e-300)
     comps = _blade_components(ps, [q[s] for s in coords]) if m else None
     sig = mode_signature(ps, q, energy, comps)
     tip = _tip_components(ps, [q[s] for s in coords]) if m else None
     rec = {"shape": shape, "energy": energy, "signature": sig, **_amplitudes(ps, q, tip, ns)}
-    blade = None
-    if comps is not None:
-        whirl = "collective"
-        if len(coords) >= 3 and e_coord[0] < e_coord[1] + e_coord[2]:
-            Mc = mb.M[coords[1], coords[1]]
-            qc, qs = q[coords[1]], q[coords[2]]
-            fw = np.real(np.vdot(qc + 1j * qs, Mc @ (qc + 1j * qs)))
-            bw = np.real(np.vdot(qc - 1j * qs, Mc @ (qc - 1j * qs)))
-            whirl = "FW" if fw > bw else "BW"
-        blade = (_blade_family(comps, ps.blade.sections.width), whirl)
-    if top == "support":
-        return ModeRecord(lam, _tower_family(ps, q[:ns]), "none", blade_family=blade, **rec)
-    if top == "drivetrain" and energy["blade"] < BLADE_SHARE_DRIVETRAIN:
-        return ModeRecord(lam, "drivetrain", "none", rigid=_rigid_drivetrain(q, labels), **rec)
-    if blade is None:
-        return ModeRecord(lam, "other", "none", **rec)
-    return ModeRecord(lam, blade[0], blade[1], **rec)
+    return ModeRecord(lam, "other", "none", **rec)  # named by identify_modes
 
 
 def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8,
@@ -341,28 +283,3 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
     for i, rec in enumerate(modes):
         name_record(rec, ids, S[i], int(got[i]), heavy=bool(zetas[i] > HEAVY_DAMPING))
     return modes
-
-
-def name_modes(modes: list[ModeRecord]) -> list[ModeRecord]:
-    """Orders (rank in frequency within family and whirl) and names, in place; returns ``modes``."""
-    count: dict = {}
-    for md in sorted(modes, key=lambda r: r.frequency_hz):
-        if md.rigid:
-            md.order, md.name = 0, "drivetrain rigid-body"
-            continue
-        key = (md.family, md.whirl)
-        count[key] = count.get(key, 0) + 1
-        md.order = count[key]
-        md.name = mode_name(md.family, md.whirl, md.order)
-    return modes
-
-
-def mode_name(family: str, whirl: str, order: int) -> str:
-    """``"1st flap BW"``, ``"1st tower fore-aft"``, ``"drivetrain"`` ..."""
-    if family in _TOWER_NAMES:
-        return f"{ordinal(order)} {_TOWER_NAMES[family]}"
-    if family == "drivetrain":
-        return "drivetrain" if order == 1 else f"{ordinal(order)} drivetrain"
-    if family == "other":
-        return f"other {order}"
-    return f"{ordinal(order)} {family} {whirl}"

@@ -67,17 +67,6 @@ def coleman_matrix(n_blades: int, psi: float):
     return np.stack(cols, 1), np.stack(d1, 1), np.stack(d2, 1)
 
 
-def coordinate_names(n_blades: int) -> list[str]:
-    """Names of the multi-blade coordinates: ``"0"``, ``"1c"``, ``"1s"``, ... ``"N/2"``."""
-    N = int(n_blades)
-    out = ["0"]
-    for k in range(1, (N - 1) // 2 + 1):
-        out += [f"{k}c", f"{k}s"]
-    if N % 2 == 0:
-        out.append(f"{N // 2}")
-    return out
-
-
 @dataclass
 class FixedFrame:
     """The ground-fixed part: matrices over ``x_F`` and the hub-motion map ``L`` (6, nF).
