@@ -110,12 +110,15 @@ def _modes(lam, A, t_len):
     return lam[keep], (pair * energy)[keep] / max(energy.sum(), 1e-300)
 
 
-def identify(t, y, order: int | None = None, sv_tol: float = 1e-6, min_share: float = 1e-3) -> Identification:
+def identify(t, y, order: int | None = None, sv_tol: float = 1e-6, min_share: float = 1e-3,
+             max_samples: int = 1200) -> Identification:
     """The modes of the response ``y`` (samples, channels) or (samples,) at uniform times ``t``.
 
     ``order``: number of exponentials (twice the oscillatory modes); default from ``sv_tol``.
     Modes below ``min_share`` of the energy are dropped.  Each mode carries the spread of its
     pole between the two halves of the record (the confidence measure with the residual).
+    A record longer than ``max_samples`` is decimated by an integer factor (every k-th sample:
+    a response integrated at tens of steps per period keeps several samples per period).
     """
     t = np.asarray(t, float)
     y = np.asarray(y, float)
@@ -125,6 +128,8 @@ def identify(t, y, order: int | None = None, sv_tol: float = 1e-6, min_share: fl
     dt = float(np.mean(np.diff(t)))
     if not np.allclose(np.diff(t), dt, rtol=1e-6, atol=0.0):
         raise InputError("t", "non-uniform", "uniformly spaced sample times")
+    k = max(1, int(np.ceil(len(t) / max_samples)))
+    t, y, dt = t[::k], y[:, ::k], dt * k
     lam, A, res = matrix_pencil(y, dt, order, sv_tol)
     pos, share = _modes(lam, A, t[-1] - t[0])
     half = len(t) // 2
