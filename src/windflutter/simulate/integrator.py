@@ -31,6 +31,7 @@ undamped oscillator at ``omega h`` (the amplification matrix's eigenvalues).
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass, field
 from typing import Callable, Protocol
@@ -182,13 +183,15 @@ class _Stepper:
 
 
 def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.9, tol: float = 1e-9,
-              max_iterations: int = 25, progress: Callable | None = None, fd_step: float = 1e-6) -> Trajectory:
+              max_iterations: int = 25, progress: Callable | None = None, fd_step: float = 1e-6,
+              atol: float = 0.0) -> Trajectory:
     """Integrate ``model`` (:class:`Dynamics`) from ``(q0, v0, z0)`` over ``duration`` with step ``dt``.
 
     Parameters
     ----------
     tol : a step has converged when the largest increment of ``q`` is below ``tol`` times the
-        largest ``|q|`` seen so far (and the same for ``z``).
+        largest ``|q|`` seen so far (and the same for ``z``), or below ``atol`` (the round-off
+        floor of the model's forces, in the units of ``q``; a model may give it as ``atol``).
     progress : ``progress(step, n_steps, t)`` called about every 2 s of wall time.
     fd_step : relative step of the finite-difference Jacobian (when the model has none).
 
@@ -200,6 +203,7 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
     if not (np.isfinite(duration) and duration > 0):
         raise InputError("duration", duration, "a positive duration (s)")
     s = AlphaScheme(rho_inf)
+    atol = max(float(atol), float(getattr(model, "atol", 0.0)))
     q, v, z = (np.array(x, float).reshape(-1) for x in (q0, v0, z0))
     n, m = q.size, z.size
     stepper = _Stepper(model, s, dt, fd_step)
@@ -235,7 +239,9 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
                 zd1 += dx[n:]
                 dq = ca * float(np.abs(dx[:n]).max(initial=0.0))
                 dz = cz * float(np.abs(dx[n:]).max(initial=0.0))
-                if dq <= tol * qscale and dz <= tol * zscale:
+                if os.environ.get("WF_DEBUG"):
+                    print(k, it, dq, dz, qscale)
+                if dq <= max(tol * qscale, atol) and dz <= max(tol * zscale, atol):
                     break
             else:
                 raise ModelError(f"the time step at t = {t:.4g} s did not converge in {max_iterations} Newton "
