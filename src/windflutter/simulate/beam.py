@@ -123,8 +123,13 @@ class SpinningBeams:
         return self.T.T @ f.reshape(-1), np.asarray(zdot, float).reshape(-1)
 
     def jacobian(self, t, q, v, z):
-        """An iteration matrix: the beam's tangent at the configuration (inertial and external
-        loads left out; the Newton iteration converges to the same step without them)."""
+        """An iteration matrix: with external loads, central differences of the forces (once per
+        rebuild); else the beam's tangent at the configuration (inertial loads left out).  The
+        Newton iteration converges to the same step with either."""
+        if self.external is not None:
+            from windflutter.simulate.integrator import fd_jacobian  # noqa: PLC0415
+
+            return fd_jacobian(self, t, q, v, z, 1e-7)
         K = beam_tangent(self.fe, self.configuration(q), elements=self.el).K
         n, m = self.T.shape[1], self.n_states
         Jq = np.zeros((n + m, n))

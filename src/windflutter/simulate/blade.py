@@ -24,7 +24,7 @@ from windflutter.simulate.inertia import SpinningMass
 from windflutter.simulate.integrator import Trajectory, algorithmic_damping, integrate, step_for_frequency
 from windflutter.units import RPM
 
-__all__ = ["BladeRun", "blade_in_vacuum", "corrected_modes", "blade_model"]
+__all__ = ["BladeRun", "blade_in_vacuum", "blade_in_wind", "corrected_modes", "blade_model"]
 
 
 @dataclass
@@ -107,3 +107,77 @@ def blade_in_vacuum(turbine, rpm: float, duration: float = 8.0, n_span: int = 30
     ident = identify(tr.t, y, sv_tol=1e-7)
     return BladeRun(rpm=float(rpm), nodes=nodes, trajectory=tr, identification=ident,
                     modes=corrected_modes(ident, dt, rho_inf))
+
+
+def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0, pitch_deg: float | None = None,
+                  n_span: int = 30, f_max_hz: float = 8.0, points_per_period: float = 30.0, rho_inf: float = 0.9,
+                  amplitude: float = 1e-3, n_record: int = 6, circulation: str = "jones", air_density: float = 1.225,
+                  progress=None) -> BladeRun:
+    """Free response of one blade on a rigid hub spinning at ``rpm`` in the wind ``wind_speed``
+    (m/s, along the shaft as in method p), strip aerodynamics with lag states and the steady
+    state's BEM induction frozen (:mod:`windflutter.simulate.rotor_aero`).  The blade starts at its
+    own equilibrium (found from the co-rotational steady state) and is kicked as in
+    :func:`blade_in_vacuum`.  ``pitch_deg`` defaults to the operating curve's at the wind speed."""
+    from windflutter.simulate.rotor_aero import BladeAero  # noqa: PLC0415
+
+    if not (np.isfinite(wind_speed) and wind_speed > 0):
+        raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s)")
+    if not (np.isfinite(rpm) and rpm > 0):
+        raise InputError("rpm", rpm, "a positive rotor speed (rev/min)")
+    setup = _wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
+    fe, struct, sections, apex, axis, st = setup
+    from windflutter.aero.unsteady import circulation as make_circulation  # noqa: PLC0415
+    from windflutter.structure.assembly import assemble  # noqa: PLC0415
+    from windflutter.structure.corotational import deformed_model  # noqa: PLC0415
+
+    omega = rpm * RPM
+    inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
+    circ = make_circulation(circulation)
+    aero = BladeAero(fe, sections, st.configuration, wind_speed, omega, axis, apex, axis, air_density,
+                     (st.bem.a, st.bem.ap), st.sections.origin, circ)
+    base = spin_equilibrium(fe, struct.T, inertia, start=st.configuration, external=aero.static_loads)
+    M = assemble(deformed_model(fe, base)).M + aero.mass_added
+    nodes = np.unique(np.linspace(1, fe.n_nodes - 1, n_record).astype(int))
+
+    def outputs(cfg, u, ud):
+        return u.reshape(-1, 6)[nodes].reshape(-1)
+
+    dyn = SpinningBeams(fe, struct.T, M, base, inertia, external=aero, n_states=aero.ns * aero.n_lag, outputs=outputs)
+    dt = step_for_frequency(f_max_hz, points_per_period)
+    v0 = _impulse_velocity(dyn, fe, nodes, amplitude)
+    tr = integrate(dyn, np.zeros_like(v0), v0, aero.steady_lags(base), dt, duration, rho_inf=rho_inf,
+                   progress=progress)
+    y = tr.y - tr.y[-1:] * 0.0
+    y = y / np.maximum(np.abs(y).max(axis=0), 1e-300)
+    ident = identify(tr.t, y, sv_tol=1e-7)
+    return BladeRun(rpm=float(rpm), nodes=nodes, trajectory=tr, identification=ident,
+                    modes=corrected_modes(ident, dt, rho_inf))
+
+
+def _wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density):
+    """The blade model at the pitch and its co-rotational steady state (BEM induction)."""
+    from windflutter.aero_types import RotorGeometry  # noqa: PLC0415
+    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
+    from windflutter.mesh.turbine import build_model  # noqa: PLC0415
+    from windflutter.steady import SteadyOptions, steady_state  # noqa: PLC0415
+    from windflutter.structure import assemble  # noqa: PLC0415
+    from windflutter.units import DEG  # noqa: PLC0415
+
+    if pitch_deg is None:
+        oc = turbine.operating_curve
+        if oc is None:
+            raise InputError("pitch", None, "a pitch angle (the turbine has no operating curve)")
+        pitch = float(oc.pitch_at(wind_speed))
+    else:
+        pitch = float(pitch_deg) * DEG
+    fe, sections = build_model(turbine, MeshSettings(part="blade", model="beam", n_span=n_span, pitch=pitch))
+    struct = assemble(fe)
+    axis = np.asarray(turbine.nacelle.shaft_axis(), float)
+    axis = axis / np.linalg.norm(axis)
+    apex = np.asarray(turbine.rotor_apex, float)
+    rotor = RotorGeometry(hub_center=apex, shaft_axis=axis, wind_direction=axis)
+    st = steady_state(fe, struct, sections, rotor, wind_speed, rpm * RPM, n_blades=int(turbine.n_blades),
+                      air_density=air_density, options=SteadyOptions(corotational=True))
+    if st.configuration is None:
+        raise InputError("steady state", "not co-rotational", "the co-rotational steady state of a beam blade")
+    return fe, struct, sections, apex, axis, st

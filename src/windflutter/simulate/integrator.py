@@ -41,7 +41,7 @@ import scipy.linalg as la
 
 from windflutter.errors import InputError, ModelError
 
-__all__ = ["Dynamics", "AlphaScheme", "Trajectory", "integrate", "algorithmic_damping", "step_for_frequency"]
+__all__ = ["Dynamics", "AlphaScheme", "Trajectory", "integrate", "fd_jacobian", "algorithmic_damping", "step_for_frequency"]
 
 
 class Dynamics(Protocol):
@@ -133,7 +133,7 @@ class Trajectory:
     info: dict = field(default_factory=dict)
 
 
-def _fd_jacobian(model, t, q, v, z, f0, g0, step: float):
+def fd_jacobian(model, t, q, v, z, step: float = 1e-6):
     """Central-difference Jacobians of ``(f, g)`` in ``(q, v, z)``."""
     n, m = q.size, z.size
     out = []
@@ -162,9 +162,8 @@ class _Stepper:
         self.lu = None
 
     def build(self, t, q, v, z):
-        f0, g0 = self.model.forces(t, q, v, z)
         jac = getattr(self.model, "jacobian", None)
-        Jq, Jv, Jz = jac(t, q, v, z) if jac is not None else _fd_jacobian(self.model, t, q, v, z, f0, g0, self.fd_step)
+        Jq, Jv, Jz = jac(t, q, v, z) if jac is not None else fd_jacobian(self.model, t, q, v, z, self.fd_step)
         s, h = self.s, self.h
         n, m = q.size, z.size
         ca, cz = s.beta * h * h, s.gamma * h  # dq/da, dv/da (= dz/dzdot)
