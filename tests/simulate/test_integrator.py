@@ -152,3 +152,20 @@ def test_bad_input():
         identify(np.arange(5.0), np.ones(5))
     with pytest.raises(InputError):
         integrate(Pendulum(1.0), [0.1], [0.0], [], dt=0.0, duration=1.0)
+
+
+class Interrupted(Pendulum):
+    """Ctrl-C arrives during the 50th force evaluation."""
+
+    calls = 0
+
+    def forces(self, t, q, v, z):
+        self.calls += 1
+        if self.calls == 50:
+            raise KeyboardInterrupt
+        return super().forces(t, q, v, z)
+
+
+def test_ctrl_c_keeps_the_partial_record():
+    tr = integrate(Interrupted(2.0), [0.1], [0.0], [], dt=0.01, duration=10.0)
+    assert tr.interrupted and 5 < len(tr.t) < 50 and len(tr.y) == len(tr.t)

@@ -69,21 +69,33 @@ def blade_model(turbine, n_span: int = 30):
     return fe, assemble(fe), sections, np.asarray(geo.hub_center, float), axis / np.linalg.norm(axis)
 
 
-def _impulse_velocity(dyn, fe, nodes, amplitude):
-    """Initial velocity of a unit impulse in every direction at the recorded nodes, scaled to a
-    largest velocity ``amplitude`` (m/s, rad/s)."""
-    imp = np.zeros(fe.n_dof)
-    for nd in nodes:
-        imp[6 * nd:6 * nd + 6] = [1.0, 1.0, 1.0, 0.3, 0.3, 0.3]
-    v0 = np.linalg.solve(dyn.mass, dyn.T.T @ imp)
-    return v0 * (amplitude / np.abs(v0).max())
+def _kick(dyn, fe, nodes, amplitude):
+    """``(q0, v0)``: released from the static deflection (beam tangent at the base) under unit
+    forces at the recorded nodes (largest translation ``amplitude``, m) plus that under unit
+    moments (largest rotation ``amplitude / 2``, rad), with the velocity of unit impulses at the
+    same nodes (largest translational velocity ``amplitude`` m/s) for the higher modes."""
+    from windflutter.structure.corotational import beam_tangent  # noqa: PLC0415
+
+    T = dyn.T
+    K = np.asarray((T.T @ beam_tangent(fe, dyn.base, elements=dyn.el).K @ T).todense())
+    out = []
+    for part, scale in ((slice(0, 3), 1.0), (slice(3, 6), 0.5)):
+        f = np.zeros((fe.n_dof // 6, 6))
+        f[nodes, part] = 1.0
+        q = np.linalg.solve(K, T.T @ f.reshape(-1))
+        out.append(q * (scale * amplitude / np.abs((T @ q).reshape(-1, 6)[:, part]).max()))
+    imp = np.zeros((fe.n_dof // 6, 6))
+    imp[nodes] = [1.0, 1.0, 1.0, 0.3, 0.3, 0.3]
+    v0 = np.linalg.solve(dyn.mass, T.T @ imp.reshape(-1))
+    v0 *= amplitude / np.abs((T @ v0).reshape(-1, 6)[:, :3]).max()
+    return out[0] + out[1], v0
 
 
 def blade_in_vacuum(turbine, rpm: float, duration: float = 8.0, n_span: int = 30, f_max_hz: float = 8.0,
                     points_per_period: float = 30.0, rho_inf: float = 0.9, amplitude: float = 1e-3,
                     n_record: int = 6, progress=None) -> BladeRun:
     """Free vibration of a blade spinning at ``rpm`` (rev/min) in vacuum, kicked by impulses at
-    ``n_record`` nodes along the span (largest initial velocity ``amplitude``); the time step
+    ``n_record`` nodes along the span (:func:`_kick`, size ``amplitude``); the time step
     from ``f_max_hz``, the highest frequency retained (``points_per_period`` steps per period)."""
     from windflutter.structure.assembly import assemble  # noqa: PLC0415
     from windflutter.structure.corotational import deformed_model  # noqa: PLC0415
@@ -101,8 +113,8 @@ def blade_in_vacuum(turbine, rpm: float, duration: float = 8.0, n_span: int = 30
 
     dyn = SpinningBeams(fe, struct.T, M, base, inertia, outputs=outputs)
     dt = step_for_frequency(f_max_hz, points_per_period)
-    v0 = _impulse_velocity(dyn, fe, nodes, amplitude)
-    tr = integrate(dyn, np.zeros_like(v0), v0, np.zeros(0), dt, duration, rho_inf=rho_inf, progress=progress)
+    q0, v0 = _kick(dyn, fe, nodes, amplitude)
+    tr = integrate(dyn, q0, v0, np.zeros(0), dt, duration, rho_inf=rho_inf, progress=progress)
     y = tr.y / np.maximum(np.abs(tr.y).max(axis=0), 1e-300)  # every channel on one scale
     ident = identify(tr.t, y, sv_tol=1e-7)
     return BladeRun(rpm=float(rpm), nodes=nodes, trajectory=tr, identification=ident,
@@ -144,11 +156,9 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
 
     dyn = SpinningBeams(fe, struct.T, M, base, inertia, external=aero, n_states=aero.ns * aero.n_lag, outputs=outputs)
     dt = step_for_frequency(f_max_hz, points_per_period)
-    v0 = _impulse_velocity(dyn, fe, nodes, amplitude)
-    tr = integrate(dyn, np.zeros_like(v0), v0, aero.steady_lags(base), dt, duration, rho_inf=rho_inf,
-                   progress=progress)
-    y = tr.y - tr.y[-1:] * 0.0
-    y = y / np.maximum(np.abs(y).max(axis=0), 1e-300)
+    q0, v0 = _kick(dyn, fe, nodes, amplitude)
+    tr = integrate(dyn, q0, v0, aero.steady_lags(base), dt, duration, rho_inf=rho_inf, progress=progress)
+    y = tr.y / np.maximum(np.abs(tr.y).max(axis=0), 1e-300)
     ident = identify(tr.t, y, sv_tol=1e-7)
     return BladeRun(rpm=float(rpm), nodes=nodes, trajectory=tr, identification=ident,
                     modes=corrected_modes(ident, dt, rho_inf))

@@ -31,7 +31,6 @@ undamped oscillator at ``omega h`` (the amplification matrix's eigenvalues).
 
 from __future__ import annotations
 
-import os
 import time
 from dataclasses import dataclass, field
 from typing import Callable, Protocol
@@ -238,8 +237,6 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
                 zd1 += dx[n:]
                 dq = ca * float(np.abs(dx[:n]).max(initial=0.0))
                 dz = cz * float(np.abs(dx[n:]).max(initial=0.0))
-                if os.environ.get("WF_DEBUG"):
-                    print(k, it, dq, dz, qscale)
                 if dq <= max(tol * qscale, atol) and dz <= max(tol * zscale, atol):
                     break
             else:
