@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from dataclasses import asdict
 import sys
 import time
 
@@ -40,6 +41,10 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                    "Progress on stderr; Ctrl-C keeps the record so far.")
     p.add_argument("turbine", help="turbine file or bundled name (e.g. nrel5mw)")
     add_flags(p, FLAGS)
+    p.add_argument("--confirm-onset", action="store_true",
+                   help="method p's first flutter onset of the rotor on a clamped hub (no structural damping) at "
+                        "--wind-speed, simulated at 0.97x and 1.03x its rotor speed: decay/growth beside the "
+                        "eigenvalue's (--rpm not used)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--output", metavar="FILE.csv", help="write the recorded response (time, node displacements)")
     p.add_argument("--quiet", action="store_true", help="no progress on stderr")
@@ -63,6 +68,8 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.simulate.run import INCLUDED, simulate  # noqa: PLC0415
 
     v = command_values(args, FLAGS)
+    if args.confirm_onset:
+        return _confirm(args, v)
     if v["rpm"] is None:
         raise InputError("--rpm", None, "a rotor speed (RPM)")
     turbine = load_turbine(args.turbine)
@@ -89,6 +96,34 @@ def run(args: argparse.Namespace) -> int:
         if m["share"] >= 1e-3:
             print(f"{m['frequency_hz']:>10.4f}  {100 * m['damping_ratio']:>9.3f}  {m['share']:>7.3f}  "
                   f"{m['sigma_spread']:>10.2e}")
+    return 0
+
+
+def _confirm(args, v) -> int:
+    from windflutter.api import load_turbine  # noqa: PLC0415
+    from windflutter.errors import InputError  # noqa: PLC0415
+    from windflutter.simulate.onset import confirm_onset  # noqa: PLC0415
+
+    if not v["wind_speed"]:
+        raise InputError("--wind-speed", v["wind_speed"], "a positive wind speed with --confirm-onset")
+    turbine = load_turbine(args.turbine)
+    res = confirm_onset(turbine, v["wind_speed"], n_span=v["n_span"], duration=v["duration"], f_max_hz=v["f_max"],
+                        progress=None if args.json else _progress(args.quiet))
+    if args.json:
+        print(json.dumps({"wind_speed": res.wind_speed, "onset_rpm": res.onset_rpm, "mode": res.mode,
+                          "confirmed": res.confirmed,
+                          "checks": [asdict(c) for c in res.checks]}))
+        return 0
+    print(f"{turbine.name}, {res.wind_speed:g} m/s, rotor on a clamped hub, no structural damping: method p's first "
+          f"instability {res.mode} at {res.onset_rpm:.2f} RPM (pitch {res.pitch_deg:.2f} deg)")
+    print(f"{'x onset':>7}  {'RPM':>7}  {'f rot (Hz)':>10}  {'sigma eig':>10}  {'sigma sim':>10}  {'spread':>8}  "
+          f"{'zeta eig %':>10}  {'zeta sim %':>10}")
+    for c in res.checks:
+        print(f"{c.factor:>7.3f}  {c.rpm:>7.3f}  {c.frequency_sim_hz:>10.4f}  {c.sigma_eig:>10.4f}  {c.sigma_sim:>10.4f}  "
+              f"{c.sigma_spread:>8.1e}  {100 * c.zeta_eig:>10.3f}  {100 * c.zeta_sim:>10.3f}"
+              + ("  (interrupted)" if c.interrupted else ""))
+    print("CONFIRMED: decay below, growth above, as the eigenvalues" if res.confirmed
+          else "NOT CONFIRMED: the simulation's growth rate has another sign than the eigenvalue's at some speed")
     return 0
 
 
