@@ -37,6 +37,7 @@ from windflutter.structure.corotational import (
     beam_elements,
     beam_internal_forces,
     beam_tangent,
+    displaced,
     solve_equilibrium,
 )
 
@@ -101,10 +102,7 @@ class SpinningBeams:
         self.atol = 1e-12 * max(float(np.ptp(np.asarray(fe.nodes, float), axis=0).max()), 1.0)
 
     def configuration(self, q) -> BeamConfiguration:
-        u = (self.T @ q).reshape(-1, 6)
-        from windflutter.structure.corotational import displaced  # noqa: PLC0415
-
-        return displaced(self.base, u.reshape(-1))
+        return displaced(self.base, np.asarray(self.T @ q).reshape(-1))
 
     def forces(self, t, q, v, z):
         self.evaluations += 1
