@@ -36,3 +36,23 @@ def test_short_run_json_and_csv(tmp_path, capsys):
     # modes above --f-max are in the response but under-resolved: the fit residual says so (~0.08)
     assert not d["interrupted"] and d["residual"] < 0.2
     assert out.read_text().startswith("t,node")
+
+
+def test_onset_plot(tmp_path):
+    """The --confirm-onset figure from a synthetic check (the check itself: test_onset.py, slow)."""
+    import numpy as np
+
+    from windflutter.errors import InputError
+    from windflutter.post.simulate_plot import plot_onset_check
+    from windflutter.simulate.onset import OnsetCheck, SpeedCheck
+
+    t = np.linspace(0.0, 10.0, 200)
+    checks = tuple(SpeedCheck(f, 15 * f, s, 1e-3, 1.04, s, 1e-3, 1.04, 1e-4, 1e-5, False, t=t,
+                              tip=np.stack([np.exp(s * t) * np.cos(6.5 * t)] * 3, axis=1) * 1e-4)
+                   for f, s in ((0.97, -0.01), (1.03, 0.01)))
+    res = OnsetCheck(10.0, 15.0, "1st edge FW", 0.0, checks)
+    assert res.confirmed and "t" not in checks[0].summary()
+    out = plot_onset_check(res, tmp_path / "o.png")
+    assert out.stat().st_size > 1000
+    with pytest.raises(InputError):
+        plot_onset_check(res, tmp_path / "o.gif")

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import argparse
 import json
-from dataclasses import asdict
 import sys
 import time
 
@@ -47,6 +46,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "eigenvalue's (--rpm not used)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--output", metavar="FILE.csv", help="write the recorded response (time, node displacements)")
+    p.add_argument("--plot", metavar="FILE.png", help="with --confirm-onset: the tip response at each rotor speed")
     p.add_argument("--quiet", action="store_true", help="no progress on stderr")
     p.set_defaults(func=run)
 
@@ -106,13 +106,21 @@ def _confirm(args, v) -> int:
 
     if not v["wind_speed"]:
         raise InputError("--wind-speed", v["wind_speed"], "a positive wind speed with --confirm-onset")
+    if args.plot:
+        from windflutter.post.simulate_plot import check_png  # noqa: PLC0415
+
+        check_png(args.plot)
     turbine = load_turbine(args.turbine)
     res = confirm_onset(turbine, v["wind_speed"], n_span=v["n_span"], duration=v["duration"], f_max_hz=v["f_max"],
                         progress=None if args.json else _progress(args.quiet))
+    if args.plot:
+        from windflutter.post.simulate_plot import plot_onset_check  # noqa: PLC0415
+
+        plot_onset_check(res, args.plot)
     if args.json:
         print(json.dumps({"wind_speed": res.wind_speed, "onset_rpm": res.onset_rpm, "mode": res.mode,
                           "confirmed": res.confirmed,
-                          "checks": [asdict(c) for c in res.checks]}))
+                          "checks": [c.summary() for c in res.checks]}))
         return 0
     print(f"{turbine.name}, {res.wind_speed:g} m/s, rotor on a clamped hub, no structural damping: method p's first "
           f"instability {res.mode} at {res.onset_rpm:.2f} RPM (pitch {res.pitch_deg:.2f} deg)")

@@ -13,7 +13,7 @@ tower) are NOT what this confirms.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -39,6 +39,15 @@ class SpeedCheck:
     sigma_spread: float
     residual: float
     interrupted: bool
+    #: times (s) and the tip node's translation (nt, 3) (m, rotating-frame global axes): for a plot
+    t: np.ndarray = field(default=None, repr=False, compare=False)
+    tip: np.ndarray = field(default=None, repr=False, compare=False)
+
+    def summary(self) -> dict:
+        """The numbers (no arrays), for JSON."""
+        return {k: getattr(self, k) for k in ("factor", "rpm", "sigma_eig", "zeta_eig", "frequency_eig_hz",
+                                               "sigma_sim", "zeta_sim", "frequency_sim_hz", "sigma_spread",
+                                               "residual", "interrupted")}
 
     @property
     def agrees(self) -> bool:
@@ -105,6 +114,7 @@ def confirm_onset(turbine, wind_speed: float, factors=(0.97, 1.03), n_span: int 
         checks.append(SpeedCheck(factor=float(f), rpm=rpm, sigma_eig=s_e, zeta_eig=z_e, frequency_eig_hz=f_e,
                                  sigma_sim=m.sigma, zeta_sim=m.zeta, frequency_sim_hz=m.frequency_hz,
                                  sigma_spread=m.sigma_spread, residual=run.identification.residual,
-                                 interrupted=run.trajectory.interrupted))
+                                 interrupted=run.trajectory.interrupted, t=run.trajectory.t,
+                                 tip=run.trajectory.y[:, -6:-3]))
     return OnsetCheck(wind_speed=float(wind_speed), onset_rpm=float(point.flutter_rpm), mode=str(point.flutter_mode),
                       pitch_deg=float(point.pitch_deg), checks=tuple(checks))
