@@ -38,6 +38,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("steady",),
     ("system",),
     ("stability",),
+    ("simulate",),
     ("post",),
     ("analysers", "operating"),
     ("workflow",),

@@ -61,7 +61,7 @@ from windflutter.structure.fem import FEModel
 __all__ = ["BeamConfiguration", "BeamTangent", "reference_configuration", "linear_configuration",
            "chained_configuration", "displaced",
            "deformed_model", "beam_tangent", "linear_resultants", "internal_forces", "solve_equilibrium",
-           "Equilibrium"]
+           "Equilibrium", "beam_elements", "beam_internal_forces"]
 
 #: central-difference steps: rotations (rad) and translations (fraction of the element length)
 STEP_ROTATION = 1e-4
@@ -320,6 +320,30 @@ def beam_tangent(fe: FEModel, config: BeamConfiguration, resultants: np.ndarray 
     n = fe.n_dof
     return BeamTangent(f_int=f, K_mat=_assemble(Km, el.dofs, n), K_geo=_assemble(Hg, el.dofs, n), resultants=g,
                        frames=E)
+
+
+def beam_elements(fe: FEModel) -> _Elements:
+    """The reference element data of the beams of ``fe`` (to pass to repeated evaluations)."""
+    return _Elements(fe)
+
+
+def beam_internal_forces(fe: FEModel, config: BeamConfiguration, elements: _Elements | None = None) -> np.ndarray:
+    """(n_dof,) internal nodal forces of the beams of ``fe`` at ``config`` (``beam_tangent(...).f_int``
+    without the tangent: the first central differences of ``d`` alone, 19 evaluations per element
+    instead of 163; for a time integration that evaluates the forces at every iteration)."""
+    el = elements if elements is not None else _Elements(fe)
+    a, b = el.conn[:, 0], el.conn[:, 1]
+    n = _NV
+    P = _P[:2 * n + 1]
+    dz = P[:, None, :] * el.steps[None, :, :]
+    c = (config.x[b] - config.x[a])[None] + dz[..., 0:3]
+    Ra, Rb = _expm(dz[..., 3:6]) @ config.R[a][None], _expm(dz[..., 6:9]) @ config.R[b][None]
+    d, _ = el.deformation(c, Ra, Rb)
+    g = np.einsum("eij,ej->ei", el.K_loc, d[0])
+    Bz = np.transpose((d[1:n + 1] - d[n + 1:2 * n + 1]) / (2.0 * el.steps.T[:, :, None]), (1, 2, 0))
+    f = np.zeros(fe.n_dof)
+    np.add.at(f, el.dofs, np.einsum("eki,ek->ei", Bz @ _A, g))
+    return f
 
 
 def linear_resultants(fe: FEModel, u: np.ndarray) -> np.ndarray:

@@ -1,0 +1,148 @@
+"""`windflutter simulate TURBINE --rpm R [--wind-speed V] [--duration T] ...`: a nonlinear time-domain
+run of one blade on a rigid hub (:mod:`windflutter.simulate.run`: what is and is not included),
+a second implementation beside the eigen-solvers, and the frequency and damping of its modes
+identified from the response (matrix pencil, with its residual and half-record spread).
+Progress goes to stderr; Ctrl-C keeps the record so far and identifies from it.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import sys
+import time
+
+from windflutter.cli.options import Flag, add_flags, command_values
+from windflutter.schema import Spec
+
+FLAGS = (
+    Flag("--rpm", spec=Spec("float", lower=0.0, upper=200.0, unit="RPM", doc="rotor speed"), metavar="RPM"),
+    Flag("--wind-speed", spec=Spec("float", lower=0.0, upper=80.0, unit="m/s", doc="wind speed; 0 = in vacuum"),
+         default=0.0, metavar="V"),
+    Flag("--pitch", spec=Spec("float", lower=-30.0, upper=90.0, unit="deg", nullable=True,
+                              doc="blade pitch (default: the operating curve's at the wind speed)"), metavar="DEG"),
+    Flag("--duration", spec=Spec("float", lower=0.0, lower_open=True, upper=3600.0, unit="s",
+                                 doc="simulated time"), default=20.0, metavar="T"),
+    Flag("--n-span", spec=Spec("int", lower=2, upper=200, doc="blade elements"), default=30, metavar="N"),
+    Flag("--f-max", spec=Spec("float", lower=0.0, lower_open=True, upper=200.0, unit="Hz",
+                              doc="highest frequency retained (sets the time step: 30 steps per period)"),
+         default=8.0, metavar="HZ"),
+    Flag("--circulation", spec=Spec("choice", choices=("jones", "rfa"), doc="lag states of C(k)"), default="jones"),
+)
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("simulate", help="nonlinear time-domain run of a blade on a rigid hub; identified damping",
+                       description="A nonlinear time-domain run of one blade on a rigid hub at constant rotor "
+                                   "speed (co-rotational beam, strip aerodynamics with lag states, frozen BEM "
+                                   "induction), a second implementation beside the eigen-solvers; the frequency "
+                                   "and damping of its modes up to --f-max identified from the response. "
+                                   "Progress on stderr; Ctrl-C keeps the record so far.")
+    p.add_argument("turbine", help="turbine file or bundled name (e.g. nrel5mw)")
+    add_flags(p, FLAGS)
+    p.add_argument("--confirm-onset", action="store_true",
+                   help="method p's first flutter onset of the rotor on a clamped hub (no structural damping) at "
+                        "--wind-speed, simulated at 0.97x and 1.03x its rotor speed: decay/growth beside the "
+                        "eigenvalue's (--rpm not used)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.add_argument("--output", metavar="FILE.csv", help="write the recorded response (time, node displacements)")
+    p.add_argument("--plot", metavar="FILE.png", help="with --confirm-onset: the tip response at each rotor speed")
+    p.add_argument("--quiet", action="store_true", help="no progress on stderr")
+    p.set_defaults(func=run)
+
+
+def _progress(quiet: bool):
+    t0 = time.monotonic()
+
+    def show(step, n_steps, t):
+        if not quiet:
+            print(f"  t = {t:.2f} s ({100 * step / n_steps:.0f} %), {time.monotonic() - t0:.0f} s elapsed",
+                  file=sys.stderr, flush=True)
+
+    return show
+
+
+def run(args: argparse.Namespace) -> int:
+    from windflutter.api import load_turbine  # noqa: PLC0415
+    from windflutter.errors import InputError  # noqa: PLC0415
+    from windflutter.simulate.run import INCLUDED, simulate  # noqa: PLC0415
+
+    v = command_values(args, FLAGS)
+    if args.confirm_onset:
+        return _confirm(args, v)
+    if v["rpm"] is None:
+        raise InputError("--rpm", None, "a rotor speed (RPM)")
+    turbine = load_turbine(args.turbine)
+    res = simulate(turbine, v["rpm"], v["wind_speed"], duration=v["duration"], pitch_deg=v["pitch"],
+                   n_span=v["n_span"], f_max_hz=v["f_max"], circulation=v["circulation"],
+                   progress=None if args.json else _progress(args.quiet))
+    tr = res.trajectory
+    if args.output:
+        _write_csv(args.output, res)
+    modes = [{"frequency_hz": m.frequency_hz, "damping_ratio": m.zeta, "share": m.share,
+              "sigma_spread": m.sigma_spread} for m in res.modes if m.frequency_hz <= v["f_max"]]
+    if args.json:
+        print(json.dumps({"included": INCLUDED, "rpm": v["rpm"], "wind_speed": v["wind_speed"],
+                          "simulated_s": float(tr.t[-1]), "interrupted": tr.interrupted,
+                          "residual": res.identification.residual, "modes": modes}))
+        return 0
+    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {INCLUDED}")
+    print(f"simulated {tr.t[-1]:.2f} s in {tr.wall_time:.0f} s, step {tr.info['dt'] * 1e3:.2f} ms"
+          + (" (INTERRUPTED: identified from the partial record)" if tr.interrupted else ""))
+    print(f"identification residual {res.identification.residual:.2e} (matrix pencil; spread = growth-rate "
+          "difference between the record's halves)")
+    print(f"{'freq (Hz)':>10}  {'damping %':>9}  {'share':>7}  {'spread 1/s':>10}")
+    for m in modes:
+        if m["share"] >= 1e-3:
+            print(f"{m['frequency_hz']:>10.4f}  {100 * m['damping_ratio']:>9.3f}  {m['share']:>7.3f}  "
+                  f"{m['sigma_spread']:>10.2e}")
+    return 0
+
+
+def _confirm(args, v) -> int:
+    from windflutter.api import load_turbine  # noqa: PLC0415
+    from windflutter.errors import InputError  # noqa: PLC0415
+    from windflutter.simulate.onset import confirm_onset  # noqa: PLC0415
+
+    if not v["wind_speed"]:
+        raise InputError("--wind-speed", v["wind_speed"], "a positive wind speed with --confirm-onset")
+    if args.plot:
+        from windflutter.post.simulate_plot import check_png  # noqa: PLC0415
+
+        check_png(args.plot)
+    turbine = load_turbine(args.turbine)
+    res = confirm_onset(turbine, v["wind_speed"], n_span=v["n_span"], duration=v["duration"], f_max_hz=v["f_max"],
+                        progress=None if args.json else _progress(args.quiet))
+    if args.plot:
+        from windflutter.post.simulate_plot import plot_onset_check  # noqa: PLC0415
+
+        plot_onset_check(res, args.plot)
+    if args.json:
+        print(json.dumps({"wind_speed": res.wind_speed, "onset_rpm": res.onset_rpm, "mode": res.mode,
+                          "confirmed": res.confirmed,
+                          "checks": [c.summary() for c in res.checks]}))
+        return 0
+    print(f"{turbine.name}, {res.wind_speed:g} m/s, rotor on a clamped hub, no structural damping: method p's first "
+          f"instability {res.mode} at {res.onset_rpm:.2f} RPM (pitch {res.pitch_deg:.2f} deg)")
+    print(f"{'x onset':>7}  {'RPM':>7}  {'f rot (Hz)':>10}  {'sigma eig':>10}  {'sigma sim':>10}  {'spread':>8}  "
+          f"{'zeta eig %':>10}  {'zeta sim %':>10}")
+    for c in res.checks:
+        print(f"{c.factor:>7.3f}  {c.rpm:>7.3f}  {c.frequency_sim_hz:>10.4f}  {c.sigma_eig:>10.4f}  {c.sigma_sim:>10.4f}  "
+              f"{c.sigma_spread:>8.1e}  {100 * c.zeta_eig:>10.3f}  {100 * c.zeta_sim:>10.3f}"
+              + ("  (interrupted)" if c.interrupted else ""))
+    print("CONFIRMED: decay below, growth above, as the eigenvalues" if res.confirmed
+          else "NOT CONFIRMED: the simulation's growth rate has another sign than the eigenvalue's at some speed")
+    return 0
+
+
+def _write_csv(path: str, res) -> None:
+    from windflutter.errors import InputError  # noqa: PLC0415
+
+    import numpy as np  # noqa: PLC0415
+
+    names = [f"node{n}_{c}" for n in res.nodes for c in ("ux", "uy", "uz", "rx", "ry", "rz")]
+    data = np.column_stack([res.trajectory.t, res.trajectory.y])
+    try:
+        np.savetxt(path, data, delimiter=",", header="t," + ",".join(names), comments="")
+    except OSError as exc:
+        raise InputError("--output", path, f"a writable file ({exc.strerror})") from None

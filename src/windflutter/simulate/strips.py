@@ -1,0 +1,92 @@
+"""The strip force law in its nonlinear form, for the time domain.
+
+The same definitions as the state-space strips of :mod:`windflutter.aero.unsteady` (whose
+linearization about a steady state they are), evaluated at the current motion instead of
+linearized.  Per strip, in the plane of its section at rest (axes: ``x`` along the chord from
+the leading to the trailing edge, ``y`` normal to it, towards the suction side; pitch ``alpha``
+nose-up about the elastic axis, which lies ``a b`` aft of mid-chord)::
+
+    t = (cos alpha, -sin alpha), n = (sin alpha, cos alpha)     chord and normal, turned
+    v34 = v_ea - alpha' d34 n                                  3/4-chord velocity, d34 = b (1/2 - a)
+    W = V_air - v34                                            relative wind there
+    alpha34 = alpha + atan2(W_y, W_x)                          its angle of attack
+    z_j' = (beta_j |W| / b) (alpha34 - z_j)                    lag states of C(s) = A0 + sum c_j s/(s + beta_j)
+    alpha_E = (A0 + sum c_j) alpha34 - sum c_j z_j             effective angle of attack
+    q = rho |W|^2 / 2
+    L = q c Cl(alpha_E)   normal to the effective inflow (at angle alpha_E - alpha), or to W
+    D = q c Cd(alpha_E)   along W
+    M = q c^2 Cm(alpha_E) + the moment of L and D at the quarter chord (d14 = b (a + 1/2) ahead)
+
+The non-circulatory (apparent-mass) forces are linear by definition (Theodorsen): the caller
+adds :func:`windflutter.aero.strip.apparent_mass` on the section's (h, alpha, s) motion.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Callable
+
+import numpy as np
+
+from windflutter.aero.unsteady import Circulation
+
+__all__ = ["StripGeometry", "strip_forces", "flat_plate"]
+
+
+@dataclass(frozen=True)
+class StripGeometry:
+    """Per strip (ns,): semi-chord ``b`` (m), elastic axis ``a`` (semi-chords aft of mid-chord),
+    air density ``rho`` (kg/m^3) and the lift direction (``effective`` or ``instantaneous``)."""
+
+    b: np.ndarray
+    a: np.ndarray
+    rho: float
+    lift_direction: str = "effective"
+
+
+def flat_plate(slope: float = 2.0 * np.pi) -> Callable:
+    """``coefficients(alpha) -> (Cl, Cd, Cm)`` of the potential-flow flat plate (Cl = slope alpha)."""
+
+    def coefficients(alpha):
+        alpha = np.asarray(alpha, float)
+        return slope * alpha, np.zeros_like(alpha), np.zeros_like(alpha)
+
+    return coefficients
+
+
+def strip_forces(geo: StripGeometry, circ: Circulation, coefficients: Callable, V_air, v_ea, alpha, alpha_dot, z):
+    """Circulatory strip loads and lag-state rates (module docstring), vectorized over strips.
+
+    Parameters
+    ----------
+    V_air : (ns, 2) air velocity in the section's rest axes (m/s).
+    v_ea : (ns, 2) elastic-axis velocity, rest axes (m/s).
+    alpha, alpha_dot : (ns,) pitch (rad, nose-up from rest) and its rate (rad/s).
+    z : (ns, n_lag) lag states (rad).
+    coefficients : ``coefficients(alpha_E) -> (Cl, Cd, Cm)`` (ns,) each.
+
+    Returns
+    -------
+    ``(F (ns, 2) force per unit span in rest axes (N/m), M (ns,) nose-up moment about the
+    elastic axis (N m/m), zdot (ns, n_lag), alpha_E (ns,))``.
+    """
+    b, a = geo.b, geo.a
+    c, d34, d14 = 2.0 * b, b * (0.5 - a), b * (a + 0.5)
+    ca, sa = np.cos(alpha), np.sin(alpha)
+    n = np.stack([sa, ca], axis=1)
+    W = np.asarray(V_air, float) - (np.asarray(v_ea, float) - (alpha_dot * d34)[:, None] * n)
+    speed = np.hypot(W[:, 0], W[:, 1])
+    phi = np.arctan2(W[:, 1], W[:, 0])
+    a34 = alpha + phi
+    rate = circ.poles[None, :] * (speed / b)[:, None]
+    zdot = rate * (a34[:, None] - z)
+    aE = circ.c_inf * a34 - z @ circ.gains
+    cl, cd, cm = coefficients(aE)
+    q = 0.5 * geo.rho * speed**2
+    lift_angle = (aE - alpha) if geo.lift_direction == "effective" else phi
+    e_w = W / speed[:, None]
+    e_l = np.stack([-np.sin(lift_angle), np.cos(lift_angle)], axis=1)
+    F = (q * c * cl)[:, None] * e_l + (q * c * cd)[:, None] * e_w
+    # moment of F at the quarter chord (r = -d14 t from the elastic axis), nose-up positive
+    M = d14 * (ca * F[:, 1] + sa * F[:, 0]) + q * c * c * cm
+    return F, M, zdot, aE
