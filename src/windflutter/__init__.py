@@ -32,7 +32,7 @@ from windflutter import threads as _threads  # noqa: E402  (after __version__: c
 _threads.apply_policy()
 
 #: the API functions re-exported here (from :mod:`windflutter.api`)
-_API = ("load_turbine", "modes", "campbell", "run", "analysis_config")
+_API = ("load_turbine", "modes", "campbell", "run", "analysis_config", "simulate", "confirm_onset")
 
 
 def __getattr__(name: str):

@@ -296,6 +296,37 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
 
 
 # --------------------------------------------------------------------------------------------
+# the time domain: a second implementation
+# --------------------------------------------------------------------------------------------
+def simulate(turbine, rpm: float, wind_speed: float = 0.0, **options):
+    """A nonlinear time-domain run of one blade on a rigid hub and the frequency and damping of its
+    modes identified from the response: ``windflutter simulate`` (what is included:
+    :mod:`windflutter.simulate.run`; keywords as :func:`windflutter.simulate.run.simulate`).
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name.
+    rpm : rotor speed (RPM).  wind_speed : m/s (0: in vacuum).
+
+    Returns
+    -------
+    windflutter.simulate.blade.BladeRun
+    """
+    from windflutter.simulate.run import simulate as _simulate  # noqa: PLC0415
+
+    return _simulate(as_turbine(turbine), rpm, wind_speed, **options)
+
+
+def confirm_onset(turbine, wind_speed: float, **options):
+    """Method p's first instability of the rotor on a clamped hub at ``wind_speed`` (m/s) simulated in
+    the time domain at 0.97 and 1.03 x its rotor speed: ``windflutter simulate --confirm-onset``
+    (keywords as :func:`windflutter.simulate.onset.confirm_onset`)."""
+    from windflutter.simulate.onset import confirm_onset as _confirm  # noqa: PLC0415
+
+    return _confirm(as_turbine(turbine), wind_speed, **options)
+
+
+# --------------------------------------------------------------------------------------------
 # the whole analysis
 # --------------------------------------------------------------------------------------------
 def run_folder_name(turbine: Any) -> str:
@@ -344,5 +375,6 @@ def run(turbine, config: Any = None, outdir: str | Path | None = None, *, resume
     return run_workflow(tb, cfg, folder, resume=resume, progress=progress, workers=workers, scheduler=scheduler)
 
 
-__all__ = ["load_turbine", "analysis_config", "modes", "stability", "campbell", "run", "run_folder_name",
+__all__ = ["load_turbine", "analysis_config", "modes", "stability", "campbell", "simulate", "confirm_onset", "run",
+           "run_folder_name",
            "mesh_settings", "as_turbine", "MESH_OPTIONS", "MODES_OPTIONS", "DEFAULT_MODEL"]

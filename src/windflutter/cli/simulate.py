@@ -63,9 +63,9 @@ def _progress(quiet: bool):
 
 
 def run(args: argparse.Namespace) -> int:
-    from windflutter.api import load_turbine  # noqa: PLC0415
+    from windflutter.api import load_turbine, simulate  # noqa: PLC0415
     from windflutter.errors import InputError  # noqa: PLC0415
-    from windflutter.simulate.run import INCLUDED, simulate  # noqa: PLC0415
+    from windflutter.simulate.run import INCLUDED  # noqa: PLC0415
 
     v = command_values(args, FLAGS)
     if args.confirm_onset:
@@ -102,7 +102,7 @@ def run(args: argparse.Namespace) -> int:
 def _confirm(args, v) -> int:
     from windflutter.api import load_turbine  # noqa: PLC0415
     from windflutter.errors import InputError  # noqa: PLC0415
-    from windflutter.simulate.onset import confirm_onset  # noqa: PLC0415
+    from windflutter.api import confirm_onset  # noqa: PLC0415
 
     if not v["wind_speed"]:
         raise InputError("--wind-speed", v["wind_speed"], "a positive wind speed with --confirm-onset")
