@@ -111,7 +111,7 @@ def flutter_label(sweep, rpm: float, mode) -> str:
     (``post.fmt.flutter_label`` reads both).  A mode whose identity at the onset is present at the
     operating rotor speed had it in operation (the sweep points continue their identities); else it is
     followed back from the onset by the MAC of its signature."""
-    onset = mode.identity_name
+    onset = mode.name  # with its second participation where it is mixed
     first = sweep[0][1] if sweep else []
     if mode.identity is not None and any(m.identity == mode.identity for m in first):
         return onset
@@ -123,7 +123,7 @@ def flutter_label(sweep, rpm: float, mode) -> str:
         here = modes[int(np.argmax(mac))]
         ref = here.signature
     start = here.identity_name
-    return onset if start == onset else f"{start} -> {onset}"
+    return onset if start == mode.identity_name else f"{start} -> {onset}"
 
 
 class OperationalStability:

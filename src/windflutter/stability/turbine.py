@@ -32,6 +32,7 @@ from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.stability.search import Onset, pk_search, structural_eig, thesis_search
 from windflutter.stability.tracking import has_torsion, mode_names
+from windflutter.system.identity import MIXED_SHARE
 from windflutter.units import RPM
 
 
@@ -379,7 +380,7 @@ def onset_identity(system, x: np.ndarray, fe, M, sections, reference) -> str:
     mode (:func:`windflutter.system.identity.participations`): its strain energy ``omega_k^2
     |a_k|^2`` over the structural modes of ``system`` without aerodynamics (``a_k = v_k^T M x``,
     mass-normalized), summed per identity (:func:`structural_names` with the blade's ``reference``),
-    the largest."""
+    the largest -- and ``" + "`` the second where the largest has less than ``MIXED_SHARE``."""
     w2, V = structural_eig(system)
     _, Mw = system.structural_pencil()
     Mw = Mw.toarray() if hasattr(Mw, "toarray") else np.asarray(Mw)
@@ -390,7 +391,11 @@ def onset_identity(system, x: np.ndarray, fe, M, sections, reference) -> str:
     energy: dict = {}
     for name, e in zip(names, np.maximum(w2, 0.0) * np.abs(a) ** 2):
         energy[name] = energy.get(name, 0.0) + float(e)
-    return max(energy, key=energy.get)
+    ranked = sorted(energy, key=energy.get, reverse=True)
+    total = max(sum(energy.values()), 1e-300)
+    if len(ranked) > 1 and energy[ranked[0]] < MIXED_SHARE * total:  # mixed, as method p names it
+        return f"{ranked[0]} + {ranked[1]}"
+    return ranked[0]
 
 
 def structural_names(system, fe, M, sections, reference=None):
