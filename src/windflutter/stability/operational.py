@@ -293,5 +293,5 @@ class OperationalStability:
                             flutter_rpm=None if flutter is None else float(flutter[0]),
                             flutter_frequency_hz=None if flutter is None else flutter[1].frequency_hz,
                             flutter_mode=None if flutter is None else flutter_label(sweep, *flutter),
-                            divergence_rpm=on.divergence, sweep_rpm=rpm, frequency_hz=np.abs(lam) / (2 * np.pi),
+                            divergence_rpm=on.divergence, sweep_rpm=rpm, frequency_hz=np.abs(lam.imag) / (2 * np.pi),
                             damping_ratio=zeta, mode_labels=[t.name for t in tracks], onset=on)

@@ -161,7 +161,8 @@ class PointSummary:
 
     flutter_rpm, flutter_frequency_hz, flutter_mode, divergence_rpm: None when not found in
     range.  pitch_deg: blade pitch used.  sweep_rpm, frequency_hz, damping_ratio, mode_labels:
-    the tracked modes over the grid (Campbell).  onset: raw search result.
+    the tracked modes over the grid (Campbell; ``frequency_hz`` the damped frequency ``|Im lambda| /
+    2 pi`` for every method, as ``results.nc``'s ``frequency`` declares it).  onset: raw search result.
     """
 
     wind_speed: float
