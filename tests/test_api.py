@@ -226,3 +226,14 @@ def test_run_names_its_folder_after_the_file(tmp_path, monkeypatch, capsys):
         assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["my_20mw"]
     finally:
         unregister_backend("api_instant")
+
+
+@pytest.mark.parametrize("call", [lambda w: w.modes("nrel5mw", colour=1), lambda w: w.simulate("nrel5mw", 10.0, colour=1),
+                                  lambda w: w.confirm_onset("nrel5mw", 8.0, colour=1)])
+def test_an_unknown_keyword_is_an_input_error_naming_it(call):
+    """Issue 34: every API keyword -- an unknown one too -- gives InputError naming it, not TypeError."""
+    import windflutter
+    from windflutter.errors import InputError
+
+    with pytest.raises(InputError, match="colour"):
+        call(windflutter)

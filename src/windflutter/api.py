@@ -195,9 +195,16 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
     return MeshSettings(**kw)
 
 
+def _no_unknown(function: str, unknown: dict[str, Any], known) -> None:
+    """An unknown keyword is an InputError naming it (not Python's TypeError)."""
+    if unknown:
+        key = next(iter(unknown))
+        raise InputError(key, unknown[key], f"a keyword of windflutter.{function}: {', '.join(sorted(known))}")
+
+
 def modes(turbine, *, rpm: float = 0.0, n: int = 10, part: str = "turbine", model: str = DEFAULT_MODEL,
           pitch: float = 0.0, azimuth: float = 0.0, n_chord: int | None = None, n_span: int | None = None,
-          tower_model: str | None = None, tip_closure: str | None = None):
+          tower_model: str | None = None, tip_closure: str | None = None, **unknown):
     """Natural frequencies and labelled modes: ``windflutter modes``.
 
     Parameters
@@ -222,6 +229,7 @@ def modes(turbine, *, rpm: float = 0.0, n: int = 10, part: str = "turbine", mode
 
     given = dict(rpm=rpm, n=n, part=part, model=model, pitch=pitch, azimuth=azimuth, n_chord=n_chord, n_span=n_span,
                  tower_model=tower_model, tip_closure=tip_closure)
+    _no_unknown("modes", unknown, given)
     specs = {**MODES_OPTIONS, **MESH_OPTIONS}
     values = {k: (None if v is None else specs[k].check(v, k)) for k, v in given.items()}
     settings = mesh_settings(values)  # every option checked before the turbine is read
@@ -312,8 +320,12 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, **options):
     -------
     windflutter.simulate.blade.BladeRun
     """
+    import inspect  # noqa: PLC0415
+
     from windflutter.simulate.run import simulate as _simulate  # noqa: PLC0415
 
+    known = [k for k in inspect.signature(_simulate).parameters if k not in ("turbine", "rpm", "wind_speed")]
+    _no_unknown("simulate", {k: v for k, v in options.items() if k not in known}, known)
     return _simulate(as_turbine(turbine), rpm, wind_speed, **options)
 
 
@@ -321,8 +333,12 @@ def confirm_onset(turbine, wind_speed: float, **options):
     """Method p's first instability of the rotor on a clamped hub at ``wind_speed`` (m/s) simulated in
     the time domain at 0.97 and 1.03 x its rotor speed: ``windflutter simulate --confirm-onset``
     (keywords as :func:`windflutter.simulate.onset.confirm_onset`)."""
+    import inspect  # noqa: PLC0415
+
     from windflutter.simulate.onset import confirm_onset as _confirm  # noqa: PLC0415
 
+    known = [k for k in inspect.signature(_confirm).parameters if k not in ("turbine", "wind_speed")]
+    _no_unknown("confirm_onset", {k: v for k, v in options.items() if k not in known}, known)
     return _confirm(as_turbine(turbine), wind_speed, **options)
 
 
