@@ -237,3 +237,22 @@ def test_an_unknown_keyword_is_an_input_error_naming_it(call):
 
     with pytest.raises(InputError, match="colour"):
         call(windflutter)
+
+
+def test_the_methods_registry_builds_each_methods_solver():
+    """Issue 29: one registry of search methods (p, pk, thesis) in the composition root, instead of
+    ``if method == "p"`` branches in the API, the command line and the run."""
+    from windflutter.api import analysis_config
+    from windflutter.errors import InputError
+    from windflutter.stability.build import METHODS, case_options, method
+    from windflutter.system.operational import OperationalOptions
+    from windflutter.stability.turbine import TurbineOptions
+
+    assert set(METHODS) == {"p", "pk", "thesis"}
+    cfg = analysis_config()
+    assert isinstance(case_options(cfg, "viscous", "p"), OperationalOptions)
+    assert isinstance(case_options(cfg, "viscous", "pk"), TurbineOptions)
+    assert case_options(cfg, "viscous", "thesis").method == "thesis"
+    assert not method("p").config_grid and method("pk").config_grid
+    with pytest.raises(InputError, match="method"):
+        method("k")

@@ -93,13 +93,13 @@ class TurbinePointAnalyser:
         self._cases: dict[tuple[str, str], Any] = {}
         self._size: dict[str, Any] = {}
         # validate the options now, so a bad combination fails before the first point
-        from windflutter.stability.build import operational_options  # noqa: PLC0415
+        from windflutter.stability.build import case_options, method as search_method  # noqa: PLC0415
 
         for aero, method in config.cases:
-            if method == "p":
-                operational_options(config, aero)
+            if search_method(method).config_grid and module is not None:
+                turbine_options(config, aero, method, module)  # (a test's substitute solver module)
             else:
-                turbine_options(config, aero, method, module)
+                case_options(config, aero, method)
 
     def _stability(self, aero: str, method: str):
         key = (aero, method)
@@ -134,7 +134,9 @@ class TurbinePointAnalyser:
         ts = self._stability(point.aero, point.method)
         if progress is not None:
             progress(0.02, f"{point.label}: model and search")
-        grid = None if point.method == "p" else np.asarray(point.sweep_rpm, float)
+        from windflutter.stability.build import method as search_method  # noqa: PLC0415
+
+        grid = np.asarray(point.sweep_rpm, float) if search_method(point.method).config_grid else None
         s, notes = _with_validity_notes(ts.analyse_operating_point, point.wind_speed, rpm_grid=grid)
         size = self._model_size(ts, ts.pitch_at(point.wind_speed))
         if not self._size:

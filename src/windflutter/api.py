@@ -257,14 +257,11 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
         per wind speed: ``flutter_rpm``, ``flutter_frequency_hz``, ``flutter_mode``,
         ``divergence_rpm``, ``pitch_deg``, the sweep; ``.as_dict()`` is the CLI's ``--json`` point.
     """
-    from windflutter.stability.build import operational_options, stability_analysis, turbine_options  # noqa: PLC0415
+    from windflutter.stability.build import case_options, stability_analysis  # noqa: PLC0415
 
     cfg = _config(config, {**options, "wind_speeds": wind_speeds}, "windflutter.stability() keywords")
     aero, method = _one(cfg, "aero", "aerodynamic variant"), _one(cfg, "method", "search method")
-    if method == "p":  # the solver's options checked before the turbine is read
-        operational_options(cfg, aero)
-    else:
-        turbine_options(cfg, aero, method)
+    case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
     solver = stability_analysis(as_turbine(turbine), cfg, aero, method)
     return [solver.analyse_operating_point(v) for v in cfg.wind_speeds]
 

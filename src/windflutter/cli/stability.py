@@ -43,13 +43,12 @@ def options_from_args(args: argparse.Namespace):
     """``(AnalysisConfig, options)`` of the command line (errors name the flag): the options of the
     solver :func:`windflutter.stability.build.stability_analysis` builds for the case."""
     from windflutter.config import load_config  # noqa: PLC0415
-    from windflutter.stability.build import operational_options, turbine_options  # noqa: PLC0415
+    from windflutter.stability.build import case_options  # noqa: PLC0415
 
     try:
         config = load_config(None, config_overrides(args, FLAGS))
         aero, method = config.aero[0], config.method[0]
-        opts = operational_options(config, aero) if method == "p" else turbine_options(config, aero, method)
-        return config, opts
+        return config, case_options(config, aero, method)
     except InputError as exc:
         raise flag_error(exc, args, FLAGS, RPM_PATHS) from None
 

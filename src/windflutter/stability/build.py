@@ -16,6 +16,7 @@ from the one options vocabulary of :mod:`windflutter.config`:
 from __future__ import annotations
 
 import dataclasses
+from collections.abc import Callable
 
 from windflutter.errors import InputError
 
@@ -97,16 +98,62 @@ def turbine_options(config, aero: str, method: str):
     return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
 
 
-def stability_analysis(turbine, config, aero: str, method: str):
+@dataclasses.dataclass(frozen=True)
+class Method:
+    """A search method of the registry :data:`METHODS`: ``options(config, aero)`` checks the case's
+    options before any turbine is read and returns them; ``solver(turbine, config, aero)`` builds the
+    solver of one ``(aero, method)`` case (``.analyse_operating_point(V, rpm_grid)``);
+    ``config_grid``: whether it sweeps the config's rotor-speed grid (the seed's searches) or its own
+    from the operating rotor speed (method p)."""
+
+    name: str
+    options: Callable
+    solver: Callable
+    config_grid: bool
+    doc: str = ""
+
+
+def _p_solver(turbine, config, aero: str):
+    from windflutter.stability.operational import OperationalStability
+
+    return OperationalStability(turbine, operational_options(config, aero), search_settings(config))
+
+
+def _seed_solver(method: str):
+    def build(turbine, config, aero: str):
+        from windflutter.stability.turbine import TurbineStability
+
+        return TurbineStability(turbine, turbine_options(config, aero, method))
+    return build
+
+
+#: the search methods, by the name the config's ``method`` field and ``--method`` take
+METHODS: dict[str, Method] = {
+    "p": Method("p", operational_options, _p_solver, config_grid=False,
+                doc="the whole turbine in multi-blade coordinates, linearized about its steady state"),
+    "pk": Method("pk", lambda config, aero: turbine_options(config, aero, "pk"), _seed_solver("pk"), config_grid=True,
+                 doc="the seed's frozen-azimuth model, p-k tracking and root finding"),
+    "thesis": Method("thesis", lambda config, aero: turbine_options(config, aero, "thesis"), _seed_solver("thesis"),
+                     config_grid=True, doc="the seed's frozen-azimuth model, the thesis's 8-k search"),
+}
+
+
+def method(name: str) -> Method:
+    """The registered search method ``name`` (:data:`METHODS`)."""
+    if name not in METHODS:
+        raise InputError("method", name, f"one of {', '.join(METHODS)}")
+    return METHODS[name]
+
+
+def case_options(config, aero: str, method_name: str):
+    """The checked solver options of one ``(aero, method)`` case (before any turbine is read)."""
+    return method(method_name).options(config, aero)
+
+
+def stability_analysis(turbine, config, aero: str, method_name: str):
     """The solver of one ``(aero, method)`` case: ``.analyse_operating_point(V, rpm_grid)``."""
-    if method == "p":
-        from windflutter.stability.operational import OperationalStability
-
-        return OperationalStability(turbine, operational_options(config, aero), search_settings(config))
-    from windflutter.stability.turbine import TurbineStability
-
-    return TurbineStability(turbine, turbine_options(config, aero, method))
+    return method(method_name).solver(turbine, config, aero)
 
 
-__all__ = ["mesh_settings", "unsteady_options", "operational_options", "search_settings", "turbine_options",
+__all__ = ["METHODS", "Method", "method", "case_options", "mesh_settings", "unsteady_options", "operational_options", "search_settings", "turbine_options",
            "stability_analysis"]
