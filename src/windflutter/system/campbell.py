@@ -149,6 +149,22 @@ def track_modes(points: list[CampbellPoint], min_mac: float = 0.5) -> list[Track
     return tracks
 
 
+#: a named mode whose natural frequency moves more than this between neighbouring points (both damped
+#: below 30 %) makes the step ambiguous: it is refined
+JUMP = 0.12
+
+
+def ambiguous(before: list[ModeRecord], after: list[ModeRecord]) -> bool:
+    """An identity whose lightly damped mode's natural frequency jumps by more than :data:`JUMP`
+    between two neighbouring points (the names may have been swapped across a veering)."""
+    was = {m.identity: m for m in before if m.identity is not None}
+    for m in after:
+        q = was.get(m.identity)
+        if q is not None and max(m.damping_ratio, q.damping_ratio) < 0.3 and abs(m.frequency_hz / q.frequency_hz - 1) > JUMP:
+            return True
+    return False
+
+
 def default_wind_speeds(turbine) -> np.ndarray:
     """The operating curve's wind speeds within 3-25 m/s (its own range if narrower)."""
     oc = turbine.operating_curve
@@ -163,7 +179,9 @@ def default_wind_speeds(turbine) -> np.ndarray:
 
 def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progress=None,
              model=None) -> CampbellResult:
-    """The Campbell analysis of ``turbine`` (see module docstring).
+    """The Campbell analysis of ``turbine`` (see module docstring).  Each point continues the
+    previous one's identities; where a named mode's frequency jumps (:func:`ambiguous`) the step is
+    refined once: the names are carried through the middle of the step (not reported).
 
     Parameters
     ----------
@@ -182,7 +200,11 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
         if progress is not None:
             progress(i / len(ws), f"V = {v:g} m/s")
         ps = om.at(float(v))
-        modes = point_modes(ps, max_hz=max_hz, previous=pts[-1].modes if pts else None)
+        prev = pts[-1] if pts else None
+        modes = point_modes(ps, max_hz=max_hz, previous=prev.modes if prev else None)
+        if prev is not None and ambiguous(prev.modes, modes):  # refine the step: carry the names through its middle
+            mid = point_modes(om.at(0.5 * (prev.wind_speed + float(v))), max_hz=max_hz, previous=prev.modes)
+            modes = point_modes(ps, max_hz=max_hz, previous=mid)
         st = ps.steady
         pts.append(CampbellPoint(wind_speed=float(v), rotor_speed_rpm=ps.omega / RPM, pitch_deg=math.degrees(ps.pitch),
                                  modes=modes, power=float(st.power) if st is not None else float("nan"),
