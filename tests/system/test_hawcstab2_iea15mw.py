@@ -132,7 +132,7 @@ FAMILY_PAIRS = {("BW edge", 1): "1st edge BW", ("FW edge", 1): "1st edge FW", ("
                 ("BW flap", 1): "1st flap BW", ("FW flap", 1): "1st flap FW", ("Sym flap", 1): "1st flap collective"}
 
 #: pairs that miss the criterion today with the blade linearized about its deflected shape (the
-#: default; docs/campbell.md sec. 4): the 1st edge BW at rated wind (zeta 3.01 % against 1.55 %: the
+#: default; docs/notes/iea15mw_hawcstab2.md): the 1st edge BW at rated wind (zeta 3.01 % against 1.55 %: the
 #: BW/FW split, a support question, docs/notes/edgewise_damping.md sec. 8).  The 1st edge collective at
 #: 25 m/s (2.76 % against 4.24 %, decay rate -35 %) missed until the beams' rotating-frame terms got
 #: the sections' mass-centre offsets (windflutter.rotor.spin): 2.89 %, decay rate inside 35 %.  (The
