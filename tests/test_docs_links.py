@@ -3,7 +3,7 @@
 * Every relative Markdown link ``[text](target)`` in README.md and docs/**/*.md points to an
   existing file or folder (the ``#anchor`` part is not checked).
 * Every ``docs/....md`` path written in a Python file of src/, tests/, benchmarks/ or docs/scripts/
-  (docstrings and comments) exists.
+  (docstrings and comments), or as text in the Markdown files, exists (paths from the repository root).
 * No Python file in src/ cites ``METHOD.md`` (a file of the project brief, not of the repository) or
   one of our pages by a section number ("docs/performance.md sec. 8"): a page and its heading's
   words are cited instead, so that a renumbering cannot leave a wrong pointer.
@@ -61,7 +61,7 @@ def test_every_relative_markdown_link_resolves():
 
 def test_every_docs_page_named_in_code_exists():
     missing = {}
-    for path in python_files("src", "tests", "benchmarks", "docs/scripts"):
+    for path in python_files("src", "tests", "benchmarks", "docs/scripts") + markdown_files():
         if path == Path(__file__).resolve():
             continue                                    # this file's examples
         for name in set(DOCS_PATH.findall(path.read_text(encoding="utf-8"))):
