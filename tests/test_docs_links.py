@@ -1,7 +1,8 @@
 """The documentation's links resolve, and the code cites only pages that exist.
 
 * Every relative Markdown link ``[text](target)`` in README.md and docs/**/*.md points to an
-  existing file or folder (the ``#anchor`` part is not checked).
+  existing file or folder, and its ``#anchor``, when the target is a Markdown page, to one of that
+  page's headings (GitHub's slugs: lower case, punctuation dropped, spaces to hyphens).
 * Every ``docs/....md`` path written in a Python file of src/, tests/, benchmarks/ or docs/scripts/
   (docstrings and comments), or as text in the Markdown files, exists (paths from the repository root).
 * No Python file in src/ cites ``METHOD.md`` (a file of the project brief, not of the repository) or
@@ -29,15 +30,33 @@ def markdown_files() -> list[Path]:
     return [ROOT / "README.md", *sorted((ROOT / "docs").rglob("*.md"))]
 
 
+def _text(path: Path) -> str:
+    return re.sub(r"```.*?```", "", path.read_text(encoding="utf-8"), flags=re.S)  # no code blocks
+
+
+def anchors(path: Path) -> set[str]:
+    """The heading anchors of Markdown file ``path`` as GitHub makes them (repeats get -1, -2 ...)."""
+    seen: dict[str, int] = {}
+    out = set()
+    for heading in re.findall(r"^#{1,6}\s+(.*?)\s*#*\s*$", _text(path), flags=re.M):
+        slug = re.sub(r"[^\w\- ]", "", heading.strip().lower()).replace(" ", "-")
+        n = seen.get(slug, 0)
+        seen[slug] = n + 1
+        out.add(slug if n == 0 else f"{slug}-{n}")
+    return out
+
+
 def broken_links(path: Path) -> list[str]:
-    """The relative link targets of Markdown file ``path`` that do not exist."""
-    text = re.sub(r"```.*?```", "", path.read_text(encoding="utf-8"), flags=re.S)  # code blocks
+    """The relative link targets of Markdown file ``path`` whose file, or heading, does not exist."""
     broken = []
-    for target in LINK.findall(text):
-        if re.match(r"[a-z][a-z0-9+.-]*:", target, re.I) or target.startswith("#"):
-            continue                                    # http:, mailto:, in-page anchors
-        file = target.split("#", 1)[0]
-        if not (path.parent / file).exists():
+    for target in LINK.findall(_text(path)):
+        if re.match(r"[a-z][a-z0-9+.-]*:", target, re.I):
+            continue                                    # http:, mailto:
+        file, _, anchor = target.partition("#")
+        dest = path.parent / file if file else path
+        if not dest.exists():
+            broken.append(target)
+        elif anchor and dest.suffix == ".md" and anchor not in anchors(dest):
             broken.append(target)
     return broken
 
@@ -48,10 +67,11 @@ def python_files(*folders: str) -> list[Path]:
 
 def test_link_check_can_fail(tmp_path):
     page = tmp_path / "page.md"
-    (tmp_path / "there.md").write_text("x", encoding="utf-8")
-    page.write_text("[a](there.md#h) [b](missing.md) ![c](fig/none.png) [d](https://x.org/y.md) "
-                    "[e](#anchor)\n```\n[f](in_code.md)\n```\n", encoding="utf-8")
-    assert broken_links(page) == ["missing.md", "fig/none.png"]
+    (tmp_path / "there.md").write_text("# Title\n## 2. The model: `x.py`\n## Notes\n## Notes\n", encoding="utf-8")
+    page.write_text("# Page\n[a](there.md#2-the-model-xpy) [b](missing.md) ![c](fig/none.png) "
+                    "[d](https://x.org/y.md) [e](#page) [f](#nowhere) [g](there.md#notes-1) "
+                    "[h](there.md#notes-2)\n```\n[i](in_code.md)\n```\n", encoding="utf-8")
+    assert broken_links(page) == ["missing.md", "fig/none.png", "#nowhere", "there.md#notes-2"]
 
 
 def test_every_relative_markdown_link_resolves():
