@@ -3,7 +3,7 @@
 Each wind speed is one task of ``windflutter.parallel.run_tasks``; the task callable holds one
 ``TurbineStability`` (beam model, potential flow, p-k, full physics, rotor speeds 20-34 RPM) whose
 model uses ``MTAAeroelasticModel`` (15 modes per reference speed + aero static-correction
-vectors at the two end wind speeds of the map, sec. 5 of docs/performance.md). The callable is sent to each worker once, so each
+vectors at the two end wind speeds of the map, §5 of docs/notes/performance_rounds.md). The callable is sent to each worker once, so each
 worker builds the model once per pitch. Baseline: the serial run; results compared bit for bit.
 ``--quick``: 2 wind speeds.
 Usage: python benchmarks/bench_turbine_map.py [--quick]

@@ -85,7 +85,7 @@ def test_analysis_config_and_stability_example_agree(cached, tmp_path, capsys):
     assert point["flutter_mode"] == line.group(2)
     # the NREL 5 MW's first overspeed instability lies above rated (12.1 RPM) and below the
     # flap-torsion flutter near twice rated (docs/stability.md); with the deflected blade (the
-    # default) it is the 1st edge BW at 1.2-1.4 x rated (docs/edgewise_damping.md sec. 8)
+    # default) it is the 1st edge BW at 1.2-1.4 x rated (docs/notes/edgewise_damping.md sec. 8)
     assert 12.1 < point["flutter_rpm"] < 2.5 * 12.1
     text = run_script(capsys, "run_analysis", ["--results", tmp_path / "run" / "results.nc"])
     assert line.group(0) in text  # reading an earlier run prints the same table

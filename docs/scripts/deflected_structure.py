@@ -1,6 +1,6 @@
 """The 1st edge modes of the IEA 15 MW with the blade linearized about its deflected shape
 (``OperationalOptions(structure="deflected")``) against the undeformed axis and HAWCStab2
-(docs/edgewise_damping.md sec. 8).
+(docs/notes/edgewise_damping.md sec. 8).
 
 Per wind speed (the turbine file's operating curve, beam blades, ``n_span = 20``):
 

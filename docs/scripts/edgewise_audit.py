@@ -1,4 +1,4 @@
-"""Energy audit of the edgewise aerodynamic damping (issue 14, docs/edgewise_damping.md).
+"""Energy audit of the edgewise aerodynamic damping (issue 14, docs/notes/edgewise_damping.md).
 
 For the rotor on a fixed nacelle (``part="rotor"``) the periodic system in physical blade
 coordinates ``q = [azimuth, generator, eta_0, eta_1, eta_2]`` is time-invariant, so its

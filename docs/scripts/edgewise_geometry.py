@@ -1,4 +1,4 @@
-"""The edge mode on a blade whose STRUCTURE is built on its deflected shape (docs/edgewise_damping.md sec. 5).
+"""The edge mode on a blade whose STRUCTURE is built on its deflected shape (docs/notes/edgewise_damping.md sec. 5).
 
 The operating-point model linearizes about the deflected steady state by updating the strips
 (geometry, induction) and the axial-force geometric stiffness; the beam itself stays on the
@@ -58,7 +58,7 @@ def built_in_deflection(p, f: float):
     (aerodynamic) twist too; the beam's section axes keep theirs (``blade.beam.twist``), and the
     strips are replaced by the default model's in :func:`experiment`, so only the flapwise shape
     reaches the linearization (building the twist into the section axes as well moves the cyclic
-    edge sigma by +0.6 % and the collective by +16 % at 10 m/s, docs/edgewise_damping.md)."""
+    edge sigma by +0.6 % and the collective by +16 % at 10 m/s, docs/notes/edgewise_damping.md)."""
     frame = p.st.frames[0]
     o0, o1 = p.rb.sections.origin, p.st.sections.origin
     flap = ((o1 - o0) @ frame)[:, 0]

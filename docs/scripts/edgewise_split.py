@@ -1,4 +1,4 @@
-"""The IEA 15 MW whirling 1st edge modes against HAWCStab2's mode shapes (docs/edgewise_damping.md sec. 9).
+"""The IEA 15 MW whirling 1st edge modes against HAWCStab2's mode shapes (docs/notes/edgewise_damping.md sec. 9).
 
 At a wind speed on HAWCStab2's operating curve, in HAWCStab2's configuration (the blade described
 about its half chord, HAWC2's thrust-induction relation, tower damping 0.1 %), prints for our 1st edge

@@ -1,6 +1,6 @@
 """Spanwise steady aerodynamic loads of the deflected IEA 22 MW rotor against HAWC2 and OpenFAST.
 
-For docs/edgewise_damping.md sec. 3: the edgewise damping depends on the steady state through the
+For docs/notes/edgewise_damping.md sec. 3: the edgewise damping depends on the steady state through the
 strips' Cl0, W and phi; the IEA 22 MW reference steady states (IEAWindTask37/IEA-22-280-RWT,
 outputs/01_steady_states, Apache-2.0; ``/work/shared/data/iea22mw/steady_state``) give the axial and
 tangential aerodynamic force per unit blade length along the span.  Our side is the set-up of

@@ -1,4 +1,4 @@
-"""Stability maps for the comparison with the seed thesis (docs/seed_comparison.md).
+"""Stability maps for the comparison with the seed thesis (docs/notes/seed_comparison.md).
 
 Rotor alone (hub clamped, ``part="rotor"``), beam model, default strips, p-k search, no
 structural damping; flutter and divergence onset (RPM) per wind speed, pitch from each turbine's

@@ -1,4 +1,4 @@
-"""The decay rate of the whole turbine's whirling 1st edge modes split by term (docs/edgewise_damping.md sec. 12).
+"""The decay rate of the whole turbine's whirling 1st edge modes split by term (docs/notes/edgewise_damping.md sec. 12).
 
 For an eigenpair (lambda, q, z) of the multi-blade system ``M q'' + C q' + K q = F z`` (aerodynamic
 states ``z``), the structural part alone (``Ms, Cs, Ks``: the same steady state without the

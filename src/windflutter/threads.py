@@ -5,7 +5,8 @@ NumPy and SciPy bundle a multi-threaded OpenBLAS (two copies: one in ``numpy.lib
 ``scipy.libs``). On a machine whose cores are already busy, its spin-waiting threads compete with
 the other work: measured on a 2-core machine, the test suite took 756 s with OpenBLAS's default
 threads and 189 s with one thread, ``windflutter stability nrel5mw --wind-speeds 10`` 43.6 s
-against 10.4 s with the same onsets to 1e-10 RPM (issue 13; ``docs/performance.md`` section 1).
+against 10.4 s with the same onsets to 1e-10 RPM (issue 13; ``docs/performance.md``, "The
+biggest effect: BLAS threads on a busy machine").
 windflutter's matrices are sparse or small and dense, so one thread per process loses nothing that
 running operating points in parallel (``windflutter run --workers N``) does not win back.
 

@@ -22,7 +22,7 @@ along ``n``; a spanwise velocity for ``u`` along ``t``), so it adds the stiffnes
 ``F = -Omega C[:, t] u_r`` to the strips (the operating-point model's
 :func:`~windflutter.system.blade_aero.project_blade_aero`).  ``C_tt`` is the in-plane damping formula of Hansen (2007, Wind
 Energy 10:551, "Aeroelastic instability problems for wind turbines") and of the edgewise-damping
-audit (docs/edgewise_damping.md).  Without the mean-load terms the operator keeps only the slope
+audit (docs/notes/edgewise_damping.md).  Without the mean-load terms the operator keeps only the slope
 terms (``Cl = Cd = 0`` in the formula).
 
 Set-up: four strips on one blade along +z, shaft and wind along +x, rotor speed about +x (the

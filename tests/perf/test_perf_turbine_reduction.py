@@ -50,7 +50,7 @@ def _stability(turbine, n_modes, mta, rpm=(20.0, 34.0, 2.0), wind=10.0):
 def _eigs(ts, wind, rpm, omega, n=8):
     _, _, am = ts.model(ts.pitch_at(wind))
     M, D, K = am.at(wind, rpm * RPM).matrices(omega)
-    with blas_limit(1):  # see docs/performance.md sec. 1
+    with blas_limit(1):  # see docs/performance.md, "The biggest effect: BLAS threads on a busy machine"
         e = solve_qep(M, D, K, shift=1j * omega, n_eig=n)
     return e.values
 

@@ -13,7 +13,7 @@ RPM = np.pi / 30
 
 
 def test_prestress_raises_flap_frequency(nrel5mw):
-    # METHOD.md sec. 2: K_sigma raises the NREL 5 MW blade flap frequency by ~10 % at rated
+    # The seed thesis's rotating-frame terms: K_sigma raises the NREL 5 MW blade flap frequency by ~10 % at rated
     # speed (12.1 RPM); the thesis switch (no K_sigma) leaves it (spin softening only touches
     # in-plane motion).  Bounds 5-15 % / +-1 %: the order of magnitude is the check here, the
     # exact Southwell law is checked in test_rotor.py.

@@ -2,7 +2,7 @@
 scaling, each against an independent reference (exact synthetic polars, finite differences of
 the tables, hand-derived quasi-steady forces, a fixed-wing strip with known force directions).
 
-See docs/seed_comparison.md for why the viscous onset of the NREL 5 MW lies below the potential
+See docs/notes/seed_comparison.md for why the viscous onset of the NREL 5 MW lies below the potential
 one here and above it in the seed.
 """
 

@@ -2,7 +2,7 @@
 ``OperationalOptions(structure="deflected")``): limits, the rebuilt parts, the equilibrium against the
 steady state's independent second-order theory, and the options.  The linearization itself is
 verified against a geometrically exact rod in tests/structure/test_deflected_beam.py; its effect
-against HAWCStab2 in docs/edgewise_damping.md sec. 8 (and the slow test at the end)."""
+against HAWCStab2 in docs/notes/edgewise_damping.md sec. 8 (and the slow test at the end)."""
 
 from __future__ import annotations
 
@@ -148,7 +148,7 @@ def test_iea15mw_edge_modes_at_10ms_against_hawcstab2():
     BW, FW and collective modes against HAWCStab2's (the three modes of its Campbell data at 0.5-1.6 Hz
     with zeta < 10 %, tests/data/iea15mw_hawcstab2).  Frequencies: measured -1.3, -0.7, -1.3 %,
     tolerance 2.5 % (the undeformed axis: +4.1, +4.2, -0.9 %); mean BW/FW decay rate: measured
-    +10 %, tolerance 25 % (the undeformed axis: +35 %; docs/edgewise_damping.md sec. 8)."""
+    +10 %, tolerance 25 % (the undeformed axis: +35 %; docs/notes/edgewise_damping.md sec. 8)."""
     from hawcstab2_reference import hawcstab2_modes, operating_point
 
     from windflutter.model import load_turbine

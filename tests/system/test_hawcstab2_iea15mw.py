@@ -132,8 +132,8 @@ FAMILY_PAIRS = {("BW edge", 1): "1st edge BW", ("FW edge", 1): "1st edge FW", ("
                 ("BW flap", 1): "1st flap BW", ("FW flap", 1): "1st flap FW", ("Sym flap", 1): "1st flap collective"}
 
 #: pairs that miss the criterion today with the blade linearized about its deflected shape (the
-#: default; docs/campbell.md sec. 4): the 1st edge BW at rated wind (zeta 3.01 % against 1.55 %: the
-#: BW/FW split, a support question, docs/edgewise_damping.md sec. 8).  The 1st edge collective at
+#: default; docs/notes/iea15mw_hawcstab2.md): the 1st edge BW at rated wind (zeta 3.01 % against 1.55 %: the
+#: BW/FW split, a support question, docs/notes/edgewise_damping.md sec. 8).  The 1st edge collective at
 #: 25 m/s (2.76 % against 4.24 %, decay rate -35 %) missed until the beams' rotating-frame terms got
 #: the sections' mass-centre offsets (windflutter.rotor.spin): 2.89 %, decay rate inside 35 %.  (The
 #: undeformed blade missed the 1st edge BW at 10 m/s and the 1st flap collective at 25 m/s.)
@@ -415,7 +415,7 @@ def test_mode_shape_phases_as_hawcstab2s(hawcstab2_configuration_points):
     2026), 37 modes: 273 deg, mean 4.9 deg, largest 19 deg (the 2nd tower side-side at 15 m/s, a
     tower-edge coupled mode); torsion reversed too 11.0 deg, the other FW-conjugated readings
     14.8-58.5 deg; BW conjugated 36.8-42.4 deg; none conjugated 41.1-56.1 deg.  The "FW flap phase" difference once read in
-    docs/edgewise_damping.md sec. 11 was this convention."""
+    docs/notes/edgewise_damping.md sec. 11 was this convention."""
     pairs = [(v, h, w, m) for v, h, w, m in phase_pairs(hawcstab2_configuration_points)
              if phase_misfit(h, w, set(), set(), 0.0)[1] >= 4]
     assert len(pairs) >= 30, len(pairs)

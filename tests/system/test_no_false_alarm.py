@@ -7,7 +7,7 @@ blades linearized about their deflected shape, the files' structural damping, Jo
 and 10 m/s the first instability of the overspeed search must lie at or above 1.2 x rated rotor
 speed, and the overspeed instabilities must still be found below 2 x rated (a search that finds
 nothing would pass the first check trivially).  The bar is the issue's, not a measured value; the
-IEA 22 MW at 10 m/s meets it by a small margin (1.205 x, docs/campbell.md sec. 6).
+IEA 22 MW at 10 m/s meets it by a small margin (1.205 x, docs/notes/no_false_alarm.md).
 """
 
 from __future__ import annotations

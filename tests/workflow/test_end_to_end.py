@@ -43,7 +43,7 @@ output: {dpi: 40}
     # below rated would mean a sign or frame error in the rotor/aero terms.  (The flap-torsion
     # flutter of the published NREL 5 MW studies lies near 2 x rated; with the blade linearized
     # about its deflected shape, the default, the 1st edge BW loses its damping first at fixed-pitch
-    # overspeed, near 1.2-1.4 x rated: docs/edgewise_damping.md sec. 8, not verified by another code.)
+    # overspeed, near 1.2-1.4 x rated: docs/notes/edgewise_damping.md sec. 8, not verified by another code.)
     assert finite, "no instability found up to 32 RPM"
     assert min(finite) > RATED_RPM
     html = (out / "report.html").read_text()

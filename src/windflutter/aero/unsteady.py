@@ -3,7 +3,8 @@
 Per strip (semi-chord ``b``, chord ``c = 2 b``, elastic axis ``a b`` aft of mid-chord, relative
 speed ``U``, steady angle of attack ``alpha0``, ``q0 = rho U^2 / 2``) the section moves with
 ``q = (h, alpha, s)`` (:mod:`windflutter.aero.flow`).  The model linearized here is the
-quasi-steady strip force (docs/aero_operators.md sec. 2 derives every term)::
+quasi-steady strip force (docs/aero_operators.md, "The strip model and its linearization",
+derives every term)::
 
     W  = U e3 - v34              relative wind at the 3/4-chord point (velocity v34 there)
     L  = 1/2 rho c |W|^2 Cl(alpha_E)  normal to W (or to the effective inflow, see below)

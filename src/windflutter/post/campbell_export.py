@@ -6,9 +6,9 @@
 * :func:`write_cmb` / :func:`read_cmb` -- the layout of HAWCStab2's ``.cmb`` Campbell file: the
   first line ``# Wind [m/s]  1 2 ... N  1 2 ... N``, then per wind speed one row: the wind speed,
   the N track frequencies (Hz; damped, ``Im lambda / 2 pi``, as HAWCStab2 writes them -- its
-  1st flap frequencies in operation match ours so, docs/campbell.md sec. 4), the N damping ratios
-  (% of critical); ``NaN`` where a track has no
-  mode at that wind speed.  Comment lines after the first name the tracks (``# mode k: name``)
+  1st flap frequencies in operation match ours so, docs/notes/iea15mw_hawcstab2.md, "HAWCStab2's
+  frequencies are damped frequencies"), the N damping ratios (% of critical); ``NaN`` where a track
+  has no mode at that wind speed.  Comment lines after the first name the tracks (``# mode k: name``)
   and the frequency definition; numerical readers that skip ``#`` lines (``numpy.loadtxt``)
   read the table as it is.  :func:`read_cmb` also reads HAWCStab2's own files (two or three
   blocks of N columns; the third, when present, is kept as ``extra``).

@@ -1,4 +1,5 @@
-"""Rotating-frame terms of the rotor (seed ch. 3.1.2-3.1.4; METHOD.md sec. 2).
+"""Rotating-frame terms of the rotor (seed ch. 3.1.2-3.1.4; docs/stability.md,
+"Pipeline (modules)").
 
 For the translational DOFs ``u`` of the rotating part with (consistent or lumped) mass matrix
 ``Mt`` and constant rotor speed vector ``Omega``, the kinetic energy
@@ -111,7 +112,8 @@ def rotor_terms(fe: FEModel, struct, rotor_geometry: RotorGeometry, prestress: b
     (``geometric_stiffness(moments=True)``).  Only the second is independent of where a beam's
     reference axis lies in its sections: with the seed's terms, a blade whose 6x6 refer to a line
     away from the mass and tension centres (a HAWC2 c2 line) gets an axial force acting on that
-    line, not where it acts (docs/verification.md §11 item 17).
+    line, not where it acts (docs/verification.md, "Not verified, or known to disagree", "The seed's
+    frozen-azimuth terms depend on the beam reference axis").
 
     Mixed frames: in a whole-turbine model the tower is in the fixed frame and the rotor is tied
     to it at the hub.  A rigid translation of the whole rotor with the hub changes neither the

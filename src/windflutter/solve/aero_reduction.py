@@ -5,7 +5,8 @@ system on the union of structural modes at reference rotor speeds. Aerodynamic l
 distributed over the span in shapes those modes represent only partly; divergence (a static
 instability) is the most sensitive to the missing residual flexibility. On the NREL 5 MW beam
 model (10 m/s, potential flow, p-k) 30 modes per reference speed put the divergence onset 9 %
-and the flutter onset 2.9 % above the full-order values (``docs/performance.md`` sec. 5).
+and the flutter onset 2.9 % above the full-order values (``docs/notes/performance_rounds.md``,
+"Full vs reduced on the NREL 5 MW turbine").
 
 :class:`MTAAeroelasticModel` is that model with the basis augmented by modal-truncation-
 augmentation vectors (:func:`windflutter.solve.reduction.static_correction_modes`) for the aero
@@ -52,7 +53,7 @@ class MTAAeroelasticModel(AeroelasticModel):
         directions on the NREL 5 MW whole turbine (basis 99 instead of 169, half the search
         time, onsets within 1.2e-4 of full order) but puts the seed 20 MW whole turbine's
         flutter 2.2 % and divergence 4.6 % low (1e-6: 0.4 % / 0.6 %; 1e-8: 0.02 % / 0.01 %;
-        ``docs/performance.md`` sec. 8).
+        ``docs/notes/performance_rounds.md``, "A cut-off that did not hold").
     """
 
     mta_points: tuple = ()

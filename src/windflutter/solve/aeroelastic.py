@@ -1,6 +1,7 @@
 """The coupled aeroelastic system on a (modally) reduced basis.
 
-``Mt = Ms - Ma``, ``Dt = Ds + G - Da``, ``Kt = Ks - Kr + Ksigma - Ka`` (METHOD.md sec. 4), first
+``Mt = Ms - Ma``, ``Dt = Ds + G - Da``, ``Kt = Ks - Kr + Ksigma - Ka`` (docs/stability.md, "Pipeline
+(modules)", coupled system), first
 reduced by the constraint map ``u = T q`` and then, by default, projected on a basis of
 structural modes (Galerkin, exact for the terms that live in that subspace): the union of the
 modes at rotor speed 0 and at the top of the analysed range, M-orthonormalized.  The projection

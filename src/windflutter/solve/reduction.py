@@ -1,7 +1,8 @@
 """Modal reduction of the coupled aeroelastic quadratic eigenproblem.
 
 The full-order problem is ``(lam^2 M + lam D + K) x = 0`` with complex, sparse n x n matrices
-``M = Ms - Ma``, ``D = Ds + G - Da``, ``K = Ks - Kr + Ksigma - Ka`` (``docs/method.md`` sec. 4).
+``M = Ms - Ma``, ``D = Ds + G - Da``, ``K = Ks - Kr + Ksigma - Ka`` (``docs/stability.md``, "Pipeline
+(modules)", coupled system).
 Flutter lives in the lowest few structural modes, so the problem is projected (Galerkin) onto a
 real basis ``Phi`` (n x m, m << n) of
 

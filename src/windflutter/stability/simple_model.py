@@ -1,4 +1,5 @@
-"""The seed's rotor "simple model" (Castillo Capponi 2010, ch. 4.1.8, fig. 4.6; METHOD.md §6).
+"""The seed's rotor "simple model" (Castillo Capponi 2010, ch. 4.1.8, fig. 4.6;
+docs/typical_section.md, "The seed's simple model").
 
 A 2-DOF (plunge ``h`` along the blade's flapwise direction, pitch ``alpha``) typical section at
 75 % of the blade radius, with Theodorsen aerodynamics and the inflow of a rotor:

@@ -12,11 +12,12 @@ fixed-interface (hub clamped) blade: structural modes plus aerodynamic static co
 identity (full order).  For a rigid interface the constraint modes of Craig-Bampton are exactly
 ``Gamma``, so nothing is lost at the interface.
 
-Rotating-frame terms (METHOD.md sec. 2) act on the TOTAL rotating-frame displacement ``w``: the
-Coriolis ``Omega G1`` and the spin softening ``Omega^2 Kr1`` (translational masses) and the
-geometric stiffness of the steady stress, ``Ksigma``.  With this, a hub displacement that is at
-rest in the ground-fixed frame produces no inertial force (checked in the tests).  The elastic
-stiffness and the structural damping act on ``eta`` only.
+Rotating-frame terms (:mod:`windflutter.rotor.rotating`) act on the TOTAL rotating-frame
+displacement ``w``: the Coriolis ``Omega G1`` and the spin softening ``Omega^2 Kr1`` (translational
+masses) and the geometric stiffness of the steady stress, ``Ksigma``. With this, a hub displacement
+that is at rest in the ground-fixed frame produces no inertial force (checked in the tests). The
+elastic stiffness and the structural damping act on ``eta`` only.
+
 
 The hub link carries the root reaction: under tension ``T`` a link of length ``r_hub`` has the
 geometric stiffness ``T r_hub`` of a tensioned bar for rotations of the hub

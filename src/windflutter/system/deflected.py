@@ -3,7 +3,7 @@
 The default operating-point model linearizes the blade on its undeformed reference axis: the
 strips follow the deflected steady state, but the beam keeps its straight-line frames and only the
 axial-force geometric stiffness of the steady stress.  The edge--torsion coupling that a
-flapwise-deflected blade has (Kallesoe 2011, *Wind Energy* 14:209; docs/edgewise_damping.md) is then
+flapwise-deflected blade has (Kallesoe 2011, *Wind Energy* 14:209; docs/notes/edgewise_damping.md) is then
 missing.  HAWCStab2 linearizes its co-rotational beam about the deflected state; so does this
 module:
 

@@ -21,7 +21,7 @@ damping and stiffness.  The Coleman transformation of the blade coordinates and 
     ``eta_b = eta_0 + sum_k (eta_kc cos k psi_b + eta_ks sin k psi_b) [+ eta_N/2 (-1)^b]``
 
 ``q = T(psi) q_B`` gives ``M_B = T^-1 M T``, ``C_B = T^-1 (2 M T' + C T)``,
-``K_B = T^-1 (M T'' + C T' + K T)`` (Bir 2008, NREL/CP-500-42553; METHOD.md sec. 9) and, for the
+``K_B = T^-1 (M T'' + C T' + K T)`` (Bir 2008, NREL/CP-500-42553) and, for the
 states, ``A_B = Tz^-1 (Az Tz - Tz')``.  For an isotropic rotor with N >= 3 all of them are constant:
 :func:`multiblade_system` forms them at one azimuth; the tests check another azimuth and the
 Floquet exponents of the periodic system computed by time integration.

@@ -8,12 +8,13 @@ drivetrain.
   analyses).
 * Hub: a rigid body at the apex moving with the hub motion the rotor sees, ``h_R = L x_F``; its
   rotation about the shaft includes the rotor azimuth ``phi``.
-* Drivetrain (METHOD.md sec. 9): ``phi`` (rotor azimuth relative to the nacelle) and the generator
-  rotation ``theta_g`` relative to the nacelle seen on the low-speed side, a shaft spring ``k`` and
-  damper ``c`` between them and the generator inertia ``n^2 J_gen`` (absolute rotation
-  ``n . theta_nacelle + theta_g``); ``rigid``: one azimuth coordinate carries the generator too;
-  ``locked``: no azimuth freedom (the rotor locked to the nacelle, as the seed's model).  With a
-  free generator (no controller) the drivetrain has one rigid-body mode (lambda = 0).
+* Drivetrain (docs/campbell.md, "The model", hub and drivetrain): ``phi`` (rotor azimuth
+  relative to the nacelle) and the generator rotation ``theta_g`` relative to the nacelle seen on
+  the low-speed side, a shaft spring ``k`` and damper ``c`` between them and the generator inertia
+  ``n^2 J_gen`` (absolute rotation ``n . theta_nacelle + theta_g``); ``rigid``: one azimuth
+  coordinate carries the generator too; ``locked``: no azimuth freedom (the rotor locked to the
+  nacelle, as the seed's model).  With a free generator (no controller) the drivetrain has one
+  rigid-body mode (lambda = 0).
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ Model (Theodorsen 1935; Bisplinghoff, Ashley & Halfman 1955 ch. 5; Hodges & Pier
 
 with the plunge ``h`` positive DOWN inside this package (Theodorsen's convention), pitch
 ``alpha`` nose-up about the elastic axis at ``a b`` aft of mid-chord, ``S`` the static moment (CG
-aft of EA positive) and, for harmonic motion, METHOD.md section 3::
+aft of EA positive) and, for harmonic motion, Theodorsen's (1935) lift and moment::
 
     L    = pi rho b^2 (h'' + U alpha' - b a alpha'')
          + Cla rho U b C(k) [h' + U alpha + b(1/2 - a) alpha']

@@ -73,7 +73,8 @@ class TypicalSection:
         Angle (rad) between the plunge DOF and the lift direction (0 for the classic section).
     scale_apparent_mass
         If True the non-circulatory (apparent-mass) terms are scaled by ``Cla / 2 pi`` too, as
-        in the seed thesis's "viscous" variant (METHOD.md section 3); default False.
+        in the seed thesis's "viscous" variant (docs/typical_section.md, "What it does"); default
+        False.
     """
 
     semi_chord: float
