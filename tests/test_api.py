@@ -232,11 +232,11 @@ def test_run_names_its_folder_after_the_file(tmp_path, monkeypatch, capsys):
                                   lambda w: w.confirm_onset("nrel5mw", 8.0, colour=1)])
 def test_an_unknown_keyword_is_an_input_error_naming_it(call):
     """Issue 34: every API keyword -- an unknown one too -- gives InputError naming it, not TypeError."""
-    import windflutter
+    import windflutter.api
     from windflutter.errors import InputError
 
     with pytest.raises(InputError, match="colour"):
-        call(windflutter)
+        call(windflutter.api)
 
 
 def test_the_methods_registry_builds_each_methods_solver():

@@ -32,7 +32,8 @@ from windflutter import threads as _threads  # noqa: E402  (after __version__: c
 _threads.apply_policy()
 
 #: the API functions re-exported here (from :mod:`windflutter.api`)
-_API = ("load_turbine", "modes", "campbell", "run", "analysis_config", "simulate", "confirm_onset")
+# (simulate is windflutter.api's only: the sub-package windflutter.simulate holds that name)
+_API = ("load_turbine", "modes", "campbell", "run", "analysis_config", "confirm_onset")
 
 
 def __getattr__(name: str):
