@@ -8,9 +8,9 @@ import matplotlib
 
 matplotlib.use("Agg")  # no display needed; must precede pyplot
 import matplotlib.pyplot as plt  # noqa: E402
-import numpy as np  # noqa: E402
 
 from windflutter.errors import InputError  # noqa: E402
+from windflutter.post.vg_plots import save_figure  # noqa: E402
 
 __all__ = ["check_png", "plot_onset_check"]
 
@@ -43,10 +43,5 @@ def plot_onset_check(res, path) -> Path:
     fig.suptitle(f"{res.mode} onset {res.onset_rpm:.2f} RPM at {res.wind_speed:g} m/s (rotor on a clamped hub)",
                  fontsize=10)
     fig.tight_layout()
-    try:
-        fig.savefig(p, dpi=110)
-    except OSError as exc:
-        raise InputError("--plot", str(path), f"a writable file ({exc.strerror})") from None
-    finally:
-        plt.close(fig)
+    save_figure(fig, p)
     return p

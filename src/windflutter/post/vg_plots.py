@@ -28,7 +28,8 @@ def _check_out(path: str | Path) -> Path:
     return p
 
 
-def _save(fig, p: Path) -> None:
+def save_figure(fig, p: Path) -> None:
+    """Write ``fig`` to ``p`` (110 dpi) and close it; an unwritable path is an InputError of ``--plot``."""
     try:
         fig.savefig(p, dpi=110)
     except OSError as exc:
@@ -86,7 +87,7 @@ def vg_figure(result, title: str | None = None):
 def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
     """Write :func:`vg_figure` of a section result as a PNG; returns the path."""
     p = _check_out(path)
-    _save(vg_figure(result, title), p)
+    save_figure(vg_figure(result, title), p)
     return p
 
 
@@ -127,5 +128,5 @@ def plot_simple_model(results: Sequence, path: str | Path, extra: Sequence | Non
         ax.legend(fontsize=7)
     fig.suptitle("Seed simple model (Castillo Capponi 2010, ch. 4.1.8)")
     fig.tight_layout()
-    _save(fig, p)
+    save_figure(fig, p)
     return p
