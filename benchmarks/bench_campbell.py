@@ -53,7 +53,7 @@ def main(argv=None):
         # the defaults of `windflutter campbell` (the analysis config: beam, blades linearized about
         # their deflected shape); baseline: the same with full-order blades
         opts = operational_options(config_from_dict({}), "viscous")
-        base = dataclasses.replace(opts, blade_modes=None)
+        base = dataclasses.replace(opts, basis_modes=None)
         dt_b, _, n_b, z_b = timed(tb, winds[:3], base, args.max_hz)
         dt, res, n, z = timed(tb, winds, opts, args.max_hz)
         print(f"{args.turbine} beam, {len(winds)} wind speeds: {dt:.1f} s ({dt / len(winds):.2f} s per point), "

@@ -59,7 +59,7 @@ def operational_options(config, aero: str):
                          "damping; stiffness, rayleigh and modal belong to the seed's methods pk and thesis)")
     structure = resolved_structure(config)
     return OperationalOptions(model=m.type, part=m.part, mesh=mesh_settings(config),
-                              blade_modes=None if s.reduction == "none" else s.basis_modes,
+                              basis_modes=None if s.reduction == "none" else s.basis_modes,
                               corrections=s.reduction == "mta", correction_tol=max(s.correction_tol, 1e-10),
                               drivetrain=m.drivetrain, aero=unsteady_options(config, aero),
                               deflection=bool(s.deflection), corotational=bool(s.corotational), structure=structure, induction=bool(s.induction),

@@ -71,7 +71,7 @@ class OperationalOptions:
     part : ``"turbine"`` (rotor on the flexible tower) or ``"rotor"`` (rotor on a fixed nacelle,
         drivetrain free: HAWCStab2's / OpenFAST's rotor-only analysis).
     mesh : extra :class:`~windflutter.mesh.settings.MeshSettings` fields.
-    blade_modes : fixed-interface blade modes in the basis; ``None``: full order.
+    basis_modes : fixed-interface blade modes in the basis (the config's ``solver.basis_modes``); ``None``: full order.
     corrections : add static corrections (modal truncation augmentation) of the aerodynamic loads
         of the retained modes to the blade basis; ``correction_tol`` is their relative cut-off.
     support_modes : support modes (+ 6 hub-load corrections); ``None``: its full constrained
@@ -103,7 +103,7 @@ class OperationalOptions:
     model: str = "beam"
     part: str = "turbine"
     mesh: dict = field(default_factory=dict)
-    blade_modes: int | None = 20
+    basis_modes: int | None = 20
     corrections: bool = False
     correction_tol: float = 1e-6
     support_modes: int | None = None
@@ -136,7 +136,7 @@ class OperationalOptions:
             from windflutter.aero.unsteady import UnsteadyOptions
 
             object.__setattr__(self, "aero", UnsteadyOptions())
-        for name in ("blade_modes", "support_modes"):
+        for name in ("basis_modes", "support_modes"):
             v = getattr(self, name)
             if v is not None and not (isinstance(v, (int, np.integer)) and v >= 1):
                 raise InputError(name, v, "a positive number of modes, or None (full order)")
@@ -203,7 +203,7 @@ class OperationalModel:
         self._support = None
         self._last_steady: dict = {}
         o = self.options
-        self._basis = BladeBasis(o.blade_modes, corrections=o.corrections, correction_tol=o.correction_tol)
+        self._basis = BladeBasis(o.basis_modes, corrections=o.corrections, correction_tol=o.correction_tol)
 
     # -- parts -------------------------------------------------------------------------------
     def _mesh(self, part: str, pitch: float = 0.0):
@@ -348,7 +348,7 @@ class OperationalModel:
                 "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
                 "tower_damping": ("modal: fore-aft " + ", ".join(f"{100 * x:.2g} %" for x in fa) + "; side-side "
                                   + ", ".join(f"{100 * x:.2g} %" for x in ss)) if (fa.size or ss.size) else "none",
-                "blade_basis": "full order" if o.blade_modes is None else f"{o.blade_modes} fixed-interface modes"
+                "blade_basis": "full order" if o.basis_modes is None else f"{o.basis_modes} fixed-interface modes"
                                + (" + aero corrections" if o.corrections else ""),
                 "inflow": "axisymmetric along the shaft (no tilt, shear, yaw, gravity)"}
 
