@@ -44,7 +44,8 @@ POINT_CACHE = 6
 class SearchSettings:
     """Rotor-speed sweep of method p: up to ``rpm_max`` (RPM) in steps of ``rpm_step`` from the
     operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: the
-    model's default, :meth:`windflutter.system.identity.StructuralReference.default_max_hz`); ``full_sweep`` False stops past both onsets."""
+    model's default, :meth:`windflutter.system.identity.StructuralReference.default_max_hz`);
+    ``full_sweep`` False stops past both onsets."""
 
     rpm_max: float = 40.0
     rpm_step: float = 2.0

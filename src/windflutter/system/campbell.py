@@ -160,7 +160,8 @@ def ambiguous(before: list[ModeRecord], after: list[ModeRecord]) -> bool:
     was = {m.identity: m for m in before if m.identity is not None}
     for m in after:
         q = was.get(m.identity)
-        if q is not None and max(m.damping_ratio, q.damping_ratio) < 0.3 and abs(m.frequency_hz / q.frequency_hz - 1) > JUMP:
+        light = q is not None and max(m.damping_ratio, q.damping_ratio) < 0.3
+        if light and abs(m.frequency_hz / q.frequency_hz - 1) > JUMP:
             return True
     return False
 

@@ -356,7 +356,8 @@ def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: boo
     order = np.argsort(shares)[::-1]
     first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
-    if k < 0 or shares[k] < max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0):  # no identity: its participations
+    floor = max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
+    if k < 0 or shares[k] < floor:  # no identity of its own: named by its participations
         rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
         rec.rigid, rec.share, rec.mixed = False, 0.0, True
         rec.name = " + ".join(n for n, _ in rec.participation)
