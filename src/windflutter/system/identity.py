@@ -231,8 +231,8 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
             fam, order, _ = reference.blade[r]
             ident[c] = (fam, order)
     # an own mode left without a reference (MAC below REFERENCE_MAC after the assignment): the unused
-    # reference mode of its own strip family that it resembles most, else an ordinal after the
-    # reference's (an own mode above the reference's range)
+    # reference mode it resembles most in shape and frequency (MAC / (1 + |ln(f / f_ref)|)), else an
+    # ordinal after the reference's in its own strip family (an own mode above the reference's range)
     fams = strip_family(ps.blade.sections, comps)
     used = {ident[c] for c in range(len(ident)) if ident[c] is not None}
     top: dict = {}
@@ -246,9 +246,10 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
             continue
         if ident[c] is not None:
             continue
-        free = [r for r, (fam, order, _) in enumerate(reference.blade) if fam == fams[c] and (fam, order) not in used]
-        if free:
-            r = max(free, key=lambda r: mac[r, c])
+        free = [r for r, (fam, order, _) in enumerate(reference.blade) if (fam, order) not in used]
+        if free:  # the closest in shape and frequency (the deflection couples e.g. the 1st torsion with the 3rd edge)
+            f_c = np.sqrt(max(w2[c], 0.0)) / (2 * np.pi)
+            r = max(free, key=lambda r: mac[r, c] / (1.0 + abs(np.log(max(f_c, 1e-9) / reference.blade[r][2]))))
             ident[c] = reference.blade[r][:2]
         else:
             top[fams[c]] = top.get(fams[c], 0) + 1
@@ -340,8 +341,10 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
 def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 0.5) -> np.ndarray:
     """(n_modes,) the identity index given to each mode (largest total share, one identity per mode;
     -1 for none); ``continuity`` (n_modes, n_ids), optional, adds ``weight`` times each mode's
-    similarity to the mode that carried the identity at the previous point of a sweep."""
-    C = S if continuity is None else S + weight * continuity
+    similarity to the mode that carried the identity at the previous point of a sweep -- only where
+    the identity has at least :data:`MIN_ASSIGNED_SHARE` of the mode (continuity chooses among the
+    identities a mode can carry; it does not pull a name onto a mode that is not made of it)."""
+    C = S if continuity is None else S + weight * np.where(S >= MIN_ASSIGNED_SHARE, continuity, 0.0)
     out = np.full(S.shape[0], -1)
     if S.size == 0:
         return out
