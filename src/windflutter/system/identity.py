@@ -221,7 +221,7 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
     Me = 0.5 * (M[e, e] + M[e, e].T)
     Ke = 0.5 * (K[e, e] + K[e, e].T)
     w2, V = sla.eigh(Ke, Me)
-    comps = basis_components @ V if basis_components.ndim == 3 else basis_components
+    comps = basis_components @ V
     sig = strip_signatures(ps.blade.sections, comps)
     mac = mac_matrix(reference.signatures, sig)
     rows, cols = linear_sum_assignment(-mac)

@@ -130,15 +130,23 @@ def _block_energy(q: np.ndarray, M: np.ndarray, sl: slice) -> float:
     return float(np.real(np.vdot(v, M[sl, sl] @ v))) if v.size else 0.0
 
 
+def basis_components(ps) -> np.ndarray:
+    """(3, ns, m) flap, edge and torsion (x quarter chord) strip motion of each of the blade's ``m``
+    elastic coordinates at the point: its fixed-interface basis vectors, or at full order its
+    constrained coordinates themselves; computed once per point (the motion is linear in them)."""
+    if ps.basis_components is None:
+        T = ps.blade.struct.T
+        B = T @ ps.Phi if ps.Phi is not None else T.toarray()
+        ps.basis_components = blade_motion_components(ps.blade.sections, np.asarray(B))
+    return ps.basis_components
+
+
 def _blade_components(ps, q_eta: list[np.ndarray]) -> np.ndarray:
     """(3, ns, k) flap, edge and torsion (x quarter chord) motion of the strips for each of the
     ``k`` multi-blade coordinates (blade frame, the blade's fixed-interface deformation)."""
-    rb = ps.blade
-    if ps.Phi is None:  # full order: the nodal motions themselves
-        return blade_motion_components(rb.sections, np.asarray(rb.struct.T @ np.stack(q_eta, 1)))
-    if getattr(ps, "basis_components", None) is None:  # linear in the motion: once per point
-        ps.basis_components = blade_motion_components(rb.sections, np.asarray(rb.struct.T @ ps.Phi))
-    return ps.basis_components @ np.stack(q_eta, 1)
+    if ps.Phi is None:  # full order: the nodal motions themselves (no dense copy of T for a shell)
+        return blade_motion_components(ps.blade.sections, np.asarray(ps.blade.struct.T @ np.stack(q_eta, 1)))
+    return basis_components(ps) @ np.stack(q_eta, 1)
 
 
 def _tip_components(ps, q_eta: list[np.ndarray]) -> np.ndarray | None:
@@ -260,11 +268,7 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
     ref = ps.reference
     own = None
     if ps.mbc.n_eta:
-        if getattr(ps, "basis_components", None) is None and ps.Phi is not None:
-            ps.basis_components = blade_motion_components(ps.blade.sections, np.asarray(ps.blade.struct.T @ ps.Phi))
-        comps = ps.basis_components if ps.Phi is not None else \
-            blade_motion_components(ps.blade.sections, np.asarray(ps.blade.struct.T))
-        own = point_own_modes(ps, comps, ref)
+        own = point_own_modes(ps, basis_components(ps), ref)
     freqs = np.array([m.frequency_hz for m in modes])
     zetas = np.array([m.damping_ratio for m in modes])
     ids, S = participations(ps, Q, own, ref, freqs, zetas)
