@@ -218,13 +218,12 @@ class TurbineStability:
         if getattr(self, "_reference", None) is None:
             from windflutter.mesh.settings import MeshSettings
             from windflutter.structure.assembly import assemble
-            from windflutter.system.identity import StructuralReference, blade_reference
+            from windflutter.system.identity import blade_reference
 
             settings = MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": "rotor_blade",
                                        "pitch": 0.0})
             fe, sections = build_blade(self.turbine, settings)
-            named, sig, norms = blade_reference(assemble(fe), sections)
-            self._reference = StructuralReference(blade=named, signatures=sig, norms=norms)
+            self._reference = blade_reference(assemble(fe), sections)
         return self._reference
 
     def pitch_at(self, wind_speed: float) -> float:

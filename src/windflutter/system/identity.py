@@ -17,12 +17,13 @@ point, which fail at high pitch, high damping and strong coupling.
    each given the name of the reference mode it continues, by an assignment of the MAC of their
    strip motions (a comparison that does not depend on the reduction basis or the pitch).
 3. **Participation**: an aeroelastic mode's blade coordinates, in each multi-blade coordinate, are
-   expanded in the point's own modes (mass-orthogonal: the kinetic energies add up exactly); with
-   ``a_0, a_c, a_s`` the collective and first cyclic amplitudes of own mode ``j`` the kinetic
-   energies are ``N |a_0|^2`` (collective), ``N/4 |a_c + i a_s|^2`` (forward whirl, FW) and
-   ``N/4 |a_c - i a_s|^2`` (backward whirl, BW).  The support's coordinates are expanded in its
-   modes, the drivetrain's in its rigid rotation and its shaft torsion.  Shares are fractions of the
-   mode's kinetic energy.
+   expanded in the point's own modes (mass-orthogonal: the energies add up exactly); with ``a_0,
+   a_c, a_s`` the collective and first cyclic amplitudes of own mode ``j`` the parts are ``N
+   |a_0|^2`` (collective), ``N/4 |a_c + i a_s|^2`` (forward whirl, FW) and ``N/4 |a_c - i a_s|^2``
+   (backward whirl, BW), weighted by ``omega_j^2``: shares of the modal strain energy (of the
+   kinetic energy for modes damped above :data:`KINETIC_DAMPING`, :func:`participations`).  The
+   support's coordinates are expanded in its modes, the drivetrain's in its rigid rotation and its
+   shaft torsion.
 4. **Assignment**: the identities are given to the point's aeroelastic modes by the assignment of
    largest total share (Hungarian algorithm), so a name is used once per operating point, and a
    crossing or veering keeps the names by participation.  A mode whose assigned identity carries less
@@ -46,9 +47,8 @@ from windflutter.structure.labels import blade_motion_components, ordinal
 MIXED_SHARE = 0.6
 #: a point mode continues a reference mode only with at least this MAC of their strip motions
 REFERENCE_MAC = 0.3
-#: the blade's reference modes: at least this many, and all up to this multiple of the highest
-#: frequency asked for
-MIN_REFERENCE_MODES = 12
+#: the blade's reference modes: its lowest this many standstill modes
+REFERENCE_MODES = 24
 #: an assigned identity carrying less than this share of a mode (for a heavily damped mode, or less
 #: than half of its largest participation) is not given to it (the identities that fit it are taken
 #: by modes that fit them better): the mode is named by its two largest participations, as mixed
@@ -64,7 +64,6 @@ HEAVY_DAMPING = 0.3
 KINETIC_DAMPING = 0.15
 BLADE_FAMILIES = ("flap", "edge", "torsion")
 TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
-WHIRLS = ("collective", "BW", "FW")
 
 
 @dataclass(frozen=True)
@@ -105,13 +104,11 @@ def identity_name(family: str, whirl: str, order: int) -> str:
 @dataclass
 class StructuralReference:
     """The blade's standstill modes (``blade``: (family, order, frequency Hz) in frequency order,
-    ``signatures``: their unit strip-motion signatures, columns; ``norms``: the signatures' norms of
-    the mass-normalized modes) and the support's modes (``Phi_s`` mass-normalized in support
-    coordinates, ``support``: (family, order, frequency Hz))."""
+    ``signatures``: their unit strip-motion signatures, columns) and the support's modes (``Phi_s``
+    mass-normalized in support coordinates, ``support``: (family, order, frequency Hz))."""
 
     blade: list
     signatures: np.ndarray
-    norms: np.ndarray | None = None
     support: list = field(default_factory=list)
     Phi_s: np.ndarray | None = None
 
@@ -127,14 +124,12 @@ class StructuralReference:
         return next((f for fam, o, f in self.blade if fam == family and o == 1), float("nan"))
 
 
-def strip_signatures(sections, comps: np.ndarray, norms: bool = False):
+def strip_signatures(sections, comps: np.ndarray) -> np.ndarray:
     """(3 ns, n) unit-norm signatures of strip motions ``comps`` (3, ns, n) (flap, edge, torsion x a
-    quarter chord), weighted by the square root of the strip widths (``norms``: also their norms
-    before the scaling)."""
+    quarter chord), weighted by the square root of the strip widths."""
     s = comps * np.sqrt(np.asarray(sections.width, float))[None, :, None]
     s = s.reshape(-1, comps.shape[-1])
-    n = np.maximum(np.linalg.norm(s, axis=0), 1e-300)
-    return (s / n[None, :], n) if norms else s / n[None, :]
+    return s / np.maximum(np.linalg.norm(s, axis=0), 1e-300)[None, :]
 
 
 def strip_family(sections, comps: np.ndarray) -> list[str]:
@@ -152,25 +147,19 @@ def _ordered(families: list[str]) -> list[int]:
     return out
 
 
-def blade_reference(struct, sections, max_hz: float | None = None):
-    """(named modes, signatures) of a blade's structural modes at standstill (``struct``: its
-    assembled, root-clamped :class:`~windflutter.structure.assembly.Structural`)."""
+def blade_reference(struct, sections) -> StructuralReference:
+    """The blade part of the reference: its lowest :data:`REFERENCE_MODES` structural modes at
+    standstill (``struct``: its assembled, root-clamped :class:`~windflutter.structure.assembly.
+    Structural`), named and with their strip signatures."""
     from windflutter.solve.reduction import structural_modes
 
     K, M = struct.Kr, struct.Mr
-    n_dof = K.shape[0]
-    n = min(max(MIN_REFERENCE_MODES, 24), n_dof - 1)
-    basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), n)
+    basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), min(REFERENCE_MODES, K.shape[0] - 1))
     f = basis.omega / (2 * np.pi)
     comps = blade_motion_components(sections, np.asarray(struct.T @ basis.Phi))
     fams = strip_family(sections, comps)
-    keep = np.arange(len(f))
-    if max_hz is not None:  # all up to 3 x the limit, and at least MIN_REFERENCE_MODES
-        keep = keep[(f <= 3.0 * max_hz) | (keep < MIN_REFERENCE_MODES)]
-    fams = [fams[i] for i in keep]
-    named = [(fam, o, float(f[i])) for fam, o, i in zip(fams, _ordered(fams), keep)]
-    sig, norms = strip_signatures(sections, comps[:, :, keep], norms=True)
-    return named, sig, norms
+    named = [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)]
+    return StructuralReference(blade=named, signatures=strip_signatures(sections, comps))
 
 
 def support_reference(support) -> tuple[list, np.ndarray | None]:
@@ -181,22 +170,21 @@ def support_reference(support) -> tuple[list, np.ndarray | None]:
     Ks = 0.5 * (support.K + support.K.T)
     w2, Phi = sla.eigh(Ks, Ms)
     md = np.asarray(support.struct.M.diagonal())
-    fams = []
-    for k in range(Phi.shape[1]):
-        u = np.asarray(support.expand @ Phi[:, k])
-        e = (md * np.abs(u) ** 2).reshape(-1, 6).sum(axis=0)
-        fams.append("tower_torsion" if e[5] > max(e[0], e[1]) else ("tower_fa" if e[0] >= e[1] else "tower_ss"))
+    U = np.asarray(support.expand @ Phi)  # the support nodes' motion in every mode at once
+    e = (md[:, None] * np.abs(U) ** 2).reshape(-1, 6, Phi.shape[1]).sum(axis=0)  # (6, n): per component
+    fams = ["tower_torsion" if e[5, k] > max(e[0, k], e[1, k]) else ("tower_fa" if e[0, k] >= e[1, k] else "tower_ss")
+            for k in range(Phi.shape[1])]
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
     return [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)], Phi
 
 
-def structural_reference(blade, support, max_hz: float | None = None) -> StructuralReference:
+def structural_reference(blade, support) -> StructuralReference:
     """The reference of a turbine model: ``blade`` a :class:`~windflutter.system.blade.RotorBlade`
     (its standstill structure; the pitch does not change its modes in its own frame), ``support`` the
     support model or None."""
-    named, sig, norms = blade_reference(blade.struct, blade.sections, max_hz)
-    sup, Phi_s = support_reference(support)
-    return StructuralReference(blade=named, signatures=sig, norms=norms, support=sup, Phi_s=Phi_s)
+    ref = blade_reference(blade.struct, blade.sections)
+    ref.support, ref.Phi_s = support_reference(support)
+    return ref
 
 
 # ------------------------------------------------------------------------------------------------
