@@ -313,11 +313,14 @@ class TurbineStability:
         sys_ref = system_at(grid[0])
         M = am.structure.M
         ref = self.reference()
-        named = structural_names(sys_ref, fe, M, sections, ref) if o.method == "pk" else None  # only p-k tracks
-        if o.method == "pk":
+        named = None
+        if o.method == "pk":  # only p-k tracks
+            shapes = structural_shapes(sys_ref)
+            named = structural_names(sys_ref, fe, M, sections, ref, shapes)
             # (the count by the frequency-order names of the seed's labels: the tracked set, and so the
             # onsets, as before the identities)
-            n_track = o.n_tracked if o.n_tracked is not None else auto_tracked(sys_ref, fe, M, sections)
+            n_track = o.n_tracked if o.n_tracked is not None else \
+                auto_tracked(sys_ref, fe, M, sections, named=structural_names(sys_ref, fe, M, sections, None, shapes))
             on = pk_search(system_at, grid, n_track=min(n_track, am.size), n_eig=o.n_eig, xtol=o.tolerance_rpm,
                            stop_at_onset=not o.full_sweep)
         else:
@@ -381,13 +384,12 @@ def onset_identity(system, x: np.ndarray, fe, M, sections, reference) -> str:
     |a_k|^2`` over the structural modes of ``system`` without aerodynamics (``a_k = v_k^T M x``,
     mass-normalized), summed per identity (:func:`structural_names` with the blade's ``reference``),
     the largest -- and ``" + "`` the second where the largest has less than ``MIXED_SHARE``."""
-    w2, V = structural_eig(system)
+    shapes = structural_shapes(system)
+    w2, V, _ = shapes
     _, Mw = system.structural_pencil()
     Mw = Mw.toarray() if hasattr(Mw, "toarray") else np.asarray(Mw)
     a = V.T @ (0.5 * (Mw + Mw.T)) @ x
-    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
-    names = mode_names(fe, M, np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1), f, sections,
-                       reference)
+    _, _, names = structural_names(system, fe, M, sections, reference, shapes)
     energy: dict = {}
     for name, e in zip(names, np.maximum(w2, 0.0) * np.abs(a) ** 2):
         energy[name] = energy.get(name, 0.0) + float(e)
@@ -398,13 +400,19 @@ def onset_identity(system, x: np.ndarray, fe, M, sections, reference) -> str:
     return ranked[0]
 
 
-def structural_names(system, fe, M, sections, reference=None):
+def structural_shapes(system):
+    """``(w^2, V, X)``: the modes of ``Ks(Omega), M`` of ``system`` in its working basis (``V``,
+    mass-normalized) and expanded to the full numbering (``X``), to be named once or twice."""
+    w2, V = structural_eig(system)
+    return w2, V, np.stack([system.expand(V[:, i]) for i in range(V.shape[1])], axis=1)
+
+
+def structural_names(system, fe, M, sections, reference=None, shapes=None):
     """``(f (Hz), V, names)``: the modes of ``Ks(Omega), M`` of ``system`` (working basis) and their
     names (:func:`~windflutter.stability.tracking.mode_names`, by the blade's identities
-    ``reference`` when given)."""
-    w2, V = structural_eig(system)
+    ``reference`` when given); ``shapes``: :func:`structural_shapes` of ``system``, if known."""
+    w2, V, X = shapes if shapes is not None else structural_shapes(system)
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
-    X = np.stack([system.expand(V[:, i]) for i in range(len(f))], axis=1)
     return f, V, mode_names(fe, M, X, f, sections, reference)
 
 
