@@ -9,8 +9,9 @@ no frequency matching is needed (the p-method; the seed's p-k and 8-k searches r
 ``pk`` and ``thesis`` on the seed's frozen-azimuth model, :mod:`windflutter.stability.turbine`).
 
 * Modes are named by their structural identity (:mod:`windflutter.system.identity`), each sweep
-  point continuing the previous one's, and followed along the rotor speed by their identities (the
-  Campbell arrays) and by the MAC of their physical signatures (the root searches).
+  point continuing the previous one's (a step where a named mode's frequency jumps is refined once
+  through its middle, as along the Campbell), and followed along the rotor speed by their identities
+  (the Campbell arrays) and by the MAC of their physical signatures (the root searches).
 * Flutter: the first rotor speed where a followed mode's damping ratio turns negative (the
   drivetrain's rigid-body root excluded), located by Brent's method on that mode.
 * Divergence: the blades' static stiffness in the rotating frame with the aerodynamic stiffness at
@@ -32,6 +33,7 @@ from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.stability.search import Onset
 from windflutter.stability.turbine import PointSummary
+from windflutter.system.campbell import ambiguous
 from windflutter.system.modes import point_modes
 
 RPM = math.pi / 30.0
@@ -167,6 +169,19 @@ class OperationalStability:
             entry[1] = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous) if not m.rigid]
         return ps, entry[1]
 
+    def _continued(self, wind_speed: float, pitch: float, before: tuple, rpm: float):
+        """``(PointSystem, modes)`` at ``rpm``, continuing the names of the sweep point ``before``
+        (``(rpm, modes)``); where a named mode's frequency jumps across the step
+        (:func:`~windflutter.system.campbell.ambiguous`) the step is refined once, as along the
+        Campbell: the names are carried through its middle (not a sweep point)."""
+        ps, modes = self._modes(wind_speed, rpm, pitch, previous=before[1])
+        if ambiguous(before[1], modes):
+            mid_ps = self.model.at(wind_speed, rpm=0.5 * (before[0] + rpm), pitch=pitch)
+            mid = [m for m in point_modes(mid_ps, max_hz=self.max_hz(pitch), previous=before[1]) if not m.rigid]
+            modes = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=mid) if not m.rigid]
+            self._point(wind_speed, rpm, pitch)[1][1] = modes
+        return ps, modes
+
     def _point(self, wind_speed: float, rpm: float, pitch: float):
         """``(PointSystem, cache entry)`` at a rotor speed; the entry's modes are read on demand (the
         divergence search needs none)."""
@@ -192,7 +207,8 @@ class OperationalStability:
         flutter = None
         for i, rpm in enumerate(grid):
             try:
-                ps, modes = self._modes(wind_speed, rpm, pitch, previous=sweep[-1][1] if sweep else None)
+                ps, modes = self._continued(wind_speed, pitch, sweep[-1], rpm) if sweep else \
+                    self._modes(wind_speed, rpm, pitch)
             except ModelError as exc:  # no steady state (e.g. it diverges at this overspeed)
                 if not sweep:
                     raise

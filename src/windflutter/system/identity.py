@@ -53,6 +53,12 @@ REFERENCE_MODES = 24
 #: than half of its largest participation) is not given to it (the identities that fit it are taken
 #: by modes that fit them better): the mode is named by its two largest participations, as mixed
 MIN_ASSIGNED_SHARE = 0.1
+#: along a sweep, a mode that continues the previous point's carrier of an identity (MAC of their
+#: signatures at least this) keeps that identity whatever its share (reported mixed, with its largest
+#: participation): a mode whose own part fades as it couples keeps its name, as HAWCStab2's
+#: continuation keeps it (the IEA 15 MW's tower torsion, 16-27 % damped at 16-25 m/s, its kinetic
+#: energy more and more the blades' flap)
+CONTINUED_MAC = 0.8
 #: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
 RIGID_HZ = 0.15
 #: the default frequency limit of the Campbell and the overspeed sweep: this factor x the blade's 1st
@@ -329,10 +335,15 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
 def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 0.5) -> np.ndarray:
     """(n_modes,) the identity index given to each mode (largest total share, one identity per mode;
     -1 for none); ``continuity`` (n_modes, n_ids), optional, adds ``weight`` times each mode's
-    similarity to the mode that carried the identity at the previous point of a sweep -- only where
-    the identity has at least :data:`MIN_ASSIGNED_SHARE` of the mode (continuity chooses among the
-    identities a mode can carry; it does not pull a name onto a mode that is not made of it)."""
-    C = S if continuity is None else S + weight * np.where(S >= MIN_ASSIGNED_SHARE, continuity, 0.0)
+    similarity to the mode that carried the identity at the previous point of a sweep -- where the
+    identity has at least :data:`MIN_ASSIGNED_SHARE` of the mode, or the mode continues that carrier
+    (similarity at least :data:`CONTINUED_MAC`): continuity chooses among the identities a mode can
+    carry and keeps a continued one; it does not pull a name onto a mode that is neither made of it
+    nor its continuation."""
+    if continuity is None:
+        C = S
+    else:
+        C = S + weight * np.where((S >= MIN_ASSIGNED_SHARE) | (continuity >= CONTINUED_MAC), continuity, 0.0)
     out = np.full(S.shape[0], -1)
     if S.size == 0:
         return out
@@ -341,13 +352,16 @@ def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 
     return out
 
 
-def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False) -> None:
+def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False,
+                continued: bool = False) -> None:
     """Give mode record ``rec`` the identity ``ids[k]`` (its shares ``shares`` over ``ids``), in place:
-    family, order, whirl, name, the dominant and second participations, mixed and rigid flags."""
+    family, order, whirl, name, the dominant and second participations, mixed and rigid flags;
+    ``continued``: the mode continues the previous point's carrier of ``ids[k]`` (kept whatever its
+    share, :data:`CONTINUED_MAC`)."""
     order = np.argsort(shares)[::-1]
     first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
-    floor = max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
+    floor = 0.0 if continued else max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
     if k < 0 or shares[k] < floor:  # no identity of its own: named by its participations
         rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
         rec.rigid, rec.share, rec.mixed = False, 0.0, True
