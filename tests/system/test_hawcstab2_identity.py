@@ -12,7 +12,11 @@ and whirl of its largest tip component) from one wind speed to the next, it is o
 name of the mode paired with it by shape must be the same at both.  Where its label changes whirl or
 family, its numbering has switched modes (its 3rd flap BW and collective, numbers 18 and 19, swap
 between 5 and 10 m/s, as their labels show) or the mode is a tower mode whose tip whirl is not its own;
-those steps say nothing and are left out.
+those steps say nothing and are left out.  Through a veering the two codes differ by design:
+HAWCStab2's numbers follow the branch (continuity of the eigenvector), our names the participation
+(issue 32: "crossings and veerings keep their names by participation, not by frequency order"); where
+its continuation exchanges our names in a closed cycle (its 1st torsion FW and 3rd tower fore-aft at
+12-13 m/s, where the two exchange character) the step is reported as a veering, not as a miss.
 
 Pairing: HAWCStab2's modes at 0.3-4 Hz (damping below 99 %) one to one with ours by the cosine of
 their vectors of magnitudes (tower top and blade tip, hawcstab2_reference.PHASE_COMPONENTS) at least
@@ -81,17 +85,20 @@ def _identity(name: str) -> str:
 def test_hawcstab2_modes_below_4_hz_keep_our_names_as_hawcstab2_continues_them(sweep):
     """Every HAWCStab2 mode below 4 Hz at 5, 10, 15, 20 and 25 m/s paired by shape (at least 95 % of
     them); along HAWCStab2's continuation, where its mode keeps its label from one of these wind speeds
-    to the next, the mode paired with it carries our same name at both (all of them, below
-    LIMIT_HZ).  Measured: 99 of 102 paired; 57 continued steps, all with one name -- the 1st and 2nd
-    edge, 1st, 2nd and 3rd flap (BW, FW, collective), 1st torsion (5-15 m/s), 2nd tower fore-aft and
-    side-side and the tower torsion among them."""
+    to the next, the mode paired with it carries our same name at both, or the names are exchanged
+    in a closed cycle (a veering; all of them, below LIMIT_HZ).  Measured: 99 of 102 paired; 57
+    continued steps, 56 with one name -- the 1st and 2nd edge, 1st, 2nd and 3rd flap (BW, FW,
+    collective), 1st torsion, 2nd tower fore-aft and side-side and the tower torsion among them --
+    and one veering (HAWCStab2's mode 26, 10 -> 15 m/s: our 1st torsion FW -> 3rd tower fore-aft)."""
     pairs = {v: _pairs(sweep[v], v) for v in WINDS}
     n = sum(len(p) for p in pairs.values())
     unpaired = [(v, k, label, round(f, 3)) for v, p in pairs.items() for k, label, f, m in p if m is None]
     assert len(unpaired) <= 0.05 * n, f"unpaired HAWCStab2 modes: {unpaired}"
-    steps, wrong = 0, []
+    steps, wrong, veering = 0, [], []
     for a, b in zip(WINDS[:-1], WINDS[1:]):
         at_a = {k: (label, f, m) for k, label, f, m in pairs[a]}
+        moved = {_identity(at_a[k][2].identity_name): _identity(m.identity_name) for k, label, f, m in pairs[b]
+                 if k in at_a and m is not None and at_a[k][2] is not None}
         for k, label, f, m in pairs[b]:
             if k not in at_a or m is None or at_a[k][2] is None or at_a[k][0] != label:
                 continue
@@ -99,8 +106,24 @@ def test_hawcstab2_modes_below_4_hz_keep_our_names_as_hawcstab2_continues_them(s
                 continue
             steps += 1
             before, after = _identity(at_a[k][2].identity_name), _identity(m.identity_name)
-            if before != after:
-                wrong.append(f"HAWCStab2 mode {k} ({label}) {a:.0f} -> {b:.0f} m/s: ours {before} -> {after}")
-    print(f"{n - len(unpaired)} of {n} paired, {steps} continued steps")
+            if before == after:
+                continue
+            line = f"HAWCStab2 mode {k} ({label}) {a:.0f} -> {b:.0f} m/s: ours {before} -> {after}"
+            (veering if _cycle(moved, before) else wrong).append(line)
+    print(f"{n - len(unpaired)} of {n} paired, {steps} continued steps; veerings: {veering}")
     assert steps >= 30, steps  # the check is not empty
     assert not wrong, "\n".join(wrong)
+
+
+def _cycle(moved: dict, name: str) -> bool:
+    """Whether HAWCStab2's continuation permutes our names in a closed cycle through ``name``
+    (``moved``: our name at the first wind speed -> at the next, along HAWCStab2's mode numbers): two or
+    more of its modes exchange our names -- a veering, through which HAWCStab2's numbers follow the
+    branch (continuity of the eigenvector) and our names the participation, as issue 32 asks."""
+    seen, x = set(), moved.get(name)
+    while x is not None and x not in seen:
+        if x == name:
+            return True
+        seen.add(x)
+        x = moved.get(x)
+    return False
