@@ -1,0 +1,178 @@
+"""First-order eigenvalue perturbation of the multi-blade system of an operating point.
+
+The point's system (:class:`~windflutter.system.multiblade.MultiBladeSystem`) is
+
+    ``M q'' + C q' + K q = F z``,   ``z' = A z + Bq q + Bv q'``
+
+and its modes the eigenpairs of the state matrix ``S`` of ``x = [q, q', z]``
+(:meth:`~windflutter.system.multiblade.MultiBladeSystem.state_matrix`, the matrix
+:func:`windflutter.system.modes.point_modes` solves).  With the right eigenvector ``x`` and the left
+one ``y`` (``y^H S = lambda y^H``) of a simple eigenvalue,
+
+    ``dlambda = y^H dS x / y^H x``.
+
+Written with the blocks of ``S`` (``S_2 = M^-1 [-K, -C, F]``, ``x = [q, lambda q, z]``, and
+``M^-1 (-K q - lambda C q + F z) = lambda^2 q`` on the eigenvector), with ``w = M^-H y_2``:
+
+    ``y^H dS x = -w^H (lambda^2 dM + lambda dC + dK) q + w^H dF z + y_3^H (dBq q + lambda dBv q + dA z)``.
+
+The multi-blade matrices are sums over the blades of ``J_b^T (blade matrix) J_b`` terms and the
+Coleman transformation (:mod:`windflutter.system.multiblade`), so a change of the blade's own
+``(M_b, C_b, K_b)`` enters as ``sum_b l_b^T (dM_b r_M,b + dC_b r_C,b + dK_b r_K,b)`` with vectors
+``l_b``, ``r_*,b`` in the blade's coordinates (:func:`blade_vectors`); those are expanded to the
+blade's nodes once per mode, and every element's derivative is a 12 x 12 product.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.linalg as sla
+
+from windflutter.system.multiblade import axis_rotation, coleman_matrix
+
+
+@dataclass
+class ModeVectors:
+    """One mode's eigenvalue and the vectors of its perturbation.
+
+    ``lam`` the eigenvalue; ``x`` right, ``y`` left eigenvector of the state matrix; ``norm`` =
+    ``y^H x``; ``q``, ``z`` the structural and aerodynamic-state parts of ``x``; ``w = M^-H y_2``;
+    ``y3`` the state part of ``y``; ``gap`` the distance to the nearest other eigenvalue relative to
+    ``|lambda|``; ``condition`` = ``|x| |y| / |y^H x|`` (the eigenvalue's condition number).
+    """
+
+    lam: complex
+    x: np.ndarray
+    y: np.ndarray
+    norm: complex
+    q: np.ndarray
+    z: np.ndarray
+    w: np.ndarray
+    y3: np.ndarray
+    gap: float
+    condition: float
+
+
+def mode_vectors(mbc, eigenvalues) -> list[ModeVectors]:
+    """:class:`ModeVectors` of the eigenvalues ``eigenvalues`` (those of the point's named modes)
+    of ``mbc``'s state matrix: one dense eigen-solve with left and right vectors, as
+    :func:`~windflutter.system.modes.point_modes`' (the same matrix, so the same eigenvalues)."""
+    S = mbc.state_matrix()
+    lam, Y, X = sla.eig(S, left=True, right=True)
+    n = mbc.M.shape[0]
+    out = []
+    for target in np.atleast_1d(np.asarray(eigenvalues, complex)):
+        i = int(np.argmin(np.abs(lam - target)))
+        x, y = X[:, i], Y[:, i]
+        others = np.delete(lam, i)
+        gap = float(np.min(np.abs(others - lam[i])) / max(abs(lam[i]), 1e-300)) if others.size else np.inf
+        nrm = complex(np.vdot(y, x))
+        y2 = y[n:2 * n]
+        w = np.linalg.solve(mbc.M.T.conj(), y2)
+        out.append(ModeVectors(lam=complex(lam[i]), x=x, y=y, norm=nrm, q=x[:n], z=x[2 * n:], w=w, y3=y[2 * n:],
+                               gap=gap, condition=float(np.linalg.norm(x) * np.linalg.norm(y) / max(abs(nrm), 1e-300))))
+    return out
+
+
+def system_derivative(mv: ModeVectors, dM, dC, dK, dF=None, dA=None, dBq=None, dBv=None) -> complex:
+    """``dlambda`` of the mode ``mv`` for changes of the multi-blade matrices (module docstring);
+    any of them None: unchanged."""
+    lam, q, z = mv.lam, mv.q, mv.z
+    r = np.zeros_like(q)
+    for D, f in ((dM, lam**2), (dC, lam), (dK, 1.0)):
+        if D is not None:
+            r = r + f * (D @ q)
+    t = -np.vdot(mv.w, r)
+    if dF is not None and z.size:
+        t += np.vdot(mv.w, dF @ z)
+    if z.size:
+        s = np.zeros_like(z)
+        if dBq is not None:
+            s = s + dBq @ q
+        if dBv is not None:
+            s = s + lam * (dBv @ q)
+        if dA is not None:
+            s = s + dA @ z
+        t += np.vdot(mv.y3, s)
+    return complex(t / mv.norm)
+
+
+def mbc_derivative(mv: ModeVectors, plus, minus, h: float) -> complex:
+    """``dlambda/dp`` from two multi-blade systems at ``p = +h`` and ``-h`` (central differences of
+    the assembled matrices; the eigenvectors are the nominal point's)."""
+    d = {k: (getattr(plus, k) - getattr(minus, k)) / (2.0 * h) for k in ("M", "C", "K", "F", "A", "Bq", "Bv")}
+    return system_derivative(mv, d["M"], d["C"], d["K"], d["F"], d["A"], d["Bq"], d["Bv"])
+
+
+@dataclass
+class BladeVectors:
+    """Per blade ``b`` the left vector ``l[b]`` and the right vectors ``rM[b]``, ``rC[b]``, ``rK[b]``
+    (each (N, 6 + m), blade coordinates ``y = (h, eta)``): ``y^H dS x = -sum_b l_b^T (dM_b rM_b +
+    dC_b rC_b + dK_b rK_b)`` for a change of the blade's structural matrices."""
+
+    l: np.ndarray
+    rM: np.ndarray
+    rC: np.ndarray
+    rK: np.ndarray
+
+
+def _jacobians(L: np.ndarray, nF: int, m: int, N: int, b: int, omega: float, axis) -> tuple:
+    """Blade ``b``'s ``y_b = J q`` of the periodic coordinates at azimuth 0 and its time derivatives
+    (:func:`windflutter.system.multiblade.periodic_system`'s)."""
+    R = axis_rotation(axis, 2.0 * np.pi * b / N)
+    Q = np.zeros((6, 6))
+    Q[:3, :3] = Q[3:, 3:] = R.T
+    n = np.asarray(axis, float)
+    S = np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
+    S6 = np.zeros((6, 6))
+    S6[:3, :3] = S6[3:, 3:] = S
+    nq = nF + N * m
+    J, J1, J2 = np.zeros((6 + m, nq)), np.zeros((6 + m, nq)), np.zeros((6 + m, nq))
+    QL = Q @ L
+    J[:6, :nF] = QL
+    J1[:6, :nF] = -omega * S6 @ QL
+    J2[:6, :nF] = omega**2 * S6 @ S6 @ QL
+    J[6:, nF + b * m: nF + (b + 1) * m] = np.eye(m)
+    return J, J1, J2
+
+
+def blade_vectors(mv: ModeVectors, mbc, L: np.ndarray, omega: float, axis) -> BladeVectors:
+    """:class:`BladeVectors` of the mode ``mv`` of ``mbc`` (its hub-motion map ``L`` of the fixed
+    frame, rotor speed ``omega``, shaft ``axis``): the Coleman transformation at azimuth 0 and the
+    blade Jacobians, as :func:`~windflutter.system.multiblade.multiblade_system` forms them."""
+    nF, m, N = mbc.n_fixed, mbc.n_eta, mbc.n_blades
+    Cm, C1, C2 = coleman_matrix(N, 0.0)
+    I = np.eye(m)
+    nq = nF + N * m
+
+    def transform(C, f):
+        T = np.zeros((nq, nq))
+        T[nF:, nF:] = f * np.kron(C, I)
+        return T
+
+    T = transform(Cm, 1.0)
+    T[:nF, :nF] = np.eye(nF)
+    T1, T2 = transform(C1, omega), transform(C2, omega**2)
+    a = np.linalg.solve(T.T, mv.w)  # a^H = w^H T^-1
+    lam = mv.lam
+    u0, u1, u2 = T @ mv.q, T1 @ mv.q, T2 @ mv.q
+    ls, rM, rC, rK = [], [], [], []
+    for b in range(N):
+        J, J1, J2 = _jacobians(L, nF, m, N, b, omega, axis)
+        ls.append(J @ a.conj())
+        rM.append(J @ (lam**2 * u0 + 2 * lam * u1 + u2) + 2 * J1 @ (lam * u0 + u1) + J2 @ u0)
+        rC.append(J @ (lam * u0 + u1) + J1 @ u0)
+        rK.append(J @ u0)
+    return BladeVectors(l=np.array(ls), rM=np.array(rM), rC=np.array(rC), rK=np.array(rK))
+
+
+def frequency_damping(lam: complex, dlam):
+    """``(df_Hz, dzeta)`` of the undamped frequency ``|lambda| / 2 pi`` and the damping ratio
+    ``-Re lambda / |lambda|`` for eigenvalue changes ``dlam`` (array)."""
+    dlam = np.asarray(dlam, complex)
+    a = abs(lam)
+    da = np.real(np.conj(lam) * dlam) / a
+    dzeta = -(np.real(dlam) * a - lam.real * da) / a**2
+    return da / (2.0 * np.pi), dzeta
