@@ -62,6 +62,7 @@ def mode_vectors(mbc, eigenvalues) -> list[ModeVectors]:
     S = mbc.state_matrix()
     lam, Y, X = sla.eig(S, left=True, right=True)
     n = mbc.M.shape[0]
+    lu = sla.lu_factor(mbc.M)
     out = []
     for target in np.atleast_1d(np.asarray(eigenvalues, complex)):
         i = int(np.argmin(np.abs(lam - target)))
@@ -70,7 +71,7 @@ def mode_vectors(mbc, eigenvalues) -> list[ModeVectors]:
         gap = float(np.min(np.abs(others - lam[i])) / max(abs(lam[i]), 1e-300)) if others.size else np.inf
         nrm = complex(np.vdot(y, x))
         y2 = y[n:2 * n]
-        w = np.linalg.solve(mbc.M.T.conj(), y2)
+        w = sla.lu_solve(lu, y2.real, trans=1) + 1j * sla.lu_solve(lu, y2.imag, trans=1)  # M^H w = y_2 (M real)
         out.append(ModeVectors(lam=complex(lam[i]), x=x, y=y, norm=nrm, q=x[:n], z=x[2 * n:], w=w, y3=y[2 * n:],
                                gap=gap, condition=float(np.linalg.norm(x) * np.linalg.norm(y) / max(abs(nrm), 1e-300))))
     return out
@@ -138,29 +139,30 @@ def _jacobians(L: np.ndarray, nF: int, m: int, N: int, b: int, omega: float, axi
     return J, J1, J2
 
 
-def blade_vectors(mv: ModeVectors, mbc, L: np.ndarray, omega: float, axis) -> BladeVectors:
-    """:class:`BladeVectors` of the mode ``mv`` of ``mbc`` (its hub-motion map ``L`` of the fixed
-    frame, rotor speed ``omega``, shaft ``axis``): the Coleman transformation at azimuth 0 and the
-    blade Jacobians, as :func:`~windflutter.system.multiblade.multiblade_system` forms them."""
+def blade_jacobians(mbc, L: np.ndarray, omega: float, axis) -> list[tuple]:
+    """``[(J, J', J'')]`` of every blade (:func:`_jacobians`), for :func:`blade_vectors`."""
+    return [_jacobians(L, mbc.n_fixed, mbc.n_eta, mbc.n_blades, b, omega, axis) for b in range(mbc.n_blades)]
+
+
+def blade_vectors(mv: ModeVectors, mbc, jacobians: list[tuple], omega: float) -> BladeVectors:
+    """:class:`BladeVectors` of the mode ``mv`` of ``mbc`` (the blades' :func:`blade_jacobians` at
+    rotor speed ``omega``): the Coleman transformation at azimuth 0 and the blade Jacobians, as
+    :func:`~windflutter.system.multiblade.multiblade_system` forms them."""
     nF, m, N = mbc.n_fixed, mbc.n_eta, mbc.n_blades
     Cm, C1, C2 = coleman_matrix(N, 0.0)
-    I = np.eye(m)
-    nq = nF + N * m
 
-    def transform(C, f):
-        T = np.zeros((nq, nq))
-        T[nF:, nF:] = f * np.kron(C, I)
-        return T
+    def apply(C, v):  # kron(C, I_m) on the blade coordinates, 0 on the ground-fixed ones
+        out = np.zeros_like(v)
+        out[nF:] = (C @ v[nF:].reshape(N, m)).ravel()
+        return out
 
-    T = transform(Cm, 1.0)
-    T[:nF, :nF] = np.eye(nF)
-    T1, T2 = transform(C1, omega), transform(C2, omega**2)
-    a = np.linalg.solve(T.T, mv.w)  # a^H = w^H T^-1
+    a = np.concatenate([mv.w[:nF], (np.linalg.inv(Cm).T @ mv.w[nF:].reshape(N, m)).ravel()])  # a^H = w^H T^-1
     lam = mv.lam
-    u0, u1, u2 = T @ mv.q, T1 @ mv.q, T2 @ mv.q
+    u0 = apply(Cm, mv.q)
+    u0[:nF] = mv.q[:nF]
+    u1, u2 = omega * apply(C1, mv.q), omega**2 * apply(C2, mv.q)
     ls, rM, rC, rK = [], [], [], []
-    for b in range(N):
-        J, J1, J2 = _jacobians(L, nF, m, N, b, omega, axis)
+    for J, J1, J2 in jacobians:
         ls.append(J @ a.conj())
         rM.append(J @ (lam**2 * u0 + 2 * lam * u1 + u2) + 2 * J1 @ (lam * u0 + u1) + J2 @ u0)
         rC.append(J @ (lam * u0 + u1) + J1 @ u0)

@@ -30,7 +30,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from windflutter.rotor.spin import beam_spin_elements
-from windflutter.sensitivity.eigen import ModeVectors, blade_vectors, mbc_derivative, mode_vectors
+from windflutter.sensitivity.eigen import (ModeVectors, blade_jacobians, blade_vectors, mbc_derivative, mode_vectors,
+                                          system_derivative)
 from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections,
                                                 check_parameters)
 from windflutter.structure.beam import beam_global_matrices
@@ -108,10 +109,10 @@ def _expanded(ps, mvs: list[ModeVectors]):
     B = np.asarray(rb.basis_full(ps.Phi).toarray() if hasattr(rb.basis_full(ps.Phi), "toarray")
                    else rb.basis_full(ps.Phi))
     B0 = B[:, 6:]
-    L = ps.fixed.L
+    jac = blade_jacobians(ps.mbc, ps.fixed.L, ps.omega, rb.axis)
     out = {k: [] for k in ("L", "L0", "RM", "RC", "RC0", "RK", "RK0")}
     for mv in mvs:
-        bv = blade_vectors(mv, ps.mbc, L, ps.omega, rb.axis)
+        bv = blade_vectors(mv, ps.mbc, jac, ps.omega)
         out["L"].append(bv.l @ B.T)
         out["L0"].append(bv.l[:, 6:] @ B0.T)
         out["RM"].append(bv.rM @ B.T)
@@ -175,7 +176,6 @@ def global_derivatives(om, ps, mvs: list[ModeVectors], names, models: dict | Non
     """``{name: (k,) dlambda/dp}`` of the global parameters: central differences of the multi-blade
     matrices (the support rebuilt from the changed turbine, or the aerodynamics scaled).
     ``models``: a cache ``{(name, p): OperationalModel}`` of the changed turbines' models."""
-    from windflutter.system.operational import OperationalModel
     from windflutter.system.support import fixed_frame
 
     axis = om.rotor.shaft_axis
@@ -192,14 +192,30 @@ def global_derivatives(om, ps, mvs: list[ModeVectors], names, models: dict | Non
             key = (name, s)
             mod = None if models is None else models.get(key)
             if mod is None:
-                t, o = g.change(om.turbine, om.options, s)
-                mod = OperationalModel(t, o)
+                mod = om.variant(*g.change(om.turbine, om.options, s))
                 if models is not None:
                     models[key] = mod
-            ff = fixed_frame(mod.support(), mod.hub_mass(), axis, mod.drivetrain())
-            mbcs.append(multiblade_system(ff, ps.blade_system, ps.n_blades, ps.omega, axis))
-        out[name] = np.array([mbc_derivative(mv, mbcs[0], mbcs[1], h) for mv in mvs])
+            mbcs.append(fixed_frame(mod.support(), mod.hub_mass(), axis, mod.drivetrain()))
+        if g.part == "aero":
+            out[name] = np.array([mbc_derivative(mv, mbcs[0], mbcs[1], h) for mv in mvs])
+        else:
+            out[name] = np.array([_fixed_derivative(mv, ps, mbcs[0], mbcs[1], h) for mv in mvs])
     return out
+
+
+def _fixed_derivative(mv: ModeVectors, ps, plus, minus, h: float) -> complex:
+    """``dlambda/dp`` of a change of the ground-fixed part alone (:class:`~windflutter.system.
+    multiblade.FixedFrame`, its hub-motion map unchanged): it enters the multi-blade matrices as
+    their ground-fixed block (the Coleman transformation is the identity there)."""
+    if plus.size != minus.size or not np.allclose(plus.L, minus.L, rtol=0, atol=1e-12 * max(np.abs(plus.L).max(), 1)):
+        raise ValueError("the hub-motion map of the ground-fixed part changed: not a ground-fixed-only parameter")
+    n, nF = ps.mbc.M.shape[0], plus.size
+    d = []
+    for k in ("M", "C", "K"):
+        D = np.zeros((n, n))
+        D[:nF, :nF] = (getattr(plus, k) - getattr(minus, k)) / (2.0 * h)
+        d.append(D)
+    return system_derivative(mv, *d)
 
 
 def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=None,

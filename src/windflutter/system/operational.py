@@ -242,6 +242,15 @@ class OperationalModel:
             self._blade_zero = (fe, assemble(fe), sec)
         return self._blade_zero
 
+    def variant(self, turbine, options: OperationalOptions | None = None) -> "OperationalModel":
+        """A model of ``turbine`` (a changed copy of this one's: support, nacelle, drivetrain) that
+        shares this model's cached blade parts and identities -- the blade's data must be unchanged
+        (design sensitivities, :mod:`windflutter.sensitivity`)."""
+        out = OperationalModel(turbine, options or self.options)
+        out._blades, out._blade_zero = self._blades, getattr(self, "_blade_zero", None)
+        out._reference = getattr(self, "_reference", None)
+        return out
+
     def reference(self):
         """The structural identities of this model (:func:`windflutter.system.identity.
         structural_reference`: the blade's standstill modes, the support's own modes), cached."""
