@@ -25,6 +25,7 @@ blade's nodes once per mode, and every element's derivative is a 12 x 12 product
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -53,28 +54,50 @@ class ModeVectors:
     y3: np.ndarray
     gap: float
     condition: float
+    neighbour: "ModeVectors | None" = None
 
 
 def mode_vectors(mbc, eigenvalues) -> list[ModeVectors]:
     """:class:`ModeVectors` of the eigenvalues ``eigenvalues`` (those of the point's named modes)
     of ``mbc``'s state matrix: one dense eigen-solve with left and right vectors, as
-    :func:`~windflutter.system.modes.point_modes`' (the same matrix, so the same eigenvalues)."""
+    :func:`~windflutter.system.modes.point_modes`' (the same matrix, so the same eigenvalues).
+    Each carries its nearest other eigenvalue's vectors as ``neighbour`` (:func:`pair_vectors`)."""
     S = mbc.state_matrix()
     lam, Y, X = sla.eig(S, left=True, right=True)
     n = mbc.M.shape[0]
     lu = sla.lu_factor(mbc.M)
-    out = []
-    for target in np.atleast_1d(np.asarray(eigenvalues, complex)):
-        i = int(np.argmin(np.abs(lam - target)))
+
+    def vectors(i: int, gap: float) -> ModeVectors:
         x, y = X[:, i], Y[:, i]
-        others = np.delete(lam, i)
-        gap = float(np.min(np.abs(others - lam[i])) / max(abs(lam[i]), 1e-300)) if others.size else np.inf
         nrm = complex(np.vdot(y, x))
         y2 = y[n:2 * n]
         w = sla.lu_solve(lu, y2.real, trans=1) + 1j * sla.lu_solve(lu, y2.imag, trans=1)  # M^H w = y_2 (M real)
-        out.append(ModeVectors(lam=complex(lam[i]), x=x, y=y, norm=nrm, q=x[:n], z=x[2 * n:], w=w, y3=y[2 * n:],
-                               gap=gap, condition=float(np.linalg.norm(x) * np.linalg.norm(y) / max(abs(nrm), 1e-300))))
+        return ModeVectors(lam=complex(lam[i]), x=x, y=y, norm=nrm, q=x[:n], z=x[2 * n:], w=w, y3=y[2 * n:],
+                           gap=gap, condition=float(np.linalg.norm(x) * np.linalg.norm(y) / max(abs(nrm), 1e-300)))
+
+    out = []
+    for target in np.atleast_1d(np.asarray(eigenvalues, complex)):
+        i = int(np.argmin(np.abs(lam - target)))
+        dist = np.abs(lam - lam[i])
+        dist[i] = np.inf
+        j = int(np.argmin(dist))
+        mv = vectors(i, float(dist[j] / max(abs(lam[i]), 1e-300)))
+        if np.isfinite(dist[j]):
+            mv.neighbour = vectors(j, mv.gap)
+        out.append(mv)
     return out
+
+
+def pair_vectors(mv: ModeVectors) -> tuple[ModeVectors, ModeVectors]:
+    """The cross terms of a mode ``i`` and its neighbour ``j``: vectors whose derivatives
+    (:func:`system_derivative`, :mod:`windflutter.sensitivity.point`) are
+    ``kappa_ji = y_j^H dS x_i / y_j^H x_j`` and ``kappa_ij = y_i^H dS x_j / y_i^H x_i``, the
+    coupling of the pair by the change (the eigenvector derivative's term towards the other is
+    ``kappa_ji / (lambda_i - lambda_j)``)."""
+    nb = mv.neighbour
+    ji = dataclasses.replace(mv, w=nb.w, y3=nb.y3, norm=nb.norm)
+    ij = dataclasses.replace(nb, w=mv.w, y3=mv.y3, norm=mv.norm)
+    return ji, ij
 
 
 def system_derivative(mv: ModeVectors, dM, dC, dK, dF=None, dA=None, dBq=None, dBv=None) -> complex:

@@ -31,17 +31,21 @@ import numpy as np
 
 from windflutter.rotor.spin import beam_spin_elements
 from windflutter.sensitivity.eigen import (ModeVectors, blade_jacobians, blade_vectors, mbc_derivative, mode_vectors,
-                                          system_derivative)
+                                          pair_vectors, system_derivative)
 from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections,
                                                 check_parameters)
 from windflutter.structure.beam import beam_global_matrices
 from windflutter.system.multiblade import BladeSystem, multiblade_system
 
-#: a mode whose nearest other eigenvalue lies within this fraction of |lambda| and whose
-#: eigenvalue condition number exceeds CONDITION_LIMIT is near a veering or crossing: its
-#: first-order derivative is not defined (the pair exchanges character faster than first order)
-GAP_LIMIT = 0.02
-CONDITION_LIMIT = 50.0
+#: the change a sensitivity is read for (the ranked table's): 1 % of a relative parameter, 1 cm of
+#: an offset
+UNIT_RELATIVE, UNIT_OFFSET = 0.01, 0.01
+#: a mode's first-order derivative is "not defined" for a parameter when that change couples it to
+#: its nearest eigenvalue by more than this fraction of half their distance, ``2 sqrt(|kappa_ij
+#: kappa_ji|) dp / |lambda_i - lambda_j|`` (:func:`~windflutter.sensitivity.eigen.pair_vectors`): a
+#: pair near a veering or crossing, whose eigenvalues move as ``sqrt((Delta/2)^2 + kappa_ij kappa_ji
+#: dp^2)``, not linearly
+PAIR_LIMIT = 0.2
 
 
 @dataclass
@@ -51,8 +55,10 @@ class PointSensitivity:
     ``modes`` the :class:`~windflutter.system.modes.ModeRecord` objects; ``blade[prop]`` (k, ne)
     complex ``dlambda/dp`` (1/s per unit of ``p``) of every mode and blade element;
     ``globals_[name]`` (k,) complex; ``station`` (ne,) the elements' mid-span radius over the tip
-    radius; ``defined`` (k,) False for a mode near a veering or crossing (:data:`GAP_LIMIT`);
-    ``gap``, ``condition`` (k,) what decided it.
+    radius; ``pair_ratio[name]`` (k,) the coupling of each mode to its nearest eigenvalue by the unit
+    change of the parameter over the whole blade (:data:`PAIR_LIMIT`) and ``defined[name]`` (k,)
+    whether it is below the limit; ``gap`` (k,) the distance to the nearest eigenvalue over
+    ``|lambda|``, ``condition`` (k,) the eigenvalue's condition number.
     """
 
     wind_speed: float
@@ -61,7 +67,8 @@ class PointSensitivity:
     blade: dict = field(default_factory=dict)
     globals_: dict = field(default_factory=dict)
     station: np.ndarray | None = None
-    defined: np.ndarray | None = None
+    pair_ratio: dict = field(default_factory=dict)
+    defined: dict = field(default_factory=dict)
     gap: np.ndarray | None = None
     condition: np.ndarray | None = None
 
@@ -233,12 +240,25 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
 
         raise InputError("model", "shell", "beam blades (the sensitivities of shell blades are not built yet)")
     mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in modes])
-    gap = np.array([mv.gap for mv in mvs])
-    cond = np.array([mv.condition for mv in mvs])
     res = PointSensitivity(wind_speed=ps.wind_speed, omega=ps.omega, modes=list(modes), station=element_stations(om),
-                           gap=gap, condition=cond, defined=~((gap < GAP_LIMIT) & (cond > CONDITION_LIMIT)))
+                           gap=np.array([mv.gap for mv in mvs]), condition=np.array([mv.condition for mv in mvs]))
     if not mvs:
         return res
-    res.blade = blade_derivatives(om, ps, mvs, props) if props else {}
-    res.globals_ = global_derivatives(om, ps, mvs, globs, models) if globs else {}
+    pairs = [pair_vectors(mv) for mv in mvs]
+    every = mvs + [p[0] for p in pairs] + [p[1] for p in pairs]
+    k = len(mvs)
+    dist = np.array([abs(mv.lam - mv.neighbour.lam) for mv in mvs])
+    found = {}
+    if props:
+        found.update(blade_derivatives(om, ps, every, props))
+    if globs:
+        found.update(global_derivatives(om, ps, every, globs, models))
+    for name, v in found.items():
+        main = v[:k]
+        whole = v.sum(axis=1) if v.ndim == 2 else v  # the blade properties: the whole blade's change
+        unit = UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
+        ratio = 2.0 * np.sqrt(np.abs(whole[k:2 * k] * whole[2 * k:])) * unit / np.maximum(dist, 1e-300)
+        (res.blade if v.ndim == 2 else res.globals_)[name] = main
+        res.pair_ratio[name] = ratio
+        res.defined[name] = ratio < PAIR_LIMIT
     return res
