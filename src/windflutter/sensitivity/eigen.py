@@ -100,6 +100,16 @@ def pair_vectors(mv: ModeVectors) -> tuple[ModeVectors, ModeVectors]:
     return ji, ij
 
 
+def pair_ratio(mv: ModeVectors, kappa_ji, kappa_ij, step: float):
+    """``2 sqrt(|kappa_ij kappa_ji|) step / |lambda_i - lambda_j|``: how strongly a change ``step`` of
+    a parameter (whose pair couplings are ``kappa_ji``, ``kappa_ij``, :func:`pair_vectors`) couples
+    the mode to its nearest eigenvalue, over half their distance.  Two eigenvalues a coupling
+    ``kappa`` mixes move as ``sqrt((Delta/2)^2 + kappa_ij kappa_ji dp^2)``: linear in ``dp`` -- the
+    first-order derivative meaningful -- only while this is well below 1."""
+    dist = abs(mv.lam - mv.neighbour.lam) if mv.neighbour is not None else np.inf
+    return 2.0 * np.sqrt(np.abs(np.asarray(kappa_ji) * np.asarray(kappa_ij))) * step / max(dist, 1e-300)
+
+
 def system_derivative(mv: ModeVectors, dM, dC, dK, dF=None, dA=None, dBq=None, dBv=None) -> complex:
     """``dlambda`` of the mode ``mv`` for changes of the multi-blade matrices (module docstring);
     any of them None: unchanged."""

@@ -31,7 +31,7 @@ import numpy as np
 
 from windflutter.rotor.spin import beam_spin_elements
 from windflutter.sensitivity.eigen import (ModeVectors, blade_jacobians, blade_vectors, mbc_derivative, mode_vectors,
-                                          pair_vectors, system_derivative)
+                                          pair_ratio, pair_vectors, system_derivative)
 from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections,
                                                 check_parameters)
 from windflutter.structure.beam import beam_global_matrices
@@ -247,7 +247,6 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
     pairs = [pair_vectors(mv) for mv in mvs]
     every = mvs + [p[0] for p in pairs] + [p[1] for p in pairs]
     k = len(mvs)
-    dist = np.array([abs(mv.lam - mv.neighbour.lam) for mv in mvs])
     found = {}
     if props:
         found.update(blade_derivatives(om, ps, every, props))
@@ -257,7 +256,7 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
         main = v[:k]
         whole = v.sum(axis=1) if v.ndim == 2 else v  # the blade properties: the whole blade's change
         unit = UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
-        ratio = 2.0 * np.sqrt(np.abs(whole[k:2 * k] * whole[2 * k:])) * unit / np.maximum(dist, 1e-300)
+        ratio = np.array([pair_ratio(mv, whole[k + i], whole[2 * k + i], unit) for i, mv in enumerate(mvs)])
         (res.blade if v.ndim == 2 else res.globals_)[name] = main
         res.pair_ratio[name] = ratio
         res.defined[name] = ratio < PAIR_LIMIT
