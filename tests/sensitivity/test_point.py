@@ -17,42 +17,10 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from sensitivity_checks import MAX_HZ, SEGMENT, WIND, mismatches
 from windflutter.sensitivity import finite_difference as fd
 from windflutter.sensitivity.eigen import blade_jacobians, blade_vectors, frequency_damping, mbc_derivative
-from windflutter.sensitivity.point import point_sensitivities
-from windflutter.system.modes import point_modes
 from windflutter.system.multiblade import BladeSystem, multiblade_system
-
-WIND, MAX_HZ = 15.0, 2.0
-#: the blade elements of the spanwise segment changed (r/R ~ 0.3-0.5 of the 30-element blade)
-SEGMENT = np.arange(8, 14)
-
-
-@pytest.fixture(scope="module")
-def point(nrel5mw):
-    from windflutter.api import analysis_config
-    from windflutter.operating import campbell_model
-
-    om = campbell_model(nrel5mw, analysis_config())
-    ps = om.at(WIND)
-    modes = point_modes(ps, MAX_HZ)
-    return om, ps, modes, point_sensitivities(om, ps, modes)
-
-
-def mismatches(res, derivs: dict, reference: dict, label: str) -> list[str]:
-    """The modes whose frequency or damping derivative misses the reference (module tolerance)."""
-    bad = []
-    for i, m in enumerate(res.modes):
-        ref = reference[m.identity_name]
-        assert np.isfinite(ref), f"{label}: {m.identity_name} not found after the change"
-        lam = complex(m.eigenvalue)
-        (df, dz), (df0, dz0) = frequency_damping(lam, derivs[i]), frequency_damping(lam, ref)
-        if abs(df - df0) > max(0.01 * abs(df0), 1e-4 * m.frequency_hz):
-            bad.append(f"{label} {m.identity_name}: dfreq {df:.6g} against {df0:.6g} Hz")
-        if abs(dz - dz0) > max(0.01 * abs(dz0), 1e-4):
-            bad.append(f"{label} {m.identity_name}: dzeta {dz:.6g} against {dz0:.6g}")
-    return bad
-
 
 def _defined(res, name):
     assert np.all(res.defined[name]), f"{name}: a mode near a veering at {WIND} m/s: {res.pair_ratio[name]}"
@@ -114,3 +82,27 @@ def test_station_sums_and_units(point):
     assert res.blade["edge_stiffness"].shape == (len(modes), len(st))
     ref = fd.frozen_blade(om, ps, res.names, "damping", 1e-2, SEGMENT, MAX_HZ)
     assert mismatches(res, res.blade["damping"][:, SEGMENT].sum(axis=1), ref, "damping") == []
+
+
+def test_dataset_and_ranked_table(point):
+    """The Dataset of the point (dimensions, units, the derivatives of the point's result) and the
+    ranked table's sentence: +1 % of a property over a segment is the segment's sum x 0.01, in
+    percentage points of damping."""
+    from windflutter.sensitivity.results import as_dataset, segment_table, sentence
+
+    om, ps, modes, res = point
+    ds = as_dataset([res], "NREL 5MW")
+    assert dict(ds["ddamping"].sizes) == {"mode": len(modes), "wind_speed": 1, "parameter": 8,
+                                          "station": len(res.station)}
+    assert ds["dfrequency"].attrs["units"] == "Hz" and ds["station"].attrs["units"] == "1"
+    i = res.names.index("1st edge BW")
+    lam = complex(modes[i].eigenvalue)
+    dz = [frequency_damping(lam, d)[1] for d in res.blade["edge_stiffness"][i]]
+    assert np.allclose(ds["ddamping"].sel(mode="1st edge BW", parameter="edge_stiffness").values[0], dz)
+    rows = segment_table(ds, modes=["1st edge BW"])
+    assert abs(rows[0]["dzeta_points"]) >= abs(rows[-1]["dzeta_points"])
+    row = next(r for r in rows if r["parameter"] == "edge_stiffness" and r["segment"] == (0.2, 0.4))
+    sel = (res.station >= 0.2) & (res.station < 0.4)
+    assert row["dzeta_points"] == pytest.approx(100 * 0.01 * np.sum(np.array(dz)[sel]))
+    text = sentence(row)
+    assert text.startswith("+1 % edge stiffness at r/R 0.2-0.4 ") and "the 1st edge BW damping at 15 m/s by" in text
