@@ -110,7 +110,7 @@ def pair_ratio(mv: ModeVectors, kappa_ji, kappa_ij, step: float):
     return 2.0 * np.sqrt(np.abs(np.asarray(kappa_ji) * np.asarray(kappa_ij))) * step / max(dist, 1e-300)
 
 
-def system_derivative(mv: ModeVectors, dM, dC, dK, dF=None, dA=None, dBq=None, dBv=None) -> complex:
+def system_derivative(mv: ModeVectors, dM=None, dC=None, dK=None, dF=None, dA=None, dBq=None, dBv=None) -> complex:
     """``dlambda`` of the mode ``mv`` for changes of the multi-blade matrices (module docstring);
     any of them None: unchanged."""
     lam, q, z = mv.lam, mv.q, mv.z

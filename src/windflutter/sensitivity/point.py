@@ -113,8 +113,8 @@ def _expanded(ps, mvs: list[ModeVectors]):
     """Left and right vectors of the modes at the blade's nodes: dict of (k, N, n_dof) arrays --
     ``L`` (all of y), ``L0`` (the elastic part eta only), ``RM``, ``RC``, ``RC0``, ``RK``, ``RK0``."""
     rb = ps.blade
-    B = np.asarray(rb.basis_full(ps.Phi).toarray() if hasattr(rb.basis_full(ps.Phi), "toarray")
-                   else rb.basis_full(ps.Phi))
+    B = rb.basis_full(ps.Phi)
+    B = B.toarray() if hasattr(B, "toarray") else np.asarray(B)
     B0 = B[:, 6:]
     jac = blade_jacobians(ps.mbc, ps.fixed.L, ps.omega, rb.axis)
     out = {k: [] for k in ("L", "L0", "RM", "RC", "RC0", "RK", "RK0")}

@@ -15,7 +15,8 @@ from windflutter.errors import InputError
 from windflutter.units import RPM
 from windflutter.sensitivity.eigen import frequency_damping
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
-from windflutter.sensitivity.point import UNIT_OFFSET, UNIT_RELATIVE, PointSensitivity, point_sensitivities
+from windflutter.sensitivity.point import (PAIR_LIMIT, UNIT_OFFSET, UNIT_RELATIVE, PointSensitivity,
+                                           point_sensitivities)
 
 #: the spanwise segments (r/R) the ranked table sums the stations over
 SEGMENTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -97,8 +98,8 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
          "ddamping_global": (dims_g, dz_g, {"units": "1", "long_name": "d damping ratio / d parameter " + per}),
          "pair_ratio": (("mode", "wind_speed", "any_parameter"), ratio, {
              "units": "1", "long_name": "coupling of the mode to its nearest eigenvalue by the unit change of the "
-             "parameter over the whole blade, over half their distance; >= 0.2: the derivative is not defined "
-             "(a veering or crossing)"})},
+             "parameter over the whole blade, over half their distance; >= " f"{PAIR_LIMIT:g}" ": the derivative is "
+             "not defined (a veering or crossing)"})},
         coords={"mode": names, "wind_speed": ("wind_speed", [p.wind_speed for p in points], {"units": "m/s"}),
                 "rotor_speed": ("wind_speed", [p.omega / RPM for p in points], {"units": "rpm"}),
                 "parameter": props, "global_parameter": globs, "any_parameter": allp,
@@ -113,7 +114,7 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                          "central differences",
                "held_fixed": "the steady state (deflected shape, its stress, inflow, strip linearization) and the "
                              "blade's reduction basis"})
-    ds["defined"] = ds["pair_ratio"] < 0.2
+    ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
     ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
     for k, v in (assumptions or {}).items():
         ds.attrs[f"model_{k}"] = str(v)
