@@ -302,7 +302,7 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
 
 
 def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None, global_parameters=None,
-                max_hz: float | None = None, config: Any = None, progress=None, **options):
+                total: bool = False, max_hz: float | None = None, config: Any = None, progress=None, **options):
     """Design sensitivities: the derivative of each named mode's frequency and damping ratio with
     respect to the blade's section properties (per beam element) and global parameters, at each wind
     speed -- ``windflutter sensitivity`` (:mod:`windflutter.sensitivity`, docs/sensitivity.md).
@@ -314,6 +314,9 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     modes : identity names to keep (``["1st edge BW"]``); default every mode up to ``max_hz``.
     blade_properties, global_parameters : names (:data:`~windflutter.sensitivity.parameters.
         BLADE_PROPERTIES`, ``GLOBAL_PARAMETERS``); default all.
+    total : also the whole-blade and global parameters' derivatives by whole re-analyses (the steady
+        state recomputed, which the sensitivities hold fixed; two re-analyses per parameter and wind
+        speed): ``dfrequency_total``, ``ddamping_total``.
     max_hz, config, progress, **options : as :func:`campbell`.
 
     Returns
@@ -343,7 +346,7 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
     hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
     pts = sensitivities(om, winds, hz, modes=modes, blade_properties=blade_properties,
-                        global_parameters=global_parameters, progress=progress)
+                        global_parameters=global_parameters, progress=progress, total=bool(total))
     return as_dataset(pts, str(getattr(t, "name", "")), om.describe())
 
 

@@ -106,3 +106,23 @@ def test_dataset_and_ranked_table(point):
     assert row["dzeta_points"] == pytest.approx(100 * 0.01 * np.sum(np.array(dz)[sel]))
     text = sentence(row)
     assert text.startswith("+1 % edge stiffness at r/R 0.2-0.4 ") and "the 1st edge BW damping at 15 m/s by" in text
+
+
+def test_total_columns(point):
+    """``total`` (whole re-analyses) enter the dataset on ``any_parameter`` and the second table;
+    plumbing only (here the held derivatives stand in for them: the sentence must then show the same
+    number twice). The re-analyses themselves: test_point_slow.py, test_tower_stiffness_... above."""
+    import dataclasses
+
+    from windflutter.sensitivity.results import as_dataset, total_table
+
+    om, ps, modes, res = point
+    whole = {k: v.sum(axis=1) for k, v in res.blade.items()} | dict(res.globals_)
+    ds = as_dataset([dataclasses.replace(res, total=whole)])
+    assert ds["ddamping_total"].sizes["any_parameter"] == 12
+    lines = total_table(ds, modes=["1st edge BW"])
+    assert len(lines) == 12
+    for line in lines:
+        by = float(line.split(" by ")[1].split(" points")[0])
+        held = float(line.split("points (")[1].split(" with")[0])
+        assert abs(held) == pytest.approx(by, rel=2e-3, abs=1e-6)

@@ -32,6 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     add_flags(p, FLAGS)
     p.add_argument("--modes", nargs="+", default=None, metavar="NAME",
                    help="modes to analyse by name, e.g. '1st edge BW' (quoted); default every mode")
+    p.add_argument("--total", action="store_true", help="also whole re-analyses with the steady state recomputed "
+                   "(whole blade and global parameters; two re-analyses per parameter and wind speed)")
     p.add_argument("--top", type=int, default=12, metavar="N", help="lines of the ranked table (default 12)")
     p.add_argument("--out", default=None, metavar="FILE", help="write the sensitivities as NetCDF (.nc)")
     p.add_argument("--plot", default=None, metavar="FILE", help="plot the spanwise sensitivity of the least "
@@ -43,7 +45,7 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.api import sensitivity  # noqa: PLC0415
     from windflutter.config import load_config  # noqa: PLC0415
     from windflutter.files import check_output_file, prepare_output_file  # noqa: PLC0415
-    from windflutter.sensitivity.results import segment_table, sentence, spanwise_figure  # noqa: PLC0415
+    from windflutter.sensitivity.results import segment_table, sentence, spanwise_figure, total_table  # noqa: PLC0415
 
     try:
         config = load_config(None, config_overrides(args, FLAGS))
@@ -56,7 +58,7 @@ def run(args: argparse.Namespace) -> int:
         if path is not None:  # before the analysis
             check_output_file(path, flag, exts)
     winds = config.wind_speeds if args.wind_speeds is not None else None
-    ds = sensitivity(args.turbine, winds, modes=args.modes, config=config)
+    ds = sensitivity(args.turbine, winds, modes=args.modes, total=args.total, config=config)
     if args.out:
         out = ds.copy()
         out["defined"] = out["defined"].astype("int8")  # NetCDF has no boolean
@@ -69,4 +71,9 @@ def run(args: argparse.Namespace) -> int:
           ("" if args.modes else " of the 3 least damped modes at each wind speed"))
     for r in rows[:args.top]:
         print("  " + sentence(r))
+    lines = total_table(ds, modes=args.modes)
+    if lines:
+        print("whole re-analyses (steady state recomputed), largest first:")
+        for line in lines[:args.top]:
+            print("  " + line)
     return 0

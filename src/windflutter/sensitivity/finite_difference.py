@@ -92,7 +92,13 @@ def frozen_global(om, ps, names, name: str, h: float, max_hz: float = 2.5) -> di
 
 def blade_data(turbine, name: str, p: float):
     """``turbine`` with the blade property ``name`` changed by ``p`` at every station of its beam
-    properties (the whole blade)."""
+    properties (the whole blade); ``damping``: its stiffness-proportional coefficients times ``1 + p``."""
+    if BLADE_PROPERTIES[name].change is None:
+        d = turbine.blade.damping
+        if d is None or d.mu is None:
+            return turbine
+        blade = dataclasses.replace(turbine.blade, damping=dataclasses.replace(d, mu=np.asarray(d.mu, float) * (1 + p)))
+        return dataclasses.replace(turbine, blade=blade)
     beam = turbine.blade.beam
     K, M = np.array(beam.stiffness, float), np.array(beam.mass, float)
     change = BLADE_PROPERTIES[name].change
@@ -115,3 +121,16 @@ def full_reanalysis(om, wind_speed: float, names, name: str, h: float, max_hz: f
             t, o = blade_data(om.turbine, name, s), om.options
         out.append(_by_name(point_modes(OperationalModel(t, o).at(wind_speed), max_hz)))
     return _difference(out[0], out[1], names, h)
+
+
+def total_derivatives(om, wind_speed: float, names, parameters, max_hz: float = 2.5, steps=None) -> dict:
+    """``{parameter: (k,) dlambda/dp}`` of the modes ``names`` by :func:`full_reanalysis` (the steady
+    state recomputed): the blade properties over the whole blade and the global parameters; NaN for a
+    mode not found after a change.  ``steps``: ``{parameter: h}`` (default 1e-3; 1 mm for offsets)."""
+    out = {}
+    for name in parameters:
+        h = (steps or {}).get(name, 1e-2 if name in BLADE_PROPERTIES and BLADE_PROPERTIES[name].change is None
+                              else 1e-3)
+        d = full_reanalysis(om, wind_speed, names, name, h, max_hz)
+        out[name] = np.array([d[n] for n in names])
+    return out

@@ -69,6 +69,8 @@ class PointSensitivity:
     station: np.ndarray | None = None
     pair_ratio: dict = field(default_factory=dict)
     defined: dict = field(default_factory=dict)
+    #: ``{name: (k,) dlambda/dp}`` by whole re-analyses (steady state recomputed), when asked for
+    total: dict = field(default_factory=dict)
     gap: np.ndarray | None = None
     condition: np.ndarray | None = None
 

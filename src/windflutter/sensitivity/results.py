@@ -23,10 +23,13 @@ SEGMENTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
 
 
 def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=None, global_parameters=None,
-                  progress=None) -> list[PointSensitivity]:
+                  progress=None, total: bool = False) -> list[PointSensitivity]:
     """:class:`PointSensitivity` of each wind speed (m/s) of the operating-point model ``om``: its
     modes up to ``max_hz`` (Hz), named and carried along the wind speeds as
-    :func:`windflutter.system.campbell.campbell` does; ``modes`` (identity names) keeps only those."""
+    :func:`windflutter.system.campbell.campbell` does; ``modes`` (identity names) keeps only those.
+    ``total``: also the whole-blade and global parameters' derivatives by whole re-analyses (the
+    steady state recomputed; :func:`~windflutter.sensitivity.finite_difference.total_derivatives`,
+    two re-analyses per parameter) in ``PointSensitivity.total``."""
     from windflutter.system.campbell import ambiguous
     from windflutter.system.modes import point_modes
 
@@ -42,7 +45,12 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
             named = point_modes(ps, max_hz=max_hz, previous=mid)
         prev = named
         keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
-        out.append(point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models))
+        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models)
+        if total and keep:
+            from windflutter.sensitivity.finite_difference import total_derivatives
+
+            res.total = total_derivatives(om, v, res.names, list(res.blade) + list(res.globals_), max_hz)
+        out.append(res)
     if modes is not None:
         seen = {n for r in out for n in r.names}
         missing = [n for n in modes if n not in seen]
@@ -74,6 +82,7 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
     df_g, dz_g = np.full(shape + (len(globs),), np.nan), np.full(shape + (len(globs),), np.nan)
     allp = props + globs
     ratio = np.full(shape + (len(allp),), np.nan)
+    df_t, dz_t = np.full(shape + (len(allp),), np.nan), np.full(shape + (len(allp),), np.nan)
     for j, p in enumerate(points):
         for k, m in enumerate(p.modes):
             i = names.index(m.identity_name)
@@ -85,6 +94,8 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                 df_g[i, j, a], dz_g[i, j, a] = frequency_damping(lam, p.globals_[name][k])
             for a, name in enumerate(allp):
                 ratio[i, j, a] = p.pair_ratio[name][k]
+                if name in p.total:
+                    df_t[i, j, a], dz_t[i, j, a] = frequency_damping(lam, p.total[name][k])
     per = "per unit of the parameter (relative ones: per +100 %, i.e. 100 x the change for +1 %; offsets: per m)"
     dims_b, dims_g = ("mode", "wind_speed", "parameter", "station"), ("mode", "wind_speed", "global_parameter")
     ds = xr.Dataset(
@@ -114,6 +125,13 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                          "central differences",
                "held_fixed": "the steady state (deflected shape, its stress, inflow, strip linearization) and the "
                              "blade's reduction basis"})
+    if any(p.total for p in points):
+        ds["dfrequency_total"] = (("mode", "wind_speed", "any_parameter"), df_t, {
+            "units": "Hz", "long_name": "d frequency / d parameter by whole re-analyses (steady state recomputed; "
+            "blade properties over the whole blade) " + per})
+        ds["ddamping_total"] = (("mode", "wind_speed", "any_parameter"), dz_t, {
+            "units": "1", "long_name": "d damping ratio / d parameter by whole re-analyses (steady state "
+            "recomputed; blade properties over the whole blade) " + per})
     ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
     ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
     for k, v in (assumptions or {}).items():
@@ -128,14 +146,8 @@ def segment_table(ds, segments=SEGMENTS, modes=None, least: int = 3) -> list[dic
     mode names to tabulate (default: the ``least`` least damped modes of each wind speed)."""
     rows = []
     st = np.asarray(ds["station"].values, float)
-    z = ds["damping_ratio"].values
     for j, v in enumerate(ds["wind_speed"].values):
-        if modes is not None:
-            chosen = [str(m) for m in modes]
-        else:
-            order = [i for i in np.argsort(np.where(np.isfinite(z[:, j]), z[:, j], np.inf)) if np.isfinite(z[i, j])]
-            chosen = [str(ds["mode"].values[i]) for i in order[:least]]
-        for mode in chosen:
+        for mode in _chosen(ds, j, modes, least):
             if not np.isfinite(ds["damping_ratio"].sel(mode=mode).values[j]):
                 continue
             for p in ds["parameter"].values:
@@ -158,6 +170,42 @@ def segment_table(ds, segments=SEGMENTS, modes=None, least: int = 3) -> list[dic
                              "defined": bool(ds["defined"].sel(mode=mode, any_parameter=p).values[j])})
     rows.sort(key=lambda r: -abs(r["dzeta_points"]))
     return rows
+
+
+def _chosen(ds, j: int, modes, least: int) -> list[str]:
+    """The mode names a table covers at the ``j``-th wind speed: ``modes``, or the ``least`` least damped."""
+    if modes is not None:
+        return [str(m) for m in modes]
+    z = ds["damping_ratio"].values[:, j]
+    order = [i for i in np.argsort(np.where(np.isfinite(z), z, np.inf)) if np.isfinite(z[i])]
+    return [str(ds["mode"].values[i]) for i in order[:least]]
+
+
+def total_table(ds, modes=None, least: int = 3) -> list[str]:
+    """Sentences of the whole re-analyses (``ddamping_total``, when the dataset has them): the unit
+    change of each parameter (blade properties over the whole blade) with the steady state
+    recomputed, beside the derivative with it held; largest first."""
+    if "ddamping_total" not in ds:
+        return []
+    rows = []
+    for j, v in enumerate(ds["wind_speed"].values):
+        for mode in _chosen(ds, j, modes, least):
+            for a, p in enumerate(ds["any_parameter"].values):
+                p = str(p)
+                u = _unit(p)
+                tot = 100 * u * float(ds["ddamping_total"].sel(mode=mode, any_parameter=p).values[j])
+                if p in BLADE_PROPERTIES:
+                    held = float(ds["ddamping"].sel(mode=mode, parameter=p).values[j].sum())
+                    words = ("+1 cm " if not BLADE_PROPERTIES[p].relative else "+1 % ") + \
+                        BLADE_PROPERTIES[p].words + " (whole blade)"
+                else:
+                    held = float(ds["ddamping_global"].sel(mode=mode, global_parameter=p).values[j])
+                    words = "+1 % " + GLOBAL_PARAMETERS[p].words
+                if np.isfinite(tot):
+                    rows.append((abs(tot), f"{words} {'raises' if tot >= 0 else 'lowers'} the {mode} damping at "
+                                           f"{v:g} m/s by {abs(tot):.3g} points ({100 * u * held:+.3g} with the "
+                                           "steady state held)"))
+    return [r[1] for r in sorted(rows, key=lambda r: -r[0])]
 
 
 def sentence(row: dict) -> str:
