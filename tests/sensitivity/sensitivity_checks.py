@@ -1,4 +1,4 @@
-"""The reference point and the tolerance of the sensitivity tests (tests/sensitivity/test_point.py)."""
+"""The reference point and the tolerance of the sensitivity tests (tests/sensitivity/test_sensitivity_point.py)."""
 
 from __future__ import annotations
 

@@ -9,7 +9,7 @@ with ``d sigma/dp`` the mode's design sensitivity at the onset (:func:`~windflut
 point.point_sensitivities`, steady state held fixed) and ``d sigma/dOmega`` a central difference of
 two points at ``Omega* +- dOmega`` (their steady states recomputed).  :func:`onset` finds the onset
 of a named mode by the secant method on ``sigma``, for the nominal model or a changed one (the
-reference of the derivative, tests/sensitivity/test_onset.py).
+reference of the derivative, tests/sensitivity/test_sensitivity_onset.py).
 """
 
 from __future__ import annotations

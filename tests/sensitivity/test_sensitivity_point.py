@@ -111,7 +111,7 @@ def test_dataset_and_ranked_table(point):
 def test_total_columns(point):
     """``total`` (whole re-analyses) enter the dataset on ``any_parameter`` and the second table;
     plumbing only (here the held derivatives stand in for them: the sentence must then show the same
-    number twice). The re-analyses themselves: test_point_slow.py, test_tower_stiffness_... above."""
+    number twice). The re-analyses themselves: test_sensitivity_point_slow.py, test_tower_stiffness_... above."""
     import dataclasses
 
     from windflutter.sensitivity.results import as_dataset, total_table

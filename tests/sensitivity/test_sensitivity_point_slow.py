@@ -1,6 +1,6 @@
 """The full verification of the design sensitivities (make test-slow): every blade property and global
 parameter of the NREL 5 MW at 15 m/s, and the IEA 22 MW beam at 12 m/s, against finite differences of
-re-analyses (tests/sensitivity/test_point.py: the reference and the tolerance)."""
+re-analyses (tests/sensitivity/test_sensitivity_point.py: the reference and the tolerance)."""
 
 from __future__ import annotations
 
