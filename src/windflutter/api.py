@@ -350,6 +350,46 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     return as_dataset(pts, str(getattr(t, "name", "")), om.describe())
 
 
+def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rpm: float | None = None,
+                      blade_properties=None, global_parameters=None, max_hz: float | None = None,
+                      config: Any = None, **options):
+    """The derivative of an instability's onset rotor speed with respect to the design parameters,
+    by the implicit function theorem (:mod:`windflutter.sensitivity.onset`): at ``wind_speed`` (m/s),
+    the operating curve's pitch held and the rotor speed raised.
+
+    ``mode`` (identity name) and ``rpm`` (RPM, near the onset): default the first flutter onset of
+    method p's search (:func:`stability`, which costs a rotor-speed sweep).  The onset is refined by
+    the secant method.  Other keywords as :func:`sensitivity`.
+
+    Returns
+    -------
+    windflutter.sensitivity.onset.OnsetSensitivity
+        ``rpm`` the onset, ``drpm[parameter]`` RPM per unit of the parameter (blade properties
+        over the whole blade; relative ones per +100 %, offsets per m).
+    """
+    from windflutter.operating import campbell_model  # noqa: PLC0415
+    from windflutter.sensitivity import onset as onset_  # noqa: PLC0415
+
+    if max_hz is not None:
+        options["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, "wind_speeds": [wind_speed]}, "windflutter.onset_sensitivity() keywords")
+    t = as_turbine(turbine)
+    if mode is None or rpm is None:
+        found = stability(t, [wind_speed], config=cfg, method="p")[0]
+        if found.flutter_rpm is None:
+            raise InputError("wind_speed", wind_speed, "a wind speed where method p finds a flutter onset "
+                             "(none up to the config's maximum rotor speed)")
+        mode = mode or str(found.flutter_mode).split(" + ")[0]
+        rpm = float(found.flutter_rpm) if rpm is None else rpm
+    om = campbell_model(t, cfg)
+    _, pitch = om.operating_point(float(wind_speed))
+    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    r0 = onset_.onset(lambda r: om.at(float(wind_speed), rpm=r, pitch=pitch), mode, float(rpm) - 0.1,
+                      float(rpm) + 0.1, hz)
+    return onset_.onset_sensitivity(om, float(wind_speed), mode, r0, pitch, hz, blade_properties=blade_properties,
+                                    global_parameters=global_parameters)
+
+
 # --------------------------------------------------------------------------------------------
 # the time domain: a second implementation
 # --------------------------------------------------------------------------------------------

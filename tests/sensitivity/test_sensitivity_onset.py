@@ -36,3 +36,16 @@ def test_onset_derivative_against_recomputed_onsets(nrel5mw):
         r1 = onset(changed_point_of(om, WIND, pitch, name, u), NAME, r0, r0 + 0.02, MAX_HZ)
         assert abs(predicted) > 1e-2  # the shift is well above the onsets' own accuracy (1e-5 RPM)
         assert (r1 - r0) == pytest.approx(predicted, rel=0.05), name
+
+
+def test_api_onset_sensitivity():
+    """``windflutter.api.onset_sensitivity`` with the mode and a rotor speed near its onset: the same
+    onset and derivatives as above (the mass centre's -8.68 RPM per m, the torsion stiffness's +5.22
+    RPM per unit), within the secant's and the differences' accuracy."""
+    from windflutter.api import onset_sensitivity
+
+    s = onset_sensitivity("nrel5mw", WIND, mode=NAME, rpm=16.9, global_parameters=[],
+                          blade_properties=["mass_offset", "torsion_stiffness"], max_hz=MAX_HZ)
+    assert s.rpm == pytest.approx(16.865, abs=2e-3)
+    assert s.drpm["mass_offset"] == pytest.approx(-8.68, rel=0.01)
+    assert s.drpm["torsion_stiffness"] == pytest.approx(5.22, rel=0.01)
