@@ -38,7 +38,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("steady",),
     ("system",),
     ("stability",),
-    ("simulate",),
+    ("simulate", "sensitivity"),
     ("post",),
     ("analysers", "operating"),
     ("workflow",),

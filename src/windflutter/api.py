@@ -10,6 +10,7 @@ module is loaded on first use) ::
     res = windflutter.campbell(turbine, [6.0, 11.0, 18.0])      # -> CampbellResult
     pts = windflutter.stability(turbine, [11.0], model="beam")  # -> one PointSummary per wind speed
     ds = windflutter.run(turbine, "analysis.yaml", outdir="out/nrel5mw")   # results.nc, report.html
+    sens = windflutter.api.sensitivity(turbine, [15.0], modes=["1st edge BW"])  # design sensitivities
 
 Every entry point validates its input as the CLI does and raises
 :class:`~windflutter.errors.InputError` naming the keyword (or config field), the value and what
@@ -298,6 +299,95 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
     operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
     return operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
+
+
+def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None, global_parameters=None,
+                total: bool = False, max_hz: float | None = None, config: Any = None, progress=None, **options):
+    """Design sensitivities: the derivative of each named mode's frequency and damping ratio with
+    respect to the blade's section properties (per beam element) and global parameters, at each wind
+    speed -- ``windflutter sensitivity`` (:mod:`windflutter.sensitivity`, docs/sensitivity.md).
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name (beam blades).
+    wind_speeds : m/s; default the operating curve's within 3-25 m/s.
+    modes : identity names to keep (``["1st edge BW"]``); default every mode up to ``max_hz``.
+    blade_properties, global_parameters : names (:data:`~windflutter.sensitivity.parameters.
+        BLADE_PROPERTIES`, ``GLOBAL_PARAMETERS``); default all.
+    total : also the whole-blade and global parameters' derivatives by whole re-analyses (the steady
+        state recomputed, which the sensitivities hold fixed; two re-analyses per parameter and wind
+        speed): ``dfrequency_total``, ``ddamping_total``.
+    max_hz, config, progress, **options : as :func:`campbell`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``frequency``, ``damping_ratio`` (mode x wind_speed); ``dfrequency``, ``ddamping`` (mode x
+        wind_speed x parameter x station); ``dfrequency_global``, ``ddamping_global``; ``defined``.
+    """
+    from windflutter.operating import campbell_model  # noqa: PLC0415
+    from windflutter.sensitivity.results import as_dataset, sensitivities  # noqa: PLC0415
+    from windflutter.stability.build import operational_options  # noqa: PLC0415
+    from windflutter.system.campbell import default_wind_speeds  # noqa: PLC0415
+
+    extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
+    if max_hz is not None:
+        extra["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, **extra}, "windflutter.sensitivity() keywords")
+    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    t = as_turbine(turbine)
+    if getattr(t, "operating_curve", None) is None:
+        from windflutter.system.operational import missing_curve_error  # noqa: PLC0415
+
+        raise missing_curve_error(t)
+    om = campbell_model(t, cfg)
+    if om.options.model != "beam":
+        raise InputError("model.type", om.options.model, "beam (the sensitivities of shell blades are not built yet)")
+    winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
+    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    pts = sensitivities(om, winds, hz, modes=modes, blade_properties=blade_properties,
+                        global_parameters=global_parameters, progress=progress, total=bool(total))
+    return as_dataset(pts, str(getattr(t, "name", "")), om.describe())
+
+
+def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rpm: float | None = None,
+                      blade_properties=None, global_parameters=None, max_hz: float | None = None,
+                      config: Any = None, **options):
+    """The derivative of an instability's onset rotor speed with respect to the design parameters,
+    by the implicit function theorem (:mod:`windflutter.sensitivity.onset`): at ``wind_speed`` (m/s),
+    the operating curve's pitch held and the rotor speed raised.
+
+    ``mode`` (identity name) and ``rpm`` (RPM, near the onset): default the first flutter onset of
+    method p's search (:func:`stability`, which costs a rotor-speed sweep).  The onset is refined by
+    the secant method.  Other keywords as :func:`sensitivity`.
+
+    Returns
+    -------
+    windflutter.sensitivity.onset.OnsetSensitivity
+        ``rpm`` the onset, ``drpm[parameter]`` RPM per unit of the parameter (blade properties
+        over the whole blade; relative ones per +100 %, offsets per m).
+    """
+    from windflutter.operating import campbell_model  # noqa: PLC0415
+    from windflutter.sensitivity import onset as onset_  # noqa: PLC0415
+
+    if max_hz is not None:
+        options["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, "wind_speeds": [wind_speed]}, "windflutter.onset_sensitivity() keywords")
+    t = as_turbine(turbine)
+    if mode is None or rpm is None:
+        found = stability(t, [wind_speed], config=cfg, method="p")[0]
+        if found.flutter_rpm is None:
+            raise InputError("wind_speed", wind_speed, "a wind speed where method p finds a flutter onset "
+                             "(none up to the config's maximum rotor speed)")
+        mode = mode or str(found.flutter_mode).split(" + ")[0]
+        rpm = float(found.flutter_rpm) if rpm is None else rpm
+    om = campbell_model(t, cfg)
+    _, pitch = om.operating_point(float(wind_speed))
+    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    r0 = onset_.onset(lambda r: om.at(float(wind_speed), rpm=r, pitch=pitch), mode, float(rpm) - 0.1,
+                      float(rpm) + 0.1, hz)
+    return onset_.onset_sensitivity(om, float(wind_speed), mode, r0, pitch, hz, blade_properties=blade_properties,
+                                    global_parameters=global_parameters)
 
 
 # --------------------------------------------------------------------------------------------

@@ -198,3 +198,11 @@ def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.n
         np.add.at(f1, de.ravel(), fe_.ravel())
     return (0.5 * (G1 - G1.T)).tocsr(), (0.5 * (Kr1 + Kr1.T)).tocsr(), f1
 
+
+def beam_spin_elements(fe: FEModel, axis: np.ndarray, center: np.ndarray):
+    """``(G1, Kr1, dofs)`` of every beam element of ``fe`` as a rigid-section rotating element, global
+    axes: (nb, 12, 12) Coriolis per rad/s and spin softening per (rad/s)^2, (nb, 12) global DOFs --
+    the element terms :func:`spin_terms` sums (before its final symmetrization), for derivatives
+    element by element (:mod:`windflutter.sensitivity`)."""
+    G, Kr, _, _, dofs = _beam_terms(fe, np.ones(len(fe.beam_conn), dtype=bool), np.asarray(axis, float), center)
+    return G, Kr, dofs

@@ -184,6 +184,10 @@ class PointSystem:
     tip_basis: np.ndarray | None = field(default=None, repr=False)
     #: the turbine's own structural modes that name the modes (:mod:`windflutter.system.identity`)
     reference: object = field(default=None, repr=False)
+    #: the blade's full-numbering initial-stress matrix of the steady state and the hub-link term it was
+    #: linearized with (what :meth:`OperationalModel.assemble_point` takes)
+    ksigma: object = field(default=None, repr=False)
+    klink: np.ndarray | None = field(default=None, repr=False)
 
 
 class OperationalModel:
@@ -237,6 +241,15 @@ class OperationalModel:
             fe, sec = build_model(self.turbine, self._mesh("rotor_blade", 0.0))
             self._blade_zero = (fe, assemble(fe), sec)
         return self._blade_zero
+
+    def variant(self, turbine, options: OperationalOptions | None = None) -> "OperationalModel":
+        """A model of ``turbine`` (a changed copy of this one's: support, nacelle, drivetrain) that
+        shares this model's cached blade parts and identities -- the blade's data must be unchanged
+        (design sensitivities, :mod:`windflutter.sensitivity`)."""
+        out = OperationalModel(turbine, options or self.options)
+        out._blades, out._blade_zero = self._blades, getattr(self, "_blade_zero", None)
+        out._reference = getattr(self, "_reference", None)
+        return out
 
     def reference(self):
         """The structural identities of this model (:func:`windflutter.system.identity.
@@ -400,8 +413,18 @@ class OperationalModel:
             rb, st, ksig, klink = d.blade, d.steady, d.ksigma, d.klink
         else:
             ksig, klink = self._prestress(rb, st, omega)
+        return self.assemble_point(rb, st, ksig, klink, wind_speed, omega, pitch, tip_frame=tip_frame)
+
+    def assemble_point(self, rb: RotorBlade, st, ksig, klink, wind_speed: float, omega: float, pitch: float, *,
+                       tip_frame=None, Phi=None) -> PointSystem:
+        """The :class:`PointSystem` of the blade ``rb`` linearized about the steady state ``st`` (its
+        full-numbering initial-stress matrix ``ksig`` and hub-link term ``klink``) on this model's
+        support, hub and drivetrain: the second half of :meth:`at`.  ``Phi``: the blade basis to use
+        (None: computed at the point).  Design sensitivities (:mod:`windflutter.sensitivity`) call it
+        with a blade or a support of changed data and the steady state held fixed."""
         blocks, strip_P = self._aero_blocks(rb, st, wind_speed, omega)
-        Phi = self.blade_basis(rb, omega, ksig, blocks, strip_P)
+        if Phi is None:
+            Phi = self.blade_basis(rb, omega, ksig, blocks, strip_P)
         bm = rb.matrices(Phi, ksigma_full=ksig, klink=klink)
         M, C, K = bm.at(omega, ksigma=bm.Ks1)
         aero = None
@@ -414,7 +437,7 @@ class OperationalModel:
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
                            blade_system=blade, blade_structure=(M, K), blade_damping=C,
-                           fixed=ff, tip_frame=tip_frame, reference=self.reference())
+                           fixed=ff, tip_frame=tip_frame, reference=self.reference(), ksigma=ksig, klink=klink)
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):
