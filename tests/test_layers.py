@@ -27,7 +27,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "windflutter"
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
     ("units", "linalg_tools", "files", "schema", "threads", "aero_types", "version"),
-    ("results", "backends", "parallel"),
+    ("results", "backends", "exporters", "parallel"),
     ("config",),
     ("structure",),
     ("rotor",),

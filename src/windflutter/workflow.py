@@ -35,6 +35,7 @@ import signal
 import sys
 import threading
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -44,6 +45,8 @@ import numpy as np
 import xarray as xr
 
 from windflutter.config import AnalysisConfig
+from windflutter.errors import InputWarning
+from windflutter.exporters import get_exporter
 from windflutter.post import runfolder, store
 from windflutter.post.progress import RunProgress
 from windflutter.post.rundata import MODEL_SIZE_KEYS, assemble_dataset, check_operating, describe_run  # noqa: F401
@@ -351,6 +354,7 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
         store.write_campbell(outdir, camp)
         for k, v in camp.assumptions.items():
             ds.attrs[f"assumption_{k}"] = str(v)
+    write_exports(camp, config, outdir)
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)
     write_outputs(ds, config, outdir, campbell=camp)
     return ds
@@ -376,6 +380,29 @@ def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, con
     except Exception as exc:  # a picture must not cost the point
         res.info["animation_error"] = f"{type(exc).__name__}: {exc}"[:300]
         return None
+
+
+def write_exports(campbell, config: AnalysisConfig, outdir: str | Path) -> dict[str, Path]:
+    """The operating-point Campbell in each format of ``output.exports`` (:mod:`windflutter.exporters`),
+    to ``OUTDIR/campbell<suffix>`` (the format's first suffix; a plug-in without one: ``campbell.<name>``).
+    The CF NetCDF ``campbell.nc`` is the run's own store and is written whether listed or not."""
+    written: dict[str, Path] = {}
+    if not config.output.exports:
+        return written
+    if campbell is None:
+        warnings.warn("output.exports: this run has no operating-point Campbell (it needs campbell.enabled, method "
+                      "p, the built-in back-end and an operating curve): nothing exported", InputWarning, stacklevel=2)
+        return written
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    for name in config.output.exports:
+        exporter = get_exporter(name, "output.exports")
+        path = outdir / f"campbell{exporter.suffixes[0] if exporter.suffixes else '.' + exporter.name}"
+        if path.name == store.CAMPBELL_FILE:
+            written[name] = path
+            continue
+        written[name] = exporter.write(campbell, path, field="output.exports", dpi=config.output.dpi)
+    return written
 
 
 def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path, campbell=None) -> dict[str, Path]:

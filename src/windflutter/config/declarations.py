@@ -12,6 +12,7 @@ from typing import Any
 
 from windflutter.aero_types import HIGH_THRUST
 from windflutter.backends import check_backend_name
+from windflutter.exporters import check_export_format
 from windflutter.errors import InputError
 from windflutter.schema import Spec, check_keys, is_number
 
@@ -93,6 +94,17 @@ def _wind_speeds(v: Any, name: str, src: str | None) -> tuple[float, ...]:
 
 def _backend(v: Any, name: str, src: str | None) -> str:
     return check_backend_name(v, name, src)
+
+
+def _exports(v: Any, name: str, src: str | None) -> tuple[str, ...]:
+    """Names of registered export formats (:mod:`windflutter.exporters`), without repeats."""
+    items = [v] if isinstance(v, str) else v
+    if not isinstance(items, (list, tuple)):
+        raise InputError(name, v, "a list of export format names", src)
+    out = tuple(check_export_format(x, name, src) for x in items)
+    if len(set(out)) != len(out):
+        raise InputError(name, v, "a list without repeated entries", src)
+    return out
 
 
 # --------------------------------------------------------------------------------------------
@@ -247,6 +259,9 @@ class OutputConfig:
     report: bool = opt(True, "bool", "write OUTDIR/report.html (figures embedded)")
     formats: tuple[str, ...] = opt(("png",), "choices", "figure formats", choices=PLOT_FORMATS)
     dpi: int = opt(110, "int", "raster resolution of the figures", lower=20, upper=1200)
+    exports: tuple[str, ...] = opt((), "custom", "export formats of the operating-point Campbell, each written to "
+                                   "OUTDIR/campbell.<suffix>: csv, cmb, amp, figure, netcdf or a plug-in's "
+                                   "(entry-point group windflutter.exporters)", parse=_exports)
     mode_shapes: bool = opt(True, "bool", "store the flutter mode shape and the aero-work diagnostic per point")
     animations: bool = opt(True, "bool", "write the flutter mode of every point with flutter as a VTK time "
                            "series (OUTDIR/animations/*.pvd, ParaView)")
