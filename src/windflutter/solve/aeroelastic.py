@@ -14,15 +14,14 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
 from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero
 from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import RotorTerms
 from windflutter.solve.qep import qep_pencil
+from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
 
 @dataclass
@@ -61,9 +60,7 @@ def structural_modes(K, M, n: int, shift: float = -1.0):
     if nn <= 800 or n >= nn - 1:
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
         Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-        Kd = 0.5 * (Kd + Kd.T)
-        Md = 0.5 * (Md + Md.T)
-        w, V = sla.eigh(Kd, Md)
+        w, V = symmetric_eigs(Kd, Md)
         return w[:n], V[:, :n]
     from windflutter.solve.reduction import structural_modes as lanczos_modes
 
@@ -155,7 +152,7 @@ class AeroelasticModel:
         if not (np.isfinite(zeta) and 0 <= zeta < 1):
             raise InputError("damping.ratio", zeta, "a damping ratio in [0, 1)")
         K0, M = np.asarray(self.Kr0), np.asarray(self.Mr)
-        w2, V = sla.eigh(0.5 * (K0 + K0.T), 0.5 * (M + M.T))
+        w2, V = symmetric_eigs(K0, M)
         MV = M @ V
         self.Dr = self.Dr + MV @ np.diag(2.0 * zeta * np.sqrt(np.maximum(w2, 0.0))) @ MV.T
 
@@ -177,11 +174,8 @@ class AeroelasticModel:
             _, V = structural_modes(K, self.Mr, self.n_modes)
             vecs.append(V)
         V = np.hstack(vecs)
-        if len(vecs) > 1:  # M-orthonormalize, dropping dependent vectors
-            G = V.T @ (self.Mr @ V)  # sparse M times the basis: no dense n x n copy (5.6 GB at 26k DOF)
-            w, U = np.linalg.eigh(0.5 * (G + G.T))
-            keep = w > 1e-10 * w.max()
-            V = V @ (U[:, keep] / np.sqrt(w[keep]))
+        if len(vecs) > 1:  # M-orthonormalize, dropping dependent vectors (sparse M times the basis)
+            V = m_orthonormalize(V, self.Mr, tol=1e-10, largest_first=False)
         return V
 
     def bem(self, wind_speed: float, omega_rot: float):

@@ -28,6 +28,7 @@ import numpy as np
 from windflutter.aero.sections import RotorGeometry
 from windflutter.errors import InputError
 from windflutter.steady.geometry import pitching_frames
+from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 from windflutter.system.blade import RotorBlade
 from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.blade_aero import blade_system, project_blade_aero
@@ -484,14 +485,10 @@ def _support_basis(st, n_modes: int) -> np.ndarray:
 
     K, M = st.Kr.tocsc(), st.Mr.tocsc()
     n = min(n_modes, K.shape[0] - 2)
-    w2, V = spla.eigsh(K, k=n, M=M, sigma=0.0, which="LM")
+    _, V = symmetric_eigs(K, M, n, shift=0.0)
     hub = int(st.fe.node_groups["hub"][0])
     H = np.asarray(st.T[6 * hub: 6 * hub + 6].todense()).T
     X = spla.splu(K).solve(H)
     X -= V @ (V.T @ (M @ X))  # the part the modes miss, at unit mass-norm
     X /= np.sqrt(np.maximum(np.einsum("ij,ij->j", X, M @ X), 1e-300))
-    B = np.hstack([V, X])
-    G = B.T @ (M @ B)
-    w, U = np.linalg.eigh(0.5 * (G + G.T))
-    keep = w > 1e-10 * w.max()
-    return B @ (U[:, keep] / np.sqrt(w[keep]))
+    return m_orthonormalize(np.hstack([V, X]), M, tol=1e-10, largest_first=False)
