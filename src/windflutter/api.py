@@ -48,7 +48,7 @@ SHELL_ONLY = ("n_chord", "tower_model", "tip_closure")
 #: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
 MESH_OPTIONS: dict[str, Spec] = {
     "part": Spec("choice", choices=MESH_PARTS, doc="which part: turbine, blade (root clamped), tower "
-                 "(rotor-nacelle lumped) or rotor (hub clamped)"),
+                 "(rotor-nacelle lumped) or rotor (blades and hub, the hub clamped: no drivetrain in a modal analysis)"),
     "model": Spec("choice", choices=MESH_MODELS, doc=f"beam (Timoshenko beams, the default of every command) "
                   "or shell (composite shells)"),
     "pitch": Spec("float", lower=-180.0, upper=180.0, unit="deg", doc="blade pitch"),

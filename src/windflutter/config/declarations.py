@@ -136,8 +136,9 @@ class ModelConfig:
     type: str = opt("beam", "choice", "shell (the thesis's composite shells), beam (Timoshenko beams with 6x6 "
                     "sections, much faster) or section (the seed's 2-DOF section: windflutter simple)",
                     choices=MODEL_TYPES)
-    part: str = opt("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub, "
-                    "hub clamped)", choices=MODEL_PARTS)
+    part: str = opt("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub on a "
+                    "fixed nacelle, no tower; the shaft as model.drivetrain says: method p free by default, locked = "
+                    "hub clamped; pk and thesis always hub clamped)", choices=MODEL_PARTS)
     mesh_density: float = opt(1.0, "float", "multiplier on the element counts (blade elements along the span "
                               "n_aero_sections x density; shells also around each section and on the tower)",
                               lower=0.1, upper=4.0, unit="-")

@@ -61,7 +61,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "reason": ("1", "why the point failed (empty if ok)"),
     "elapsed": ("s", "wall-clock time of the point"),
     "rotor_speed": ("rpm", "rotor speed of the sweep"),
-    "frequency": ("Hz", "damped frequency of the tracked mode"),
+    "frequency": ("Hz", "undamped natural frequency |lambda|/(2 pi) of the tracked mode"),
+    "damped_frequency": ("Hz", "damped frequency |Im lambda|/(2 pi) of the tracked mode"),
     "damping_ratio": ("1", "damping ratio zeta = -sigma/|lambda| of the tracked mode"),
     "mode_label": ("1", "label of the tracked mode"),
     "station_radius": ("m", "radius of the span station from the shaft axis"),
@@ -119,8 +120,10 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
     nm = freq.shape[1]
     labels = list(result.mode_labels or [])
     labels = (labels + [f"mode {i + 1}" for i in range(len(labels), nm)])[:nm]
+    lam = _eigenvalues(result, freq, zeta)
     data["rotor_speed"] = (("point", "sweep"), rpm[None, :])
-    data["frequency"] = (("point", "sweep", "mode"), freq[None])
+    data["frequency"] = (("point", "sweep", "mode"), (np.abs(lam) / (2 * np.pi))[None])
+    data["damped_frequency"] = (("point", "sweep", "mode"), freq[None])
     data["damping_ratio"] = (("point", "sweep", "mode"), zeta[None])
     data["mode_label"] = (("point", "mode"), np.array(labels, dtype=object).reshape(1, nm))
     r = np.asarray(result.station_radius if result.station_radius is not None else [], float).ravel()
@@ -129,7 +132,6 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
            else np.full((ns, 3), nan + 0j))
     w = (np.asarray(result.aero_work, float).reshape(ns, 3) if result.aero_work is not None and ns
          else np.full((ns, 3), nan))
-    lam = _eigenvalues(result, freq, zeta)
     data["eigenvalue_real"] = (("point", "sweep", "mode"), lam.real[None])
     data["eigenvalue_imag"] = (("point", "sweep", "mode"), lam.imag[None])
     data["station_radius"] = (("point", "station"), r[None])
@@ -301,7 +303,8 @@ def clean_temporaries(outdir: str | Path) -> int:
 
 #: what a stored point file must hold to be used again
 _POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method",
-               "flutter_torsion_real")  # the CF layout: a point file of the earlier layout is computed again
+               "flutter_torsion_real",  # the CF layout: a point file of the earlier layout is computed again
+               "damped_frequency")  # frequency undamped, damped_frequency damped: an older file is computed again
 
 
 def read_point(path: str | Path) -> xr.Dataset:

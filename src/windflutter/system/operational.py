@@ -69,8 +69,10 @@ class OperationalOptions:
     Parameters
     ----------
     model : ``"beam"`` or ``"shell"`` blades (and tower).
-    part : ``"turbine"`` (rotor on the flexible tower) or ``"rotor"`` (rotor on a fixed nacelle,
-        drivetrain free: HAWCStab2's / OpenFAST's rotor-only analysis).
+    part : ``"turbine"`` (rotor on the flexible tower) or ``"rotor"`` (rotor on a fixed nacelle, no
+        tower -- the config's ``model.part: rotor``; the shaft as ``drivetrain`` says: free with
+        ``flexible``/``rigid``, HAWCStab2's / OpenFAST's rotor-only analysis, the hub clamped with
+        ``locked``, the seed's methods' only case).
     mesh : extra :class:`~windflutter.mesh.settings.MeshSettings` fields.
     basis_modes : fixed-interface blade modes in the basis (the config's ``solver.basis_modes``); ``None``: full order.
     corrections : add static corrections (modal truncation augmentation) of the aerodynamic loads
