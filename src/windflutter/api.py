@@ -33,9 +33,14 @@ import re
 from pathlib import Path
 from typing import Any
 
-from windflutter.config import MAX_MODES, MAX_RPM, field_spec
+from windflutter.config import AnalysisConfig, MAX_MODES, MAX_RPM, check_config, config_from_dict, field_spec, load_config
 from windflutter.errors import InputError
+from windflutter.mesh.settings import MeshSettings
+from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
+from windflutter.model.turbine import Turbine
+from windflutter import operating
 from windflutter.schema import Spec
+from windflutter.stability import build  # module access: tests patch build.stability_analysis
 
 MESH_MODELS = ("beam", "shell")
 MESH_PARTS = ("turbine", "blade", "tower", "rotor")
@@ -103,8 +108,6 @@ def as_turbine(turbine: Any, backend: str = "windflutter"):
     """``turbine`` itself if it is a :class:`~windflutter.model.Turbine`, else read with
     :func:`load_turbine`; for a plug-in back-end (``solver.backend``) a path or name is passed on
     unread, as ``windflutter run`` does."""
-    from windflutter.model.turbine import Turbine  # noqa: PLC0415
-
     if isinstance(turbine, Turbine):
         return turbine
     if not isinstance(turbine, (str, Path)):
@@ -150,8 +153,6 @@ def analysis_config(config: Any = None, **options):
 def _config(config: Any, options: dict[str, Any], source: str):
     import copy  # noqa: PLC0415
 
-    from windflutter.config import AnalysisConfig, check_config, config_from_dict, load_config  # noqa: PLC0415
-
     overrides = _nest(options)
     if config is None or isinstance(config, (str, Path)):
         return load_config(config, overrides, overrides_source=source)
@@ -179,8 +180,6 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
     (angles in degrees); the shell-only options are refused with the beam model (``name(key)``:
     how an error names an option, e.g. its CLI flag)."""
     import math  # noqa: PLC0415
-
-    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
 
     v = {**MESH_DEFAULTS, **{k: x for k, x in values.items() if x is not None}}
     if v["model"] != "shell":
@@ -257,12 +256,10 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
         per wind speed: ``flutter_rpm``, ``flutter_frequency_hz``, ``flutter_mode``,
         ``divergence_rpm``, ``pitch_deg``, the sweep; ``.as_dict()`` is the CLI's ``--json`` point.
     """
-    from windflutter.stability.build import case_options, stability_analysis  # noqa: PLC0415
-
     cfg = _config(config, {**options, "wind_speeds": wind_speeds}, "windflutter.stability() keywords")
     aero, method = _one(cfg, "aero", "aerodynamic variant"), _one(cfg, "method", "search method")
-    case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
-    solver = stability_analysis(as_turbine(turbine), cfg, aero, method)
+    build.case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
+    solver = build.stability_analysis(as_turbine(turbine), cfg, aero, method)
     return [solver.analyse_operating_point(v) for v in cfg.wind_speeds]
 
 
@@ -288,16 +285,13 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
         ``.points`` (per wind speed: rotor speed, pitch, modes with frequency and damping),
         ``.least_damped()``, ``.unstable()``, ``.as_dict()`` (the CLI's ``--json``).
     """
-    from windflutter.operating import operating_campbell  # noqa: PLC0415
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
-
     extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
     if max_hz is not None:
         extra["campbell.max_hz"] = max_hz
     cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
-    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    build.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
-    return operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
+    return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
 
 
 # --------------------------------------------------------------------------------------------
@@ -346,8 +340,6 @@ def run_folder_name(turbine: Any) -> str:
     """The default output folder name of a run (``out/<this>``): a bundled name as given in its
     canonical spelling (``"nrel5mw"``), else the turbine file's name without its suffix; for a
     :class:`~windflutter.model.Turbine`, of the file it was read from."""
-    from windflutter.model.bundled import bundled_turbines, resolve_turbine_path  # noqa: PLC0415
-
     src = turbine if isinstance(turbine, (str, Path)) else (getattr(turbine, "source", "") or "")
     bundled = {path: name for name, path in bundled_turbines().items()}
     if isinstance(src, str) and src and not Path(src).exists():

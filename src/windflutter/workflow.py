@@ -44,10 +44,12 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from windflutter.config import AnalysisConfig
+from windflutter import parallel
+from windflutter.config import AnalysisConfig, check_config
 from windflutter.errors import InputWarning
 from windflutter.exporters import get_exporter
 from windflutter.post import runfolder, store
+from windflutter.post.animation import write_mode_animation
 from windflutter.post.progress import RunProgress
 from windflutter.post.rundata import MODEL_SIZE_KEYS, assemble_dataset, check_operating, describe_run  # noqa: F401
 from windflutter.post.runfolder import RUN_FILE  # noqa: F401  (re-exported: the run's record)
@@ -245,8 +247,6 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
         turbine and version (field ``--resume``); an unknown back-end; no Dask scheduler at
         ``scheduler``.
     """
-    from windflutter import parallel  # noqa: PLC0415
-    from windflutter.config import check_config  # noqa: PLC0415
 
     config = check_config(config)  # a config built in Python is checked like a file
     if scheduler is None:
@@ -294,7 +294,6 @@ def _stored_points(outdir: Path, points: list[OperatingPoint], config: AnalysisC
 def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progress: bool,
          analyser: Any, stream, workers: int | None, client: Any, record: dict[str, Any]) -> xr.Dataset:
     """The body of :func:`run` (``client``: a connected Dask client or ``None``)."""
-    from windflutter import parallel  # noqa: PLC0415
 
     outdir.mkdir(parents=True, exist_ok=True)
     points = plan_points(config)
@@ -370,8 +369,6 @@ def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, con
     if not callable(fe_model):
         return None
     try:
-        from windflutter.post.animation import write_mode_animation  # noqa: PLC0415
-
         fe = fe_model(point)
         f = res.flutter_frequency_hz
         return write_mode_animation(fe, res.flutter_dof_vector, outdir / "animations" / f"flutter_p{point.index:04d}.pvd",

@@ -14,6 +14,7 @@ from windflutter.aero_types import HIGH_THRUST
 from windflutter.backends import check_backend_name
 from windflutter.exporters import check_export_format
 from windflutter.errors import InputError
+from windflutter.files import dump_yaml
 from windflutter.schema import Spec, check_keys, is_number
 
 AERO_VARIANTS = ("potential", "viscous")
@@ -316,8 +317,6 @@ class AnalysisConfig:
 
     def to_yaml(self) -> str:
         """YAML text that :func:`load_config` reads back equal."""
-        from windflutter.files import dump_yaml  # noqa: PLC0415
-
         return dump_yaml(self.to_dict())
 
     def fingerprint(self, exclude_output: bool = True) -> str:

@@ -29,6 +29,7 @@ from importlib import metadata
 from pathlib import Path
 
 from windflutter.errors import InputError
+from windflutter.model.bundled import resolve_turbine_path
 from windflutter.model.plausibility import MAX_FILE_BYTES
 from windflutter.model.turbine import Turbine
 
@@ -144,8 +145,6 @@ def load_turbine(path_or_name: str | Path, validate: bool = True, fmt: str | Non
         Missing or unreadable file, syntax or schema error, implausible data; the message names
         the file, the field and, for tables, the station.
     """
-    from windflutter.model.bundled import resolve_turbine_path
-
     path = resolve_turbine_path(path_or_name)
     if path.is_dir():
         raise InputError("turbine", str(path), "a turbine file, not a folder")

@@ -40,6 +40,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import xarray as xr
 
+from windflutter.errors import InputError
+from windflutter.post.campbell_data import as_campbell_dataset
+
 if TYPE_CHECKING:  # pragma: no cover
     from windflutter.results import OperatingPoint, PointResult
 
@@ -402,7 +405,6 @@ def open_results(path: str | Path) -> xr.Dataset:
     InputError
         no such file, a folder where the file should be, or a file that is not readable NetCDF.
     """
-    from windflutter.errors import InputError  # noqa: PLC0415
 
     given, path = str(path), Path(path)
     if path.is_dir():
@@ -434,7 +436,6 @@ def flutter_shape(ds: xr.Dataset) -> xr.DataArray:
 def write_campbell(outdir: str | Path, campbell) -> Path:
     """Store the operating-point Campbell diagram (a result or its dataset) as
     ``OUTDIR/campbell.nc`` (atomic; CF-1.8, dimensions wind_speed x track)."""
-    from windflutter.post.campbell_data import as_campbell_dataset  # noqa: PLC0415
 
     return atomic_write_netcdf(as_campbell_dataset(campbell), Path(outdir) / CAMPBELL_FILE)
 
@@ -447,8 +448,6 @@ def open_campbell(path: str | Path) -> xr.Dataset:
     InputError
         no such file, or not a readable Campbell dataset.
     """
-    from windflutter.errors import InputError  # noqa: PLC0415
-    from windflutter.post.campbell_data import as_campbell_dataset  # noqa: PLC0415
 
     given, path = str(path), Path(path)
     if path.is_dir():

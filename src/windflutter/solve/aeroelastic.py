@@ -16,11 +16,13 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from windflutter.aero.induction import sections_induction, warn_outside_momentum_theory
 from windflutter.aero.sections import AeroSections, RotorGeometry
-from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero
+from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero, lift_drag_slopes
 from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import RotorTerms
 from windflutter.solve.qep import qep_pencil
+from windflutter.solve.reduction import structural_modes as lanczos_modes
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
 
@@ -62,7 +64,6 @@ def structural_modes(K, M, n: int, shift: float = -1.0):
         Md = M.toarray() if sp.issparse(M) else np.asarray(M)
         w, V = symmetric_eigs(Kd, Md)
         return w[:n], V[:, :n]
-    from windflutter.solve.reduction import structural_modes as lanczos_modes
 
     b = lanczos_modes(M, K, n, shift=shift, dense_below=0)
     return b.omega**2, b.Phi
@@ -114,8 +115,6 @@ class AeroelasticModel:
         if self.aero.model == "viscous" and (self.aero.lift_slope is None or self.aero.drag_slope is None):
             # fit the polars once (not at every operating point)
             from dataclasses import replace
-
-            from windflutter.aero.strip import lift_drag_slopes
 
             cla, cda = lift_drag_slopes(self.sections, self.aero)
             self.aero = replace(self.aero, lift_slope=cla, drag_slope=cda)
@@ -183,8 +182,6 @@ class AeroelasticModel:
         cached per operating point.  Its validity warning is given at every use, cached or not (a
         point first met by the reduction basis, whose warnings are not shown, still warns when a
         search uses it)."""
-        from windflutter.aero.induction import sections_induction, warn_outside_momentum_theory
-
         key = (float(wind_speed), float(omega_rot))
         if key not in self._induction_cache:
             self._induction_cache[key] = sections_induction(

@@ -18,6 +18,7 @@ import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError
 from windflutter.solve.linsolve import as_operator, factorize
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 from windflutter.structure.modal import symmetric_eigs
 
 __all__ = ["spd_operator", "refine_modes"]
@@ -32,8 +33,6 @@ def spd_operator(A, backend: str = "auto") -> spla.LinearOperator:
     missing, or a rotating blade past its static stability)."""
     A = sp.csc_matrix(A)
     if backend == "auto":
-        from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-
         try:  # CHOLMOD only: without it (ImportError) the LU below is the one factorization
             F = SPDFactor(A, backend="cholmod")
         except (ImportError, NotPositiveDefinite):

@@ -20,6 +20,7 @@ import scipy.sparse.linalg as spla
 
 from windflutter.errors import ConvergenceError, InputError
 from windflutter.structure.assembly import Structural
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 from windflutter.threads import blas_limit
 
 
@@ -199,8 +200,6 @@ def modes(
     if nq <= max(n + 2, 12) or nq < 200:
         w, Q = symmetric_eigs(Kr.toarray(), Mr.toarray(), n, shift=sigma, inverted=True)
     else:
-        from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-
         A = (Kr - sigma * Mr).tocsc()
         try:
             OPinv = SPDFactor(A).operator()

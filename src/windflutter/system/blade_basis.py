@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from windflutter.solve import symmetric  # module access: tests patch symmetric.refine_modes
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
 #: blade models up to this many free DOFs get their basis from a dense eigen-solve (beams: ~200);
@@ -63,10 +64,8 @@ class BladeBasis:
             _, V = symmetric_eigs(K, M, n)
             solve = lambda F: np.linalg.solve(K, F)  # noqa: E731
         else:
-            from windflutter.solve.symmetric import spd_operator
-
             M = st.Mr.tocsc()
-            solve = spd_operator(Ks)
+            solve = symmetric.spd_operator(Ks)
             V = self._sparse_modes(Ks, M, solve, n)
         if not (self.corrections and blocks is not None):
             return V
@@ -74,12 +73,10 @@ class BladeBasis:
 
     def _sparse_modes(self, K, M, solve, n: int) -> np.ndarray:
         """The ``n`` lowest modes of a large blade; :data:`GUARD_MODES` more kept as the next start."""
-        from windflutter.solve.symmetric import refine_modes
-
         p = min(n + GUARD_MODES, K.shape[0] - 2)
         prev = self.start
         ok = prev is not None and prev.shape == (K.shape[0], p)
-        out = refine_modes(K, M, solve, prev, n, tol=MODES_TOL) if ok else None
+        out = symmetric.refine_modes(K, M, solve, prev, n, tol=MODES_TOL) if ok else None
         if out is None:
             out = symmetric_eigs(K, M, p, shift=0.0, opinv=solve, v0=np.ones(K.shape[0]))
         self.start = out[1]
