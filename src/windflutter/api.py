@@ -34,9 +34,14 @@ import re
 from pathlib import Path
 from typing import Any
 
-from windflutter.config import MAX_MODES, MAX_RPM, field_spec
+from windflutter.config import AnalysisConfig, MAX_MODES, MAX_RPM, check_config, config_from_dict, field_spec, load_config
 from windflutter.errors import InputError
+from windflutter.mesh.settings import MeshSettings
+from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
+from windflutter.model.turbine import Turbine
+from windflutter import operating
 from windflutter.schema import Spec
+from windflutter.stability import build  # module access: tests patch build.stability_analysis
 
 MESH_MODELS = ("beam", "shell")
 MESH_PARTS = ("turbine", "blade", "tower", "rotor")
@@ -49,7 +54,7 @@ SHELL_ONLY = ("n_chord", "tower_model", "tip_closure")
 #: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
 MESH_OPTIONS: dict[str, Spec] = {
     "part": Spec("choice", choices=MESH_PARTS, doc="which part: turbine, blade (root clamped), tower "
-                 "(rotor-nacelle lumped) or rotor (hub clamped)"),
+                 "(rotor-nacelle lumped) or rotor (blades and hub, the hub clamped: no drivetrain in a modal analysis)"),
     "model": Spec("choice", choices=MESH_MODELS, doc=f"beam (Timoshenko beams, the default of every command) "
                   "or shell (composite shells)"),
     "pitch": Spec("float", lower=-180.0, upper=180.0, unit="deg", doc="blade pitch"),
@@ -104,8 +109,6 @@ def as_turbine(turbine: Any, backend: str = "windflutter"):
     """``turbine`` itself if it is a :class:`~windflutter.model.Turbine`, else read with
     :func:`load_turbine`; for a plug-in back-end (``solver.backend``) a path or name is passed on
     unread, as ``windflutter run`` does."""
-    from windflutter.model.turbine import Turbine  # noqa: PLC0415
-
     if isinstance(turbine, Turbine):
         return turbine
     if not isinstance(turbine, (str, Path)):
@@ -151,8 +154,6 @@ def analysis_config(config: Any = None, **options):
 def _config(config: Any, options: dict[str, Any], source: str):
     import copy  # noqa: PLC0415
 
-    from windflutter.config import AnalysisConfig, check_config, config_from_dict, load_config  # noqa: PLC0415
-
     overrides = _nest(options)
     if config is None or isinstance(config, (str, Path)):
         return load_config(config, overrides, overrides_source=source)
@@ -180,8 +181,6 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
     (angles in degrees); the shell-only options are refused with the beam model (``name(key)``:
     how an error names an option, e.g. its CLI flag)."""
     import math  # noqa: PLC0415
-
-    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
 
     v = {**MESH_DEFAULTS, **{k: x for k, x in values.items() if x is not None}}
     if v["model"] != "shell":
@@ -258,12 +257,10 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
         per wind speed: ``flutter_rpm``, ``flutter_frequency_hz``, ``flutter_mode``,
         ``divergence_rpm``, ``pitch_deg``, the sweep; ``.as_dict()`` is the CLI's ``--json`` point.
     """
-    from windflutter.stability.build import case_options, stability_analysis  # noqa: PLC0415
-
     cfg = _config(config, {**options, "wind_speeds": wind_speeds}, "windflutter.stability() keywords")
     aero, method = _one(cfg, "aero", "aerodynamic variant"), _one(cfg, "method", "search method")
-    case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
-    solver = stability_analysis(as_turbine(turbine), cfg, aero, method)
+    build.case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
+    solver = build.stability_analysis(as_turbine(turbine), cfg, aero, method)
     return [solver.analyse_operating_point(v) for v in cfg.wind_speeds]
 
 
@@ -289,16 +286,13 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
         ``.points`` (per wind speed: rotor speed, pitch, modes with frequency and damping),
         ``.least_damped()``, ``.unstable()``, ``.as_dict()`` (the CLI's ``--json``).
     """
-    from windflutter.operating import operating_campbell  # noqa: PLC0415
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
-
     extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
     if max_hz is not None:
         extra["campbell.max_hz"] = max_hz
     cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
-    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    build.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
-    return operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
+    return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
 
 
 def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None, global_parameters=None,
@@ -436,8 +430,6 @@ def run_folder_name(turbine: Any) -> str:
     """The default output folder name of a run (``out/<this>``): a bundled name as given in its
     canonical spelling (``"nrel5mw"``), else the turbine file's name without its suffix; for a
     :class:`~windflutter.model.Turbine`, of the file it was read from."""
-    from windflutter.model.bundled import bundled_turbines, resolve_turbine_path  # noqa: PLC0415
-
     src = turbine if isinstance(turbine, (str, Path)) else (getattr(turbine, "source", "") or "")
     bundled = {path: name for name, path in bundled_turbines().items()}
     if isinstance(src, str) and src and not Path(src).exists():

@@ -40,7 +40,7 @@ import scipy.sparse as sp
 from windflutter.errors import InputError
 from windflutter.linalg_tools import congruence, skew
 from windflutter.rotor.translational import coriolis_and_softening
-from windflutter.structure.assembly import lumped_mass_matrices
+from windflutter.structure.assembly import coo_matrix_of, lumped_mass_matrices
 from windflutter.structure.beam import GAUSS_W, GAUSS_XI, block_rotation, shape_functions, beam_frames, element_dofs
 from windflutter.structure.fem import FEModel
 
@@ -147,8 +147,6 @@ def _lumped_terms(fe: FEModel, rotating: np.ndarray, axis: np.ndarray, center: n
 
 
 def _sparse(mats: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
-    from windflutter.structure.assembly import coo_matrix_of
-
     r, c, v = coo_matrix_of(mats, dofs)
     return sp.csr_matrix((v, (r, c)), shape=(n, n))
 
