@@ -42,6 +42,12 @@ from windflutter.model.turbine import Turbine
 from windflutter import operating
 from windflutter.schema import Spec
 from windflutter.stability import build  # module access: tests patch build.stability_analysis
+from windflutter.operating import campbell_model
+from windflutter.sensitivity import onset as onset_
+from windflutter.sensitivity.results import as_dataset, sensitivities
+from windflutter.stability.build import operational_options
+from windflutter.system.campbell import default_wind_speeds
+from windflutter.system.operational import missing_curve_error
 
 MESH_MODELS = ("beam", "shell")
 MESH_PARTS = ("turbine", "blade", "tower", "rotor")
@@ -319,10 +325,6 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
         ``frequency``, ``damping_ratio`` (mode x wind_speed); ``dfrequency``, ``ddamping`` (mode x
         wind_speed x parameter x station); ``dfrequency_global``, ``ddamping_global``; ``defined``.
     """
-    from windflutter.operating import campbell_model  # noqa: PLC0415
-    from windflutter.sensitivity.results import as_dataset, sensitivities  # noqa: PLC0415
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
-    from windflutter.system.campbell import default_wind_speeds  # noqa: PLC0415
 
     extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
     if max_hz is not None:
@@ -331,7 +333,6 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     t = as_turbine(turbine)
     if getattr(t, "operating_curve", None) is None:
-        from windflutter.system.operational import missing_curve_error  # noqa: PLC0415
 
         raise missing_curve_error(t)
     om = campbell_model(t, cfg)
@@ -361,8 +362,6 @@ def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rp
         ``rpm`` the onset, ``drpm[parameter]`` RPM per unit of the parameter (blade properties
         over the whole blade; relative ones per +100 %, offsets per m).
     """
-    from windflutter.operating import campbell_model  # noqa: PLC0415
-    from windflutter.sensitivity import onset as onset_  # noqa: PLC0415
 
     if max_hz is not None:
         options["campbell.max_hz"] = max_hz

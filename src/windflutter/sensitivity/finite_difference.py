@@ -22,6 +22,11 @@ import numpy as np
 
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections
 from windflutter.system.modes import point_modes
+from windflutter.structure.assembly import assemble_matrices
+from windflutter.system.blade import RotorBlade
+from windflutter.system.damping import blade_damping_matrix, blade_mu
+from windflutter.sensitivity.point import damping_sections
+from windflutter.system.operational import OperationalModel
 
 
 def _by_name(modes) -> dict:
@@ -38,10 +43,6 @@ def changed_blade(om, ps, name: str, p: float, elements=None):
     """The point's blade (:class:`~windflutter.system.blade.RotorBlade`, deflected geometry) with the
     property ``name`` of ``elements`` changed by ``p``: sections and damping reassembled; its
     stiffness the nominal one plus the change of the assembled elastic stiffness."""
-    from windflutter.structure.assembly import assemble_matrices
-    from windflutter.system.blade import RotorBlade
-    from windflutter.system.damping import blade_damping_matrix, blade_mu
-    from windflutter.sensitivity.point import damping_sections
 
     rb = ps.blade
     fe = rb.fe
@@ -76,7 +77,6 @@ def frozen_blade(om, ps, names, name: str, h: float, elements=None, max_hz: floa
 def frozen_global(om, ps, names, name: str, h: float, max_hz: float = 2.5) -> dict:
     """``{mode name: dlambda/dp}`` of the global parameter ``name``: the nominal blade and steady state
     on the changed turbine's support (or with the changed air density in the strips)."""
-    from windflutter.system.operational import OperationalModel
 
     g = GLOBAL_PARAMETERS[name]
     out = []
@@ -111,7 +111,6 @@ def blade_data(turbine, name: str, p: float):
 def full_reanalysis(om, wind_speed: float, names, name: str, h: float, max_hz: float = 2.5) -> dict:
     """``{mode name: dlambda/dp}`` by whole re-analyses of the changed turbine at ``wind_speed``
     (steady state recomputed): a blade property over the whole blade or a global parameter."""
-    from windflutter.system.operational import OperationalModel
 
     out = []
     for s in (h, -h):

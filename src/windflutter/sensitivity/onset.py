@@ -20,6 +20,8 @@ from windflutter.errors import InputError
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
 from windflutter.sensitivity.point import point_sensitivities
 from windflutter.system.modes import point_modes
+from windflutter.sensitivity.finite_difference import changed_blade
+from windflutter.sensitivity.point import UNIT_OFFSET, UNIT_RELATIVE
 
 
 def _named(modes, name: str):
@@ -91,7 +93,6 @@ def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
     """``point_of(rpm)`` of the model with the parameter ``name`` changed by ``p`` (a blade property
     over the whole blade, or a global parameter), the steady state at each rotor speed the nominal
     model's (as the sensitivities hold it)."""
-    from windflutter.sensitivity.finite_difference import changed_blade
 
     if name in BLADE_PROPERTIES:
         def point_of(rpm):
@@ -115,7 +116,6 @@ def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
 
 def unit_change(name: str) -> float:
     """The table's unit change of a parameter: 1 % (relative) or 1 cm (offsets)."""
-    from windflutter.sensitivity.point import UNIT_OFFSET, UNIT_RELATIVE
 
     return UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
 

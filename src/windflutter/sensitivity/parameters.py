@@ -33,6 +33,7 @@ from typing import Callable
 import numpy as np
 
 from windflutter.errors import InputError
+from windflutter.structure.fem import BeamSection
 
 
 def _scaled_row(index: int):
@@ -101,7 +102,6 @@ BLADE_PROPERTIES: dict[str, BladeProperty] = {p.name: p for p in (
 def blade_sections(fe, name: str, p: float, elements=None):
     """``fe`` with the beam sections of ``elements`` (indices; None: all) changed by ``p`` of the
     property ``name`` (a copy; each element must have its own section, as the blade mesh gives)."""
-    from windflutter.structure.fem import BeamSection
 
     prop = BLADE_PROPERTIES[name]
     if prop.change is None:

@@ -36,6 +36,10 @@ from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMET
                                                 check_parameters)
 from windflutter.structure.beam import beam_global_matrices
 from windflutter.system.multiblade import BladeSystem, multiblade_system
+from windflutter.structure.fem import BeamSection
+from windflutter.system.damping import MU_FLOOR, blade_mu
+from windflutter.system.support import fixed_frame
+from windflutter.errors import InputError
 
 #: the change a sensitivity is read for (the ranked table's): 1 % of a relative parameter, 1 cm of
 #: an offset
@@ -92,8 +96,6 @@ def damping_sections(fe, mu):
     """``fe`` with each section stiffness ``S`` replaced by ``sqrt(diag(mu)) S sqrt(diag(mu))``:
     the element matrices of the blade's damping (:func:`windflutter.system.damping.
     blade_damping_matrix`, the same floor of the coefficients)."""
-    from windflutter.structure.fem import BeamSection
-    from windflutter.system.damping import MU_FLOOR
 
     r = np.sqrt(np.maximum(mu, MU_FLOOR * mu.max()))
     secs = [BeamSection(stiffness=r[:, None] * s.stiffness * r[None, :], mass=s.mass, name=s.name)
@@ -140,7 +142,6 @@ def _contract(V, dofs, left: str, mats, right: str) -> np.ndarray:
 
 def blade_derivatives(om, ps, mvs: list[ModeVectors], properties) -> dict:
     """``{property: (k, ne) dlambda/dp}`` of the blade properties at every element (module docstring)."""
-    from windflutter.system.damping import blade_mu
 
     rb = ps.blade
     fe = rb.fe
@@ -185,7 +186,6 @@ def global_derivatives(om, ps, mvs: list[ModeVectors], names, models: dict | Non
     """``{name: (k,) dlambda/dp}`` of the global parameters: central differences of the multi-blade
     matrices (the support rebuilt from the changed turbine, or the aerodynamics scaled).
     ``models``: a cache ``{(name, p): OperationalModel}`` of the changed turbines' models."""
-    from windflutter.system.support import fixed_frame
 
     axis = om.rotor.shaft_axis
     out = {}
@@ -238,7 +238,6 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
     props = check_parameters(blade_properties, BLADE_PROPERTIES, "blade_properties")
     globs = check_parameters(global_parameters, GLOBAL_PARAMETERS, "global_parameters")
     if len(ps.blade.fe.shell_conn):
-        from windflutter.errors import InputError
 
         raise InputError("model", "shell", "beam blades (the sensitivities of shell blades are not built yet)")
     mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in modes])

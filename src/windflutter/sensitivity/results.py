@@ -17,6 +17,9 @@ from windflutter.sensitivity.eigen import frequency_damping
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
 from windflutter.sensitivity.point import (PAIR_LIMIT, UNIT_OFFSET, UNIT_RELATIVE, PointSensitivity,
                                            point_sensitivities)
+from windflutter.system.campbell import ambiguous
+from windflutter.system.modes import point_modes
+from windflutter.sensitivity.finite_difference import total_derivatives
 
 #: the spanwise segments (r/R) the ranked table sums the stations over
 SEGMENTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -30,8 +33,6 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
     ``total``: also the whole-blade and global parameters' derivatives by whole re-analyses (the
     steady state recomputed; :func:`~windflutter.sensitivity.finite_difference.total_derivatives`,
     two re-analyses per parameter) in ``PointSensitivity.total``."""
-    from windflutter.system.campbell import ambiguous
-    from windflutter.system.modes import point_modes
 
     out, prev, models = [], None, {}
     ws = [float(v) for v in np.atleast_1d(wind_speeds)]
@@ -47,7 +48,6 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
         keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
         res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models)
         if total and keep:
-            from windflutter.sensitivity.finite_difference import total_derivatives
 
             res.total = total_derivatives(om, v, res.names, list(res.blade) + list(res.globals_), max_hz)
         out.append(res)
