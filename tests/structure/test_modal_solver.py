@@ -87,7 +87,6 @@ def test_m_orthonormalize_spans_drops_dependent_directions_and_orders():
 #: inline eigen-solves of symmetric pencils left outside structure/modal.py, each with its reason
 ALLOWED_EIGEN_CALLS = {
     "structure/prestress.py": "buckling pencil (-Kg, K), largest algebraic: not a modal problem",
-    "system/identity.py": "the lead's file (mode identity): to move to symmetric_eigs",
 }
 
 

@@ -36,10 +36,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 from scipy.optimize import linear_sum_assignment
 
 from windflutter.linalg_tools import mac_matrix
+from windflutter.structure.modal import symmetric_eigs
 from windflutter.structure.labels import blade_motion_components, ordinal
 
 #: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
@@ -172,9 +172,7 @@ def support_reference(support) -> tuple[list, np.ndarray | None]:
     """(named modes, mass-normalized shapes) of the support alone (tower, nacelle, hub; no rotor)."""
     if support is None:
         return [], None
-    Ms = 0.5 * (support.M + support.M.T)
-    Ks = 0.5 * (support.K + support.K.T)
-    w2, Phi = sla.eigh(Ks, Ms)
+    w2, Phi = symmetric_eigs(support.K, support.M)
     md = np.asarray(support.struct.M.diagonal())
     U = np.asarray(support.expand @ Phi)  # the support nodes' motion in every mode at once
     e = (md[:, None] * np.abs(U) ** 2).reshape(-1, 6, Phi.shape[1]).sum(axis=0)  # (6, n): per component
@@ -213,8 +211,7 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
     M, K = ps.blade_structure
     e = slice(6, None)
     Me = 0.5 * (M[e, e] + M[e, e].T)
-    Ke = 0.5 * (K[e, e] + K[e, e].T)
-    w2, V = sla.eigh(Ke, Me)
+    w2, V = symmetric_eigs(K[e, e], Me)
     comps = basis_components @ V
     sig = strip_signatures(ps.blade.sections, comps)
     mac = mac_matrix(reference.signatures, sig)
