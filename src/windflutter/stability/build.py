@@ -83,7 +83,7 @@ def search_settings(config):
     """The rotor-speed sweep of method p from the config's rotor_speed and campbell sections."""
     r = config.rotor_speed
     step = (r.max_rpm - r.min_rpm) / max(r.n_points - 1, 1)
-    return SearchSettings(rpm_max=r.max_rpm, rpm_step=step, tolerance_rpm=r.tolerance_rpm,
+    return SearchSettings(max_rpm=r.max_rpm, rpm_step=step, tolerance_rpm=r.tolerance_rpm,
                           max_hz=config.campbell.max_hz, full_sweep=r.full_sweep)
 
 

@@ -2,7 +2,7 @@
 
 At a wind speed the blade pitch is the operating curve's and the rotor speed is raised from the
 operating rotor speed of that wind speed (the steady operating point; lower speeds are not reached
-in steady operation) to ``rpm_max``.  At each rotor speed the turbine is linearized about its
+in steady operation) to ``max_rpm``.  At each rotor speed the turbine is linearized about its
 steady state (:class:`~windflutter.system.operational.OperationalModel`) and the eigenvalues of
 the first-order system with aerodynamic states are its damped modes -- valid at any damping, so
 no frequency matching is needed (the p-method; the seed's p-k and 8-k searches remain as methods
@@ -44,12 +44,12 @@ POINT_CACHE = 6
 
 @dataclass(frozen=True)
 class SearchSettings:
-    """Rotor-speed sweep of method p: up to ``rpm_max`` (RPM) in steps of ``rpm_step`` from the
+    """Rotor-speed sweep of method p: up to ``max_rpm`` (RPM) in steps of ``rpm_step`` from the
     operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: the
     model's default, :meth:`windflutter.system.identity.StructuralReference.default_max_hz`);
     ``full_sweep`` False stops past both onsets."""
 
-    rpm_max: float = 40.0
+    max_rpm: float = 40.0
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
     max_hz: float | None = None
@@ -155,7 +155,7 @@ class OperationalStability:
         """Rotor speeds (RPM): the operating one, then the grid above it."""
         om_op = self.model.operating_point(wind_speed)[0] / RPM
         s = self.search
-        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), s.rpm_max + 1e-9, s.rpm_step) \
+        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), s.max_rpm + 1e-9, s.rpm_step) \
             if rpm_grid is None else np.asarray(rpm_grid, float)
         return np.concatenate([[om_op], g[g > om_op + 1e-9]])
 
