@@ -195,19 +195,47 @@ def structural_reference(blade, support) -> StructuralReference:
 # 2. the point's own blade modes, named by the reference
 # ------------------------------------------------------------------------------------------------
 @dataclass
+class OwnModeNames:
+    """The names of the blade's own modes at a point: ``sig`` (k, r) their strip signatures and
+    ``ident`` (r,) the (family, order) each continues -- what the next point of a sweep continues."""
+
+    sig: np.ndarray
+    ident: list
+
+
+@dataclass
 class PointOwnModes:
     """The blade's own modes at an operating point: ``V`` (m, r) M-orthonormal on the blade's elastic
-    coordinates, ``Me`` their mass, ``ident`` (r,) the (family, order) each continues."""
+    coordinates, ``Me`` their mass, ``ident`` (r,) the (family, order) each continues, ``names`` the
+    signatures and names a next point continues."""
 
     V: np.ndarray
     Me: np.ndarray
     ident: list
     w2: np.ndarray | None = None
+    names: OwnModeNames | None = None
 
 
-def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralReference) -> PointOwnModes:
+def _continued(previous: OwnModeNames | None, sig: np.ndarray) -> list:
+    """(r,) the names of the previous point's own modes that these (signatures ``sig``) continue by
+    an assignment of the MAC of their strip motions, where it is at least :data:`CONTINUED_MAC`
+    (None elsewhere and for a previous local buckling)."""
+    ident: list = [None] * sig.shape[1]
+    if previous is None:
+        return ident
+    mac = mac_matrix(previous.sig, sig)
+    for r, c in zip(*linear_sum_assignment(-mac)):
+        if mac[r, c] >= CONTINUED_MAC and previous.ident[r] is not None and previous.ident[r][0] != "buckling":
+            ident[c] = previous.ident[r]
+    return ident
+
+
+def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralReference,
+                    previous: OwnModeNames | None = None) -> PointOwnModes:
     """The blade's structural modes at the point (rotating, steady stress, no aerodynamics) named by
-    the reference modes they continue (assignment of the MAC of their strip motions)."""
+    the previous point's own modes they continue (``previous``, along a sweep: the deflection changes
+    them little from one point to the next) and otherwise by the reference modes they continue
+    (assignment of the MAC of their strip motions)."""
     M, K = ps.blade_structure
     e = slice(6, None)
     Me = 0.5 * (M[e, e] + M[e, e].T)
@@ -215,12 +243,16 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
     comps = basis_components @ V
     sig = strip_signatures(ps.blade.sections, comps)
     mac = mac_matrix(reference.signatures, sig)
-    rows, cols = linear_sum_assignment(-mac)
-    ident: list = [None] * V.shape[1]
-    for r, c in zip(rows, cols):
-        if mac[r, c] >= REFERENCE_MAC:
-            fam, order, _ = reference.blade[r]
-            ident[c] = (fam, order)
+    ident = _continued(previous, sig)
+    taken = {i for i in ident if i is not None}
+    rows_free = [r for r, (fam, order, _) in enumerate(reference.blade) if (fam, order) not in taken]
+    cols_free = [c for c in range(len(ident)) if ident[c] is None]
+    if rows_free and cols_free:
+        sub = mac[np.ix_(rows_free, cols_free)]
+        for i, j in zip(*linear_sum_assignment(-sub)):
+            if sub[i, j] >= REFERENCE_MAC:
+                fam, order, _ = reference.blade[rows_free[i]]
+                ident[cols_free[j]] = (fam, order)
     # an own mode left without a reference (MAC below REFERENCE_MAC after the assignment): the unused
     # reference mode it resembles most in shape and frequency (MAC / (1 + |ln(f / f_ref)|)), else an
     # ordinal after the reference's in its own strip family (an own mode above the reference's range)
@@ -246,7 +278,7 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
             top[fams[c]] = top.get(fams[c], 0) + 1
             ident[c] = (fams[c], top[fams[c]])
         used.add(ident[c])
-    return PointOwnModes(V=V, Me=Me, ident=ident, w2=w2)
+    return PointOwnModes(V=V, Me=Me, ident=ident, w2=w2, names=OwnModeNames(sig=sig, ident=list(ident)))
 
 
 # ------------------------------------------------------------------------------------------------

@@ -58,6 +58,9 @@ class ModeRecord:
     share: float = float("nan")
     participation: list = field(default_factory=list, repr=False)
     mixed: bool = False
+    #: the blade's own modes at this mode's point, named (:class:`windflutter.system.identity.OwnModeNames`):
+    #: the next point of a sweep continues their names
+    own_modes: object = field(default=None, repr=False)
 
     @property
     def identity_name(self) -> str:
@@ -269,7 +272,8 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
     ref = ps.reference
     own = None
     if ps.mbc.n_eta:
-        own = point_own_modes(ps, basis_components(ps), ref)
+        before = next((m.own_modes for m in previous or () if m.own_modes is not None), None)
+        own = point_own_modes(ps, basis_components(ps), ref, previous=before)
     freqs = np.array([m.frequency_hz for m in modes])
     zetas = np.array([m.damping_ratio for m in modes])
     ids, S = participations(ps, Q, own, ref, freqs, zetas)
@@ -289,4 +293,5 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
         k = int(got[i])
         continued = cont is not None and k >= 0 and cont[i, k] >= CONTINUED_MAC
         name_record(rec, ids, S[i], k, heavy=bool(zetas[i] > HEAVY_DAMPING), continued=continued)
+        rec.own_modes = own.names if own is not None else None
     return modes
