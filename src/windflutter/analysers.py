@@ -77,7 +77,9 @@ def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any 
         from windflutter.stability.build import turbine_options as _opts  # noqa: PLC0415
 
         return _opts(config, aero, method)
-    opts = module.options_from_config(config, aero, method)
+    from windflutter.stability.build import with_span_count  # noqa: PLC0415
+
+    opts = module.options_from_config(with_span_count(config), aero, method)
     return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
 
 
