@@ -72,7 +72,7 @@ def case_solve(reduction: str) -> dict:
 
     tb = _turbine()
     ts = tmod.TurbineStability(tb, tmod.TurbineOptions(model="shell", reduction=reduction, basis_modes=30,
-                                                       mesh=SHELL_MESH, rpm_max=40.0))
+                                                       mesh=SHELL_MESH, max_rpm=40.0))
     t0 = time.perf_counter()
     fe, sections, am = ts.model(0.0)
     t_model = time.perf_counter() - t0

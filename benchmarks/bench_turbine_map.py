@@ -36,7 +36,7 @@ class MapPoint:
 
         if self._ts is None:
             self._ts = tmod.TurbineStability(self.turbine, tmod.TurbineOptions(
-                model="beam", aero="potential", method="pk", n_modes=15, rpm_min=20, rpm_max=34,
+                model="beam", aero="potential", method="pk", n_modes=15, min_rpm=20, max_rpm=34,
                 rpm_step=2))
         orig = tmod.AeroelasticModel
         # load shapes at fixed wind speeds (the ends of the map), not at the analysed one: the

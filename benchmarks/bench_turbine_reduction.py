@@ -47,7 +47,7 @@ def case(n_modes, wind, rpm, mta=False):
         tmod.AeroelasticModel = lambda **kw: MTAAeroelasticModel(**kw, mta_wind_speeds=(wind,))
 
     o = TurbineOptions(model="beam", aero="potential", method="pk", n_modes=n_modes,
-                       rpm_min=rpm[0], rpm_max=rpm[1], rpm_step=rpm[2])
+                       min_rpm=rpm[0], max_rpm=rpm[1], rpm_step=rpm[2])
     ts = TurbineStability(load(), o)
     t0 = time.perf_counter()
     _, _, am = ts.model(ts.pitch_at(wind))

@@ -27,7 +27,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "windflutter"
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
     ("units", "linalg_tools", "files", "schema", "threads", "aero_types", "version"),
-    ("results", "backends", "parallel"),
+    ("results", "backends", "exporters", "parallel"),
     ("config",),
     ("structure",),
     ("rotor",),
@@ -38,7 +38,7 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("steady",),
     ("system",),
     ("stability",),
-    ("simulate",),
+    ("simulate", "sensitivity"),
     ("post",),
     ("analysers", "operating"),
     ("workflow",),
@@ -264,3 +264,126 @@ def test_the_private_name_check_can_fail(tmp_path):
     (pkg / "__init__.py").write_text("")
     (pkg / "a.py").write_text("def f():\n    from windflutter.b import _g\n")
     assert private_imports(pkg) == ["windflutter.a (line 2) imports _g"]
+
+
+# ------------------------------------------------------------------ function-local imports
+#: modules whose import loads a heavy library (matplotlib): imported inside the function that draws,
+#: from anywhere
+HEAVY_MODULES = frozenset({
+    "windflutter.post.plots", "windflutter.post.report", "windflutter.post.campbell_plots",
+    "windflutter.post.vg_plots", "windflutter.post.stability_plots", "windflutter.post.simulate_plot",
+})
+_CLI_START_UP = "CLI start-up: a sub-command imports what it runs after its arguments are parsed"
+_LATE_BINDING = ("entries into real work, looked up when called (tests/cli's HeavyWork guard patches them "
+                 "in their module, which only a late import sees)")
+_OTHER_ISSUE = "a file another open issue is changing (left as it is here)"
+_LEAD = "the mode-identity files being changed now (to follow)"
+#: function-local imports of the package's own modules that stay: importing file (relative to
+#: src/windflutter; a folder ends in '/') -> (the modules it may import locally, why).  Every other
+#: import of our own modules is at module level (issue 29); cli/ is exempt as a whole.
+LOCAL_IMPORTS: dict[str, tuple[frozenset[str], str]] = {
+    "cli/": (frozenset({"*"}), _CLI_START_UP),
+    "__init__.py": (frozenset({"windflutter.api"}), "the package facade: `import windflutter` stays light, the "
+                    "API is loaded on first use"),
+    "api.py": (frozenset({"windflutter.model", "windflutter.mesh.analysis", "windflutter.workflow",
+                          "windflutter.simulate.run", "windflutter.simulate.onset"}),
+               f"{_LATE_BINDING}; simulate: {_OTHER_ISSUE}"),
+    "system/operational.py": (frozenset({"windflutter.mesh.turbine", "windflutter.system.identity"}),
+                              f"build_model: {_LATE_BINDING}; identity: {_LEAD}"),
+    "analysers.py": (frozenset({"windflutter.stability.turbine"}), "the seed's methods (stability.turbine), a fenced "
+                     "plug-in loaded only when a pk or thesis case runs"),
+    "stability/build.py": (frozenset({"windflutter.stability.turbine"}), "the seed's methods, a fenced plug-in "
+                           "loaded only when a pk or thesis case is built"),
+    "mesh/": (frozenset({"*"}), _OTHER_ISSUE),
+    "simulate/": (frozenset({"*"}), _OTHER_ISSUE),
+    "system/deflected_shell.py": (frozenset({"*"}), _OTHER_ISSUE),
+    "stability/operational.py": (frozenset({"*"}), _LEAD),
+    "stability/tracking.py": (frozenset({"*"}), _LEAD),
+    "stability/turbine.py": (frozenset({"*"}), _LEAD),
+    "system/campbell.py": (frozenset({"*"}), _LEAD),
+    "system/identity.py": (frozenset({"*"}), _LEAD),
+    "system/modes.py": (frozenset({"*"}), _LEAD),
+}
+
+
+def local_imports(src: Path = SRC) -> dict[str, set[str]]:
+    """Per file (relative to ``src``) the package modules it imports inside a function."""
+    out: dict[str, set[str]] = {}
+    for path in sorted(src.rglob("*.py")):
+        rel = path.relative_to(src).as_posix()
+        name = _module_name(path, src)
+        for fn in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
+                continue
+            for node in ast.walk(fn):
+                if isinstance(node, ast.ImportFrom):
+                    base = _resolve(name, path, node.module, node.level) if node.level else (node.module or "")
+                    mods = [_submodule(src, base, a.name) for a in node.names]
+                elif isinstance(node, ast.Import):
+                    mods = [a.name for a in node.names]
+                else:
+                    continue
+                out.setdefault(rel, set()).update(m for m in mods if m == "windflutter" or m.startswith("windflutter."))
+    return {k: v for k, v in out.items() if v}
+
+
+def _submodule(src: Path, base: str, name: str) -> str:
+    """``base.name`` when that is a module or package of ``src``'s package, else ``base``."""
+    rel = Path(*f"{base}.{name}".split(".")[1:])
+    return f"{base}.{name}" if (src / rel).with_suffix(".py").is_file() or (src / rel).is_dir() else base
+
+
+def _resolve(name: str, path: Path, module: str | None, level: int) -> str:
+    parts = name.split(".") if path.name == "__init__.py" else name.split(".")[:-1]
+    parts = parts[: len(parts) - (level - 1)]
+    return ".".join(parts + ([module] if module else []))
+
+
+def _allowed(rel: str) -> tuple[frozenset[str], str] | None:
+    if rel in LOCAL_IMPORTS:
+        return LOCAL_IMPORTS[rel]
+    return next((v for k, v in LOCAL_IMPORTS.items() if k.endswith("/") and rel.startswith(k)), None)
+
+
+def unlisted_local_imports(src: Path = SRC) -> dict[str, list[str]]:
+    bad = {}
+    for rel, mods in local_imports(src).items():
+        allowed = _allowed(rel)
+        names = allowed[0] if allowed else frozenset()
+        extra = sorted(m for m in mods - HEAVY_MODULES if "*" not in names and m not in names)
+        if extra:
+            bad[rel] = extra
+    return bad
+
+
+def test_local_imports_of_our_modules_only_where_listed():
+    """Our own modules are imported at module level, except a drawing module (matplotlib), the CLI's
+    start-up and the listed cases (issue 29)."""
+    bad = unlisted_local_imports()
+    assert not bad, f"import these at module level (or list them with a reason in LOCAL_IMPORTS): {bad}"
+
+
+def test_local_import_list_only_shrinks():
+    """A listed module no longer imported locally must leave LOCAL_IMPORTS (the list is a debt)."""
+    found = local_imports()
+    stale = []
+    for key, (names, _) in LOCAL_IMPORTS.items():
+        files = [r for r in found if (r.startswith(key) if key.endswith("/") else r == key)]
+        if not files:
+            stale.append(key)
+        elif "*" not in names:
+            used = set().union(*(found[r] for r in files))
+            stale += [f"{key}: {m}" for m in sorted(names - used)]
+    assert not stale, f"remove these entries from LOCAL_IMPORTS: {stale}"
+
+
+def test_the_local_import_check_can_fail(tmp_path):
+    pkg = tmp_path / "windflutter"
+    (pkg / "post").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    for f in ("post/__init__.py", "post/plots.py", "post/store.py", "units.py"):
+        (pkg / f).write_text("")
+    (pkg / "post" / "x.py").write_text("import numpy\nfrom windflutter import errors\n"
+                                       "def f():\n    from .store import a\n    from windflutter.post import plots\n"
+                                       "    import scipy\n    from windflutter import units\n")
+    assert unlisted_local_imports(pkg) == {"post/x.py": ["windflutter.post.store", "windflutter.units"]}

@@ -17,9 +17,13 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from windflutter.backends import BUILTIN, backend_factory
 from windflutter.config import AnalysisConfig
-from windflutter.errors import InputError, ModelError, ValidityWarning
+from windflutter.errors import InputError, InputWarning, ModelError, ValidityWarning
+from windflutter.operating import operating_campbell as service
+from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult
+from windflutter.stability.build import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts
 from windflutter.units import RPM
 
 # --------------------------------------------------------------------------------------------
@@ -41,8 +45,6 @@ def make_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
     name is a plug-in of :mod:`windflutter.backends` (registered in this process or in the
     entry-point group ``windflutter.backends``) and gives ``factory(turbine, config)``.
     """
-    from windflutter.backends import BUILTIN, backend_factory  # noqa: PLC0415
-
     backend = config.solver.backend
     if backend == BUILTIN:
         return _builtin_analyser(turbine, config)
@@ -64,8 +66,6 @@ def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
 
 def mesh_settings(config: AnalysisConfig) -> dict[str, Any]:
     """Mesh-setting overrides of ``config`` (:func:`windflutter.stability.build.mesh_settings`)."""
-    from windflutter.stability.build import mesh_settings as _mesh  # noqa: PLC0415
-
     return _mesh(config)
 
 
@@ -74,8 +74,6 @@ def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any 
     (:func:`windflutter.stability.build.turbine_options`; ``module`` only for tests that substitute
     the solver module)."""
     if module is None:
-        from windflutter.stability.build import turbine_options as _opts  # noqa: PLC0415
-
         return _opts(config, aero, method)
     from windflutter.stability.build import with_span_count  # noqa: PLC0415
 
@@ -95,7 +93,6 @@ class TurbinePointAnalyser:
         self._cases: dict[tuple[str, str], Any] = {}
         self._size: dict[str, Any] = {}
         # validate the options now, so a bad combination fails before the first point
-        from windflutter.stability.build import case_options, method as search_method  # noqa: PLC0415
 
         for aero, method in config.cases:
             if search_method(method).config_grid and module is not None:
@@ -106,8 +103,6 @@ class TurbinePointAnalyser:
     def _stability(self, aero: str, method: str):
         key = (aero, method)
         if key not in self._cases:
-            from windflutter.stability.build import stability_analysis  # noqa: PLC0415
-
             self._cases[key] = stability_analysis(self.turbine, self.config, aero, method)
         return self._cases[key]
 
@@ -136,7 +131,6 @@ class TurbinePointAnalyser:
         ts = self._stability(point.aero, point.method)
         if progress is not None:
             progress(0.02, f"{point.label}: model and search")
-        from windflutter.stability.build import method as search_method  # noqa: PLC0415
 
         grid = np.asarray(point.sweep_rpm, float) if search_method(point.method).config_grid else None
         s, notes = _with_validity_notes(ts.analyse_operating_point, point.wind_speed, rpm_grid=grid)
@@ -159,7 +153,6 @@ class TurbinePointAnalyser:
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:
                 progress(0.95, f"{point.label}: flutter mode")
-            from windflutter.post.aerowork import flutter_mode_diagnostics  # noqa: PLC0415
 
             _, sections, am = ts.model(ts.pitch_at(point.wind_speed))
             sys_on = am.at(point.wind_speed, float(s.flutter_rpm) * RPM)
@@ -180,7 +173,6 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
         return None
     if getattr(turbine, "operating_curve", None) is None:
         return None
-    from windflutter.operating import operating_campbell as service  # noqa: PLC0415
 
     aero = next(a for a, m in config.cases if m == "p")
     case = getattr(analyser, "_cases", {}).get((aero, "p")) if analyser is not None else None
@@ -189,8 +181,6 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
     winds = [v for v in config.wind_speeds if lo - 1e-9 <= v <= hi + 1e-9]
     dropped = [v for v in config.wind_speeds if v not in winds]
     if dropped:
-        from windflutter.errors import InputWarning  # noqa: PLC0415
-
         warnings.warn(f"the operating-point Campbell covers the operating curve's {lo:g}-{hi:g} m/s: wind speeds "
                       f"{', '.join(f'{v:g}' for v in dropped)} m/s left out of it (no operating point there; the "
                       "stability map still analyses them)", InputWarning, stacklevel=2)

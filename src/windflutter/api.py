@@ -10,6 +10,7 @@ module is loaded on first use) ::
     res = windflutter.campbell(turbine, [6.0, 11.0, 18.0])      # -> CampbellResult
     pts = windflutter.stability(turbine, [11.0], model="beam")  # -> one PointSummary per wind speed
     ds = windflutter.run(turbine, "analysis.yaml", outdir="out/nrel5mw")   # results.nc, report.html
+    sens = windflutter.api.sensitivity(turbine, [15.0], modes=["1st edge BW"])  # design sensitivities
 
 Every entry point validates its input as the CLI does and raises
 :class:`~windflutter.errors.InputError` naming the keyword (or config field), the value and what
@@ -33,9 +34,20 @@ import re
 from pathlib import Path
 from typing import Any
 
-from windflutter.config import MAX_MODES, MAX_RPM, field_spec
+from windflutter.config import AnalysisConfig, MAX_MODES, MAX_RPM, check_config, config_from_dict, field_spec, load_config
 from windflutter.errors import InputError
+from windflutter.mesh.settings import MeshSettings
+from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
+from windflutter.model.turbine import Turbine
+from windflutter import operating
 from windflutter.schema import Spec
+from windflutter.stability import build  # module access: tests patch build.stability_analysis
+from windflutter.operating import campbell_model
+from windflutter.sensitivity import onset as onset_
+from windflutter.sensitivity.results import as_dataset, sensitivities
+from windflutter.stability.build import operational_options
+from windflutter.system.campbell import default_wind_speeds
+from windflutter.system.operational import missing_curve_error
 
 MESH_MODELS = ("beam", "shell")
 MESH_PARTS = ("turbine", "blade", "tower", "rotor")
@@ -48,7 +60,7 @@ SHELL_ONLY = ("n_chord", "tower_model", "tip_closure", "element_length", "refere
 #: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
 MESH_OPTIONS: dict[str, Spec] = {
     "part": Spec("choice", choices=MESH_PARTS, doc="which part: turbine, blade (root clamped), tower "
-                 "(rotor-nacelle lumped) or rotor (hub clamped)"),
+                 "(rotor-nacelle lumped) or rotor (blades and hub, the hub clamped: no drivetrain in a modal analysis)"),
     "model": Spec("choice", choices=MESH_MODELS, doc=f"beam (Timoshenko beams, the default of every command) "
                   "or shell (composite shells)"),
     "pitch": Spec("float", lower=-180.0, upper=180.0, unit="deg", doc="blade pitch"),
@@ -106,8 +118,6 @@ def as_turbine(turbine: Any, backend: str = "windflutter"):
     """``turbine`` itself if it is a :class:`~windflutter.model.Turbine`, else read with
     :func:`load_turbine`; for a plug-in back-end (``solver.backend``) a path or name is passed on
     unread, as ``windflutter run`` does."""
-    from windflutter.model.turbine import Turbine  # noqa: PLC0415
-
     if isinstance(turbine, Turbine):
         return turbine
     if not isinstance(turbine, (str, Path)):
@@ -153,8 +163,6 @@ def analysis_config(config: Any = None, **options):
 def _config(config: Any, options: dict[str, Any], source: str):
     import copy  # noqa: PLC0415
 
-    from windflutter.config import AnalysisConfig, check_config, config_from_dict, load_config  # noqa: PLC0415
-
     overrides = _nest(options)
     if config is None or isinstance(config, (str, Path)):
         return load_config(config, overrides, overrides_source=source)
@@ -182,8 +190,6 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
     (angles in degrees); the shell-only options are refused with the beam model (``name(key)``:
     how an error names an option, e.g. its CLI flag)."""
     import math  # noqa: PLC0415
-
-    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
 
     v = {**MESH_DEFAULTS, **{k: x for k, x in values.items() if x is not None}}
     if v["model"] != "shell":
@@ -261,12 +267,10 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
         per wind speed: ``flutter_rpm``, ``flutter_frequency_hz``, ``flutter_mode``,
         ``divergence_rpm``, ``pitch_deg``, the sweep; ``.as_dict()`` is the CLI's ``--json`` point.
     """
-    from windflutter.stability.build import case_options, stability_analysis  # noqa: PLC0415
-
     cfg = _config(config, {**options, "wind_speeds": wind_speeds}, "windflutter.stability() keywords")
     aero, method = _one(cfg, "aero", "aerodynamic variant"), _one(cfg, "method", "search method")
-    case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
-    solver = stability_analysis(as_turbine(turbine), cfg, aero, method)
+    build.case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
+    solver = build.stability_analysis(as_turbine(turbine), cfg, aero, method)
     return [solver.analyse_operating_point(v) for v in cfg.wind_speeds]
 
 
@@ -292,16 +296,95 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
         ``.points`` (per wind speed: rotor speed, pitch, modes with frequency and damping),
         ``.least_damped()``, ``.unstable()``, ``.as_dict()`` (the CLI's ``--json``).
     """
-    from windflutter.operating import operating_campbell  # noqa: PLC0415
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
-
     extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
     if max_hz is not None:
         extra["campbell.max_hz"] = max_hz
     cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
-    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    build.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
-    return operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
+    return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
+
+
+def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None, global_parameters=None,
+                total: bool = False, max_hz: float | None = None, config: Any = None, progress=None, **options):
+    """Design sensitivities: the derivative of each named mode's frequency and damping ratio with
+    respect to the blade's section properties (per beam element) and global parameters, at each wind
+    speed -- ``windflutter sensitivity`` (:mod:`windflutter.sensitivity`, docs/sensitivity.md).
+
+    Parameters
+    ----------
+    turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name (beam blades).
+    wind_speeds : m/s; default the operating curve's within 3-25 m/s.
+    modes : identity names to keep (``["1st edge BW"]``); default every mode up to ``max_hz``.
+    blade_properties, global_parameters : names (:data:`~windflutter.sensitivity.parameters.
+        BLADE_PROPERTIES`, ``GLOBAL_PARAMETERS``); default all.
+    total : also the whole-blade and global parameters' derivatives by whole re-analyses (the steady
+        state recomputed, which the sensitivities hold fixed; two re-analyses per parameter and wind
+        speed): ``dfrequency_total``, ``ddamping_total``.
+    max_hz, config, progress, **options : as :func:`campbell`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``frequency``, ``damping_ratio`` (mode x wind_speed); ``dfrequency``, ``ddamping`` (mode x
+        wind_speed x parameter x station); ``dfrequency_global``, ``ddamping_global``; ``defined``.
+    """
+
+    extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
+    if max_hz is not None:
+        extra["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, **extra}, "windflutter.sensitivity() keywords")
+    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    t = as_turbine(turbine)
+    if getattr(t, "operating_curve", None) is None:
+
+        raise missing_curve_error(t)
+    om = campbell_model(t, cfg)
+    if om.options.model != "beam":
+        raise InputError("model.type", om.options.model, "beam (the sensitivities of shell blades are not built yet)")
+    winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
+    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    pts = sensitivities(om, winds, hz, modes=modes, blade_properties=blade_properties,
+                        global_parameters=global_parameters, progress=progress, total=bool(total))
+    return as_dataset(pts, str(getattr(t, "name", "")), om.describe())
+
+
+def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rpm: float | None = None,
+                      blade_properties=None, global_parameters=None, max_hz: float | None = None,
+                      config: Any = None, **options):
+    """The derivative of an instability's onset rotor speed with respect to the design parameters,
+    by the implicit function theorem (:mod:`windflutter.sensitivity.onset`): at ``wind_speed`` (m/s),
+    the operating curve's pitch held and the rotor speed raised.
+
+    ``mode`` (identity name) and ``rpm`` (RPM, near the onset): default the first flutter onset of
+    method p's search (:func:`stability`, which costs a rotor-speed sweep).  The onset is refined by
+    the secant method.  Other keywords as :func:`sensitivity`.
+
+    Returns
+    -------
+    windflutter.sensitivity.onset.OnsetSensitivity
+        ``rpm`` the onset, ``drpm[parameter]`` RPM per unit of the parameter (blade properties
+        over the whole blade; relative ones per +100 %, offsets per m).
+    """
+
+    if max_hz is not None:
+        options["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, "wind_speeds": [wind_speed]}, "windflutter.onset_sensitivity() keywords")
+    t = as_turbine(turbine)
+    if mode is None or rpm is None:
+        found = stability(t, [wind_speed], config=cfg, method="p")[0]
+        if found.flutter_rpm is None:
+            raise InputError("wind_speed", wind_speed, "a wind speed where method p finds a flutter onset "
+                             "(none up to the config's maximum rotor speed)")
+        mode = mode or str(found.flutter_mode).split(" + ")[0]
+        rpm = float(found.flutter_rpm) if rpm is None else rpm
+    om = campbell_model(t, cfg)
+    _, pitch = om.operating_point(float(wind_speed))
+    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    r0 = onset_.onset(lambda r: om.at(float(wind_speed), rpm=r, pitch=pitch), mode, float(rpm) - 0.1,
+                      float(rpm) + 0.1, hz)
+    return onset_.onset_sensitivity(om, float(wind_speed), mode, r0, pitch, hz, blade_properties=blade_properties,
+                                    global_parameters=global_parameters)
 
 
 # --------------------------------------------------------------------------------------------
@@ -350,8 +433,6 @@ def run_folder_name(turbine: Any) -> str:
     """The default output folder name of a run (``out/<this>``): a bundled name as given in its
     canonical spelling (``"nrel5mw"``), else the turbine file's name without its suffix; for a
     :class:`~windflutter.model.Turbine`, of the file it was read from."""
-    from windflutter.model.bundled import bundled_turbines, resolve_turbine_path  # noqa: PLC0415
-
     src = turbine if isinstance(turbine, (str, Path)) else (getattr(turbine, "source", "") or "")
     bundled = {path: name for name, path in bundled_turbines().items()}
     if isinstance(src, str) and src and not Path(src).exists():

@@ -14,14 +14,14 @@ from __future__ import annotations
 from typing import Any
 
 from windflutter.config import AnalysisConfig
+from windflutter.stability.build import operational_options
+from windflutter.system.campbell import campbell
+from windflutter.system.operational import OperationalModel, missing_curve_error
 
 
 def campbell_model(turbine: Any, config: AnalysisConfig):
     """Method p's operating-point model of ``turbine`` for ``config`` (its one aerodynamic variant;
     with several, the first one analysed with method p)."""
-    from windflutter.stability.build import operational_options
-    from windflutter.system.operational import OperationalModel
-
     aero = next((a for a, m in config.cases if m == "p"), config.aero[0])
     return OperationalModel(turbine, operational_options(config, aero))
 
@@ -42,11 +42,7 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
     -------
     windflutter.system.campbell.CampbellResult
     """
-    from windflutter.system.campbell import campbell
-
     if getattr(turbine, "operating_curve", None) is None:
-        from windflutter.system.operational import missing_curve_error
-
         raise missing_curve_error(turbine)
     om = model if model is not None else campbell_model(turbine, config)
     max_hz = config.campbell.max_hz if config.campbell.max_hz is not None else om.reference().default_max_hz()

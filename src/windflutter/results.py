@@ -29,7 +29,8 @@ class OperatingPoint:
     wind_speed : free wind speed (m/s).
     aero : ``potential`` or ``viscous``.
     method : ``pk`` or ``thesis``.
-    rpm_min, rpm_max : rotor-speed search range (RPM).
+    min_rpm, max_rpm : rotor-speed search range (RPM), the config's ``rotor_speed.min_rpm`` and
+        ``max_rpm`` (``rpm_min`` and ``rpm_max``, the names before issue 29, still read them).
     tolerance_rpm : onset tolerance (RPM).
     sweep_rpm : rotor speeds of the Campbell / damping sweep (RPM).
     """
@@ -38,8 +39,8 @@ class OperatingPoint:
     wind_speed: float
     aero: str
     method: str
-    rpm_min: float
-    rpm_max: float
+    min_rpm: float
+    max_rpm: float
     tolerance_rpm: float
     sweep_rpm: tuple[float, ...]
 
@@ -48,9 +49,19 @@ class OperatingPoint:
         return f"V = {self.wind_speed:g} m/s, {self.aero}, {self.method}"
 
     @property
+    def rpm_min(self) -> float:
+        """The old name of :attr:`min_rpm`."""
+        return self.min_rpm
+
+    @property
+    def rpm_max(self) -> float:
+        """The old name of :attr:`max_rpm`."""
+        return self.max_rpm
+
+    @property
     def omega_range(self) -> tuple[float, float]:
         """Search range in rad/s."""
-        return self.rpm_min * RPM, self.rpm_max * RPM
+        return self.min_rpm * RPM, self.max_rpm * RPM
 
 
 @dataclass
@@ -64,7 +75,9 @@ class PointResult:
     flutter_mode : label of the flutter mode (e.g. ``"1st edge"``).
     divergence_rpm : lowest rotor speed with static divergence (RPM); NaN if none.
     sweep_rpm : (nr,) rotor speeds of the sweep (RPM).
-    frequency_hz, damping_ratio : (nr, nm) tracked modes over the sweep (Hz, -).
+    frequency_hz, damping_ratio : (nr, nm) tracked modes over the sweep: the DAMPED frequency
+        ``|Im lambda| / 2 pi`` (Hz) and the damping ratio (-); stored in ``results.nc`` as
+        ``damped_frequency`` beside the undamped ``frequency`` ``|lambda| / 2 pi``.
     mode_labels : (nm,) labels of the tracked modes.
     station_radius : (ns,) radii of the span stations (m).
     flutter_shape : (ns, 3) complex flap, edge (m) and torsion (rad) of the flutter mode at onset

@@ -35,6 +35,7 @@ import signal
 import sys
 import threading
 import time
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -43,8 +44,12 @@ from typing import Any
 import numpy as np
 import xarray as xr
 
-from windflutter.config import AnalysisConfig
+from windflutter import parallel
+from windflutter.config import AnalysisConfig, check_config
+from windflutter.errors import InputWarning
+from windflutter.exporters import get_exporter
 from windflutter.post import runfolder, store
+from windflutter.post.animation import write_mode_animation
 from windflutter.post.progress import RunProgress
 from windflutter.post.rundata import MODEL_SIZE_KEYS, assemble_dataset, check_operating, describe_run  # noqa: F401
 from windflutter.post.runfolder import RUN_FILE  # noqa: F401  (re-exported: the run's record)
@@ -242,8 +247,6 @@ def run(turbine: Any, config: AnalysisConfig, outdir: str | Path, resume: bool =
         turbine and version (field ``--resume``); an unknown back-end; no Dask scheduler at
         ``scheduler``.
     """
-    from windflutter import parallel  # noqa: PLC0415
-    from windflutter.config import check_config  # noqa: PLC0415
 
     config = check_config(config)  # a config built in Python is checked like a file
     if scheduler is None:
@@ -291,7 +294,6 @@ def _stored_points(outdir: Path, points: list[OperatingPoint], config: AnalysisC
 def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progress: bool,
          analyser: Any, stream, workers: int | None, client: Any, record: dict[str, Any]) -> xr.Dataset:
     """The body of :func:`run` (``client``: a connected Dask client or ``None``)."""
-    from windflutter import parallel  # noqa: PLC0415
 
     outdir.mkdir(parents=True, exist_ok=True)
     points = plan_points(config)
@@ -351,6 +353,7 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
         store.write_campbell(outdir, camp)
         for k, v in camp.assumptions.items():
             ds.attrs[f"assumption_{k}"] = str(v)
+    write_exports(camp, config, outdir)
     store.atomic_write_netcdf(ds, outdir / store.RESULTS_FILE)
     write_outputs(ds, config, outdir, campbell=camp)
     return ds
@@ -366,8 +369,6 @@ def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, con
     if not callable(fe_model):
         return None
     try:
-        from windflutter.post.animation import write_mode_animation  # noqa: PLC0415
-
         fe = fe_model(point)
         f = res.flutter_frequency_hz
         return write_mode_animation(fe, res.flutter_dof_vector, outdir / "animations" / f"flutter_p{point.index:04d}.pvd",
@@ -376,6 +377,29 @@ def _write_animation(analyser: Any, point: OperatingPoint, res: PointResult, con
     except Exception as exc:  # a picture must not cost the point
         res.info["animation_error"] = f"{type(exc).__name__}: {exc}"[:300]
         return None
+
+
+def write_exports(campbell, config: AnalysisConfig, outdir: str | Path) -> dict[str, Path]:
+    """The operating-point Campbell in each format of ``output.exports`` (:mod:`windflutter.exporters`),
+    to ``OUTDIR/campbell<suffix>`` (the format's first suffix; a plug-in without one: ``campbell.<name>``).
+    The CF NetCDF ``campbell.nc`` is the run's own store and is written whether listed or not."""
+    written: dict[str, Path] = {}
+    if not config.output.exports:
+        return written
+    if campbell is None:
+        warnings.warn("output.exports: this run has no operating-point Campbell (it needs campbell.enabled, method "
+                      "p, the built-in back-end and an operating curve): nothing exported", InputWarning, stacklevel=2)
+        return written
+    outdir = Path(outdir)
+    outdir.mkdir(parents=True, exist_ok=True)
+    for name in config.output.exports:
+        exporter = get_exporter(name, "output.exports")
+        path = outdir / f"campbell{exporter.suffixes[0] if exporter.suffixes else '.' + exporter.name}"
+        if path.name == store.CAMPBELL_FILE:
+            written[name] = path
+            continue
+        written[name] = exporter.write(campbell, path, field="output.exports", dpi=config.output.dpi)
+    return written
 
 
 def write_outputs(ds: xr.Dataset, config: AnalysisConfig, outdir: str | Path, campbell=None) -> dict[str, Path]:

@@ -112,7 +112,8 @@ def _paths(tmp_path):
             "devnull-child": "/dev/null/c{ext}", "empty": ""}
 
 
-EXPORTS = [("--csv", ".csv"), ("--cmb", ".cmb"), ("--amp", ".amp"), ("--plot", ".png")]
+EXPORTS = [("--csv", ".csv"), ("--cmb", ".cmb"), ("--amp", ".amp"), ("--plot", ".png"), ("--export", ".nc"),
+           ("--export", ".csv")]
 BAD_PATHS = ["unwritable", "directory", "through-a-file", "odd-suffix", "no-suffix", "devnull-child", "empty"]
 
 

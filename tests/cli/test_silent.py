@@ -219,7 +219,7 @@ def test_rpm_step_gives_the_grid_of_before(lo, hi, step):
 
     cfg = config_from_dict({"rotor_speed": {"min_rpm": lo, "max_rpm": hi, "n_points": n_points_for_step(lo, hi, step),
                                             "tolerance_rpm": 0.01}})
-    np.testing.assert_allclose(cfg.sweep_rpm(), TurbineOptions(rpm_min=lo, rpm_max=hi, rpm_step=step).grid(),
+    np.testing.assert_allclose(cfg.sweep_rpm(), TurbineOptions(min_rpm=lo, max_rpm=hi, rpm_step=step).grid(),
                                rtol=1e-14, atol=1e-12)
 
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from windflutter.errors import InputError
-from windflutter.model import TurbineReader, load_turbine, readers, register_reader
+from windflutter.model import TurbineReader, load_turbine, readers, register_reader, unregister_reader
 from windflutter.model.beamdyn import read_beamdyn_blade
 from windflutter.model.bundled import DATA_DIR
 from windflutter.model.registry import reader_for
@@ -50,9 +50,32 @@ def test_register_a_reader(tmp_path):
         assert readers()[0].name == "mine" and reader_for(f).name == "mine"
         assert load_turbine(f).name == "x"
     finally:
-        from windflutter.model import registry
+        unregister_reader("mine")
+    assert "mine" not in [r.name for r in readers()]
 
-        registry._READERS[:] = [r for r in registry._READERS if r.name != "mine"]
+
+def test_entry_point_reader(tmp_path, monkeypatch):
+    """A package publishing ``[windflutter.readers] nrelish = ...`` (a distribution on sys.path) is
+    chosen for its suffix, after the readers registered in the process and before the built-ins."""
+    pkg = tmp_path / "plugins"
+    info = pkg / "nrelish_reader-0.dist-info"
+    info.mkdir(parents=True)
+    (info / "METADATA").write_text("Metadata-Version: 2.1\nName: nrelish-reader\nVersion: 0\n")
+    (info / "entry_points.txt").write_text("[windflutter.readers]\nnrelish = nrelish_reader:READER\n")
+    (pkg / "nrelish_reader.py").write_text(
+        "import dataclasses\nfrom windflutter.model import TurbineReader, load_turbine\n"
+        "def load(path, validate):\n"
+        "    t = load_turbine('nrel5mw')\n"
+        "    return dataclasses.replace(t, name='read by the plug-in: ' + path.read_text().strip())\n"
+        "READER = TurbineReader('nrelish', ('.nrelish',), 'nrelish_reader:load')\n")
+    monkeypatch.syspath_prepend(str(pkg))
+    f = tmp_path / "t.nrelish"
+    f.write_text("hello")
+    names = [r.name for r in readers()]
+    assert names.index("nrelish") < names.index("openfast")
+    assert reader_for(f).name == "nrelish"
+    assert load_turbine(f).name == "read by the plug-in: hello"
+    assert reader_for(f, "nrelish").name == "nrelish"
 
 
 def test_raw_wisdem_file_runs_with_assumed_masses(tmp_path):

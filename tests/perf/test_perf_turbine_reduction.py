@@ -35,7 +35,7 @@ def _stability(turbine, n_modes, mta, rpm=(20.0, 34.0, 2.0), wind=10.0):
 
     # reduction "modal": the plain basis; the MTA vectors are added below by hand when asked
     o = tmod.TurbineOptions(model="beam", aero="potential", method="pk", basis_modes=n_modes, reduction="modal",
-                            rpm_min=rpm[0], rpm_max=rpm[1], rpm_step=rpm[2])
+                            min_rpm=rpm[0], max_rpm=rpm[1], rpm_step=rpm[2])
     ts = tmod.TurbineStability(turbine, o)
     if mta:
         orig = tmod.AeroelasticModel

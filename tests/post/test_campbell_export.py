@@ -55,6 +55,26 @@ def test_cmb_round_trip_tracks_frequencies_damping_percent_and_gaps(stable_campb
     assert np.loadtxt(path).shape == (3, 11)
 
 
+def test_cmb_names_each_modes_two_largest_participations(tmp_path):
+    """Each track's two largest participations at each wind speed, in the .cmb's comment lines, are
+    the mode records' own (ModeRecord.participation), in percent."""
+    from post_fixtures import synthetic_campbell
+
+    res = synthetic_campbell()
+    for p in res.points:  # participations as the identification gives them
+        for j, m in enumerate(p.modes):
+            m.participation = [(f"identity {j}", 0.7), ("other", 0.2)]
+    text = write_cmb(res, tmp_path / "p.cmb").read_text().splitlines()
+    lines = [ln for ln in text if ln.startswith("# participation of mode ")]
+    assert len(lines) == len([t for t in res.tracks if any(k >= 0 for k in t.index)])
+    order = np.argsort([p.wind_speed for p in res.points], kind="stable")
+    tr = res.tracks[0]
+    expect = "; ".join(f"{res.points[i].wind_speed:g}: identity {tr.index[i]} 70 / other 20"
+                       for i in order if tr.index[i] >= 0)
+    assert lines[0] == f"# participation of mode 1 (wind m/s: largest % / second %): {expect}"
+    assert read_cmb(tmp_path / "p.cmb").frequency.shape[0] == len(res.points)  # the reader skips them
+
+
 def test_read_cmb_reads_hawcstab2_output():
     path = DATA / "iea15mw_hawcstab2_aeroelastic_head.cmb"
     d = read_cmb(path)

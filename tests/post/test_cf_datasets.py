@@ -125,8 +125,12 @@ def test_run_store_eigenvalues_and_mode_identity_across_points():
     assert list(ds["mode_name"].values) == labels
     for i in range(2):   # the same mode at the same slot at every point
         assert list(ds["mode_label"].values[i]) == labels
-        np.testing.assert_array_equal(ds["frequency"].values[i], f)
-    # eigenvalues: Im = 2 pi f (f the damped frequency), zeta = -Re/|lambda|
+        np.testing.assert_array_equal(ds["damped_frequency"].values[i], f)
+        # the undamped frequency of a damped oscillator: f_n = f_d / sqrt(1 - zeta^2)
+        np.testing.assert_allclose(ds["frequency"].values[i], f / np.sqrt(1 - z**2), rtol=1e-14)
+    # eigenvalues: Im = 2 pi f_d (the damped frequency), |lambda| = 2 pi f_n, zeta = -Re/|lambda|
     lam = ds["eigenvalue_real"].values + 1j * ds["eigenvalue_imag"].values
-    np.testing.assert_allclose(lam.imag / (2 * np.pi), ds["frequency"].values, rtol=1e-14)
+    np.testing.assert_allclose(lam.imag / (2 * np.pi), ds["damped_frequency"].values, rtol=1e-14)
+    np.testing.assert_allclose(np.abs(lam) / (2 * np.pi), ds["frequency"].values, rtol=1e-14)
     np.testing.assert_allclose(-lam.real / np.abs(lam), ds["damping_ratio"].values, rtol=1e-12)
+    assert "undamped" in ds["frequency"].attrs["long_name"] and "damped" in ds["damped_frequency"].attrs["long_name"]

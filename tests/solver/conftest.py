@@ -8,7 +8,7 @@ from windflutter.stability.turbine import TurbineOptions, TurbineStability
 #: strips per blade, 10 m/s, potential flow, rotor speeds 16-32 RPM in steps of 2. The same
 #: settings as ``N_SPAN`` and ``GRID`` of test_turbine_whole.py, which compares whole-turbine
 #: variants with it (checked there).
-ROTOR_ALONE = dict(model="beam", mesh={"n_span": 8, "part": "rotor"}, rpm_min=16.0, rpm_max=32.0, rpm_step=2.0)
+ROTOR_ALONE = dict(model="beam", mesh={"n_span": 8, "part": "rotor"}, min_rpm=16.0, max_rpm=32.0, rpm_step=2.0)
 
 
 @pytest.fixture(scope="session")

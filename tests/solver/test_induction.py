@@ -397,7 +397,7 @@ def test_rotor_onset_with_induction_reduced(nrel5mw):
     # reduced version (8 strips per blade, grid 18-26 RPM) of the slow run below; no expected
     # shift (the numbers go to docs/induction.md): both must find the flutter in range, and the
     # induction must change the result (it reaches the strips)
-    out = _onsets(nrel5mw, 8, dict(rpm_min=18, rpm_max=26, rpm_step=4))
+    out = _onsets(nrel5mw, 8, dict(min_rpm=18, max_rpm=26, rpm_step=4))
     for p in out.values():
         assert p.flutter_rpm is not None and 15.0 < p.flutter_rpm < 30.0
     assert out[True].flutter_rpm != out[False].flutter_rpm

@@ -57,7 +57,7 @@ def test_stability_cli_json(capsys):
 @pytest.mark.slow
 def test_full_turbine_beam_map(nrel5mw):
     # whole turbine (tower, nacelle, hub), 20 elements per blade, 4-25 m/s: onsets above rated
-    ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", rpm_min=10, rpm_max=40, rpm_step=2,
+    ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", min_rpm=10, max_rpm=40, rpm_step=2,
                                                   mesh={"n_span": 20}))
     for v in (4.0, 10.0, 25.0):
         p = ts.analyse_operating_point(v)

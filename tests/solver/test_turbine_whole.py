@@ -57,7 +57,7 @@ def test_pk_onset_analytic_and_neutral_mode_ignored():
 
 # ------------------------------------------------------------------ NREL 5 MW whole turbine
 N_SPAN = 8  # blade beam elements / strips per blade (reduced; the slow test uses 10)
-GRID = dict(rpm_min=16.0, rpm_max=32.0, rpm_step=2.0)
+GRID = dict(min_rpm=16.0, max_rpm=32.0, rpm_step=2.0)
 
 
 def _analyse(turbine, part, monkeypatch=None, edit=None, n_span=N_SPAN, **opts):
@@ -101,7 +101,7 @@ def test_rotor_alone_reference(rotor_alone):
     # the reference itself (tests/solver/conftest.py, the same mesh and grid as _analyse here):
     # 1st-torsion -> flap-torsion flutter at ~3.5 Hz below divergence
     p = rotor_alone
-    grid = np.arange(GRID["rpm_min"], GRID["rpm_max"] + 1e-9, GRID["rpm_step"])
+    grid = np.arange(GRID["min_rpm"], GRID["max_rpm"] + 1e-9, GRID["rpm_step"])
     np.testing.assert_array_equal(p.sweep_rpm, grid[: p.sweep_rpm.size])  # the sweep stops at the onset
     assert p.flutter_rpm is not None and p.divergence_rpm is not None
     assert p.flutter_rpm < p.divergence_rpm and p.first_instability == "flutter"
@@ -172,7 +172,7 @@ def test_flutter_above_divergence_is_labelled(nrel5mw):
     # the automatic one) the whole turbine's only flutter crossing is the edgewise one near
     # 31 RPM, 1.0 Hz, above the divergence (~25 RPM).  It is still reported (as a V-g plot
     # shows it), but the label and first_instability must say that divergence comes first.
-    p = _analyse(nrel5mw, "turbine", n_tracked=8, rpm_max=40.0)
+    p = _analyse(nrel5mw, "turbine", n_tracked=8, max_rpm=40.0)
     assert p.divergence_rpm is not None and p.flutter_rpm is not None
     assert p.flutter_rpm > p.divergence_rpm
     assert p.first_instability == "divergence"
@@ -191,12 +191,12 @@ def test_full_order_whole_turbine(nrel5mw):
     # effect here: +0.04 RPM at full order on the 30-element model, docs/stability.md);
     # divergence 2 %.
     mesh = {"n_tower_axial": 8}
-    o = dict(model="beam", rpm_min=18.0, rpm_max=28.0, rpm_step=2.0)
+    o = dict(model="beam", min_rpm=18.0, max_rpm=28.0, rpm_step=2.0)
     full = TurbineStability(nrel5mw, TurbineOptions(reduction="none", mesh={"n_span": 6, "part": "turbine", **mesh},
                                                     **o)).analyse_operating_point(10.0)
     red = TurbineStability(nrel5mw, TurbineOptions(basis_modes=60, mesh={"n_span": 6, "part": "turbine", **mesh},
                                                    **o)).analyse_operating_point(10.0)
-    rot = _analyse(nrel5mw, "rotor", reduction="none", n_span=6, **{k: o[k] for k in ("rpm_min", "rpm_max", "rpm_step")})
+    rot = _analyse(nrel5mw, "rotor", reduction="none", n_span=6, **{k: o[k] for k in ("min_rpm", "max_rpm", "rpm_step")})
     for p in (full, red, rot):  # the same flap-torsion family, ~3.0-3.1 Hz on this coarse mesh
         assert p.flutter_rpm is not None and p.divergence_rpm is not None
         assert p.first_instability == "flutter" and 2.5 < p.flutter_frequency_hz < 4.0

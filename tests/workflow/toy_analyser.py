@@ -166,7 +166,7 @@ class ToyAnalyser:
         neg = np.where(zeta.min(axis=1) < 0)[0]
         if neg.size:
             hi = sweep[neg[0]]
-            lo = sweep[neg[0] - 1] if neg[0] > 0 else point.rpm_min
+            lo = sweep[neg[0] - 1] if neg[0] > 0 else point.min_rpm
             while hi - lo > point.tolerance_rpm:
                 mid = 0.5 * (lo + hi)
                 lo, hi = (lo, mid) if min_damping(mid) < 0 else (mid, hi)
@@ -197,7 +197,7 @@ class ToyAnalyser:
         Ud = divergence_speed()
         if Ud > V:
             rpm_d = math.sqrt(Ud**2 - V**2) / RADIUS * 30 / math.pi
-            if point.rpm_min < rpm_d <= point.rpm_max:
+            if point.min_rpm < rpm_d <= point.max_rpm:
                 res.divergence_rpm = rpm_d
         res.info = {"radius_m": RADIUS}
         if progress:

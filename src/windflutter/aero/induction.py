@@ -48,6 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from windflutter.aero.flow import OperatingPoint, section_flow
 from windflutter.aero.momentum import axial_from_k, buhl_axial, high_thrust_model
 from windflutter.aero.sections import AeroSections, Polar, RotorGeometry
 from windflutter.errors import InputError, ValidityWarning
@@ -371,8 +372,6 @@ def theta_from_geometry(sections: AeroSections, rotor: RotorGeometry, pitch: flo
     ``theta = -alpha(V=0, Omega=1)`` of :func:`windflutter.aero.flow.section_flow`; this holds the
     pitch and twist the mesh already put into ``e_chord`` (plus the extra ``pitch``).
     """
-    from windflutter.aero.flow import OperatingPoint, section_flow
-
     op = OperatingPoint(wind_speed=0.0, omega=1.0, rotor=rotor, pitch=pitch)
     return -section_flow(sections, op).alpha
 

@@ -28,6 +28,7 @@ import scipy.sparse as sp
 from windflutter.aero.flow import OperatingPoint, SectionFlow, section_flow, section_map
 from windflutter.aero.linearization import StripLinearization, flat_plate_linearization, polar_linearization
 from windflutter.aero.sections import AeroSections
+from windflutter.aero.skin import SkinStripAero
 from windflutter.aero.statespace import ProjectedStateSpace, StripStateSpace, block_diagonal, project
 from windflutter.aero.strip import AeroOptions, StripAero
 from windflutter.aero.unsteady import UnsteadyOptions, circulation, strip_state_space
@@ -157,7 +158,6 @@ def make_operator(sections: AeroSections, op: OperatingPoint, options=None, pare
     if options is None or isinstance(options, AeroOptions):
         if parent is None:
             return StripAero(sections, op, options or AeroOptions())
-        from windflutter.aero.skin import SkinStripAero
 
         return SkinStripAero(sections, op, options or AeroOptions(), parent=np.asarray(parent))
     if isinstance(options, UnsteadyOptions):

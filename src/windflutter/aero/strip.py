@@ -30,6 +30,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.aero.flow import OperatingPoint, SectionFlow, section_flow, section_map  # noqa: F401 (re-export)
+from windflutter.aero.polars import fit_polar
 from windflutter.aero.sections import AeroSections
 from windflutter.aero.statespace import block_diagonal
 from windflutter.aero.theodorsen import theodorsen
@@ -213,7 +214,6 @@ def lift_drag_slopes(sections: AeroSections, options: AeroOptions):
         cla = np.full(ns, 2 * np.pi) if options.lift_slope is None else np.broadcast_to(
             np.asarray(options.lift_slope, float), (ns,)).copy()
         return cla, np.zeros(ns)
-    from windflutter.aero.polars import fit_polar
 
     fits = [fit_polar(p) for p in sections.polars] if sections.polars else []
     idx = np.asarray(sections.airfoil, dtype=np.int64)

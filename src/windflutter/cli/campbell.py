@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import argparse
 import json
+from pathlib import Path
 
 from windflutter.cli.options import PLOT_EXTENSIONS, SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error
 from windflutter.errors import InputError
@@ -25,6 +26,12 @@ FLAGS = (
 ) + SOLVER_FLAGS
 
 
+_FORMATS_HELP = ("csv (.csv), cmb (.cmb), amp (.amp), figure (.png, .pdf, .svg), netcdf (.nc) and the formats "
+                 "plug-ins register in the entry-point group windflutter.exporters")
+#: the old export flags: aliases of --export with a fixed format
+ALIASES = (("--csv", "csv"), ("--cmb", "cmb"), ("--amp", "amp"), ("--plot", "figure"))
+
+
 def add_parser(sub: argparse._SubParsersAction) -> None:
     p = sub.add_parser("campbell", help="frequency and damping of every mode along the operating curve",
                        description="The operating-point Campbell diagram of a turbine: at each wind speed of "
@@ -34,12 +41,19 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("turbine", help="turbine file (windIO, OpenFAST .fst, HAWC2 .htc) or bundled name")
     add_flags(p, FLAGS)
     p.add_argument("--json", action="store_true", help="print the result as one JSON object")
-    p.add_argument("--csv", default=None, metavar="FILE", help="write one row per wind speed and mode")
-    p.add_argument("--cmb", default=None, metavar="FILE", help="write a HAWCStab2-style .cmb text file")
-    p.add_argument("--amp", default=None, metavar="FILE", help="write a HAWCStab2-style .amp text file (each "
-                   "mode's tower-top and blade-tip amplitudes, the .cmb's modes in its order)")
+    p.add_argument("--export", action="append", default=None, metavar="FILE",
+                   help="write the result to FILE in the format of its suffix (repeatable): " + _FORMATS_HELP)
+    p.add_argument("--format", default=None, metavar="NAME",
+                   help="the format of every --export (default: from the suffix; needed for .txt and for "
+                        "plug-in formats without a suffix)")
+    p.add_argument("--csv", default=None, metavar="FILE", help="= --export FILE --format csv: one row per wind "
+                   "speed and mode")
+    p.add_argument("--cmb", default=None, metavar="FILE", help="= --export FILE --format cmb: a HAWCStab2-style "
+                   ".cmb text file")
+    p.add_argument("--amp", default=None, metavar="FILE", help="= --export FILE --format amp: a HAWCStab2-style "
+                   ".amp text file (each mode's tower-top and blade-tip amplitudes, the .cmb's modes in its order)")
     p.add_argument("--plot", default=None, metavar="FILE",
-                   help="write the Campbell figure (" + ", ".join(PLOT_EXTENSIONS) + ")")
+                   help="= --export FILE --format figure: the Campbell figure (" + ", ".join(PLOT_EXTENSIONS) + ")")
     p.set_defaults(func=run)
 
 
@@ -54,33 +68,35 @@ def _config(args: argparse.Namespace):
         raise flag_error(exc, args, FLAGS, {}) from None
 
 
+def _exports(args: argparse.Namespace) -> list[tuple[object, str, str]]:
+    """``(exporter, path, flag)`` of every requested file, each checked before the analysis."""
+    from windflutter.exporters import check_export_format, exporter_for  # noqa: PLC0415
+    from windflutter.files import check_output_file  # noqa: PLC0415
+
+    plan = []
+    if args.format is not None:
+        check_export_format(args.format, "--format")
+    for flag, fmt in ALIASES:
+        path = getattr(args, flag.lstrip("-"))
+        if path is not None:
+            plan.append((exporter_for(path, fmt, flag), path, flag))
+    for path in args.export or ():
+        plan.append((exporter_for(path, args.format, "--export"), path, "--export"))
+    for exporter, path, flag in plan:
+        check_output_file(path, flag, exporter.suffixes or (Path(path).suffix.lower(),))
+    return plan
+
+
 def run(args: argparse.Namespace) -> int:
     from windflutter.api import campbell  # noqa: PLC0415
-    from windflutter.files import check_output_file, prepare_output_file  # noqa: PLC0415
+    from windflutter.files import prepare_output_file  # noqa: PLC0415
 
     config, _ = _config(args)
-    for flag, exts in (("--plot", PLOT_EXTENSIONS), ("--csv", (".csv",)), ("--cmb", (".cmb", ".txt")), ("--amp", (".amp", ".txt"))):
-        path = getattr(args, flag.lstrip("-"))
-        if path is not None:  # before the analysis
-            check_output_file(path, flag, exts)
+    plan = _exports(args)
     winds = config.wind_speeds if args.wind_speeds is not None else None
     res = campbell(args.turbine, winds, config=config)
-    if args.csv:
-        from windflutter.post.campbell_export import write_csv  # noqa: PLC0415
-
-        write_csv(res, prepare_output_file(args.csv))
-    if args.cmb:
-        from windflutter.post.campbell_export import write_cmb  # noqa: PLC0415
-
-        write_cmb(res, prepare_output_file(args.cmb))
-    if args.amp:
-        from windflutter.post.campbell_amp import write_amp  # noqa: PLC0415
-
-        write_amp(res, prepare_output_file(args.amp))
-    if args.plot:
-        from windflutter.post.campbell_plots import campbell_figure  # noqa: PLC0415
-
-        campbell_figure(res).savefig(prepare_output_file(args.plot), dpi=config.output.dpi)
+    for exporter, path, flag in plan:
+        exporter.write(res, prepare_output_file(path), field=flag, dpi=config.output.dpi)
     if args.json:
         print(json.dumps(res.as_dict()))
         return 0

@@ -12,7 +12,9 @@ from typing import Any
 
 from windflutter.aero_types import HIGH_THRUST
 from windflutter.backends import check_backend_name
+from windflutter.exporters import check_export_format
 from windflutter.errors import InputError
+from windflutter.files import dump_yaml
 from windflutter.schema import Spec, check_keys, is_number
 
 AERO_VARIANTS = ("potential", "viscous")
@@ -102,6 +104,17 @@ def _backend(v: Any, name: str, src: str | None) -> str:
     return check_backend_name(v, name, src)
 
 
+def _exports(v: Any, name: str, src: str | None) -> tuple[str, ...]:
+    """Names of registered export formats (:mod:`windflutter.exporters`), without repeats."""
+    items = [v] if isinstance(v, str) else v
+    if not isinstance(items, (list, tuple)):
+        raise InputError(name, v, "a list of export format names", src)
+    out = tuple(check_export_format(x, name, src) for x in items)
+    if len(set(out)) != len(out):
+        raise InputError(name, v, "a list without repeated entries", src)
+    return out
+
+
 # --------------------------------------------------------------------------------------------
 # the declarations
 # --------------------------------------------------------------------------------------------
@@ -131,8 +144,9 @@ class ModelConfig:
     type: str = opt("beam", "choice", "shell (the thesis's composite shells), beam (Timoshenko beams with 6x6 "
                     "sections, much faster) or section (the seed's 2-DOF section: windflutter simple)",
                     choices=MODEL_TYPES)
-    part: str = opt("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub, "
-                    "hub clamped)", choices=MODEL_PARTS)
+    part: str = opt("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub on a "
+                    "fixed nacelle, no tower; the shaft as model.drivetrain says: method p free by default, locked = "
+                    "hub clamped; pk and thesis always hub clamped)", choices=MODEL_PARTS)
     mesh_density: float = opt(1.0, "float", "multiplier on the element counts (blade elements along the span "
                               "n_aero_sections x density, or the shell's element length / density; shells also "
                               "around each section and on the tower)",
@@ -266,6 +280,9 @@ class OutputConfig:
     report: bool = opt(True, "bool", "write OUTDIR/report.html (figures embedded)")
     formats: tuple[str, ...] = opt(("png",), "choices", "figure formats", choices=PLOT_FORMATS)
     dpi: int = opt(110, "int", "raster resolution of the figures", lower=20, upper=1200)
+    exports: tuple[str, ...] = opt((), "custom", "export formats of the operating-point Campbell, each written to "
+                                   "OUTDIR/campbell.<suffix>: csv, cmb, amp, figure, netcdf or a plug-in's "
+                                   "(entry-point group windflutter.exporters)", parse=_exports)
     mode_shapes: bool = opt(True, "bool", "store the flutter mode shape and the aero-work diagnostic per point")
     animations: bool = opt(True, "bool", "write the flutter mode of every point with flutter as a VTK time "
                            "series (OUTDIR/animations/*.pvd, ParaView)")
@@ -319,8 +336,6 @@ class AnalysisConfig:
 
     def to_yaml(self) -> str:
         """YAML text that :func:`load_config` reads back equal."""
-        from windflutter.files import dump_yaml  # noqa: PLC0415
-
         return dump_yaml(self.to_dict())
 
     def fingerprint(self, exclude_output: bool = True) -> str:

@@ -18,6 +18,7 @@ from windflutter.config.declarations import (
     AnalysisConfig,
     field_spec)
 from windflutter.errors import InputError, InputWarning
+from windflutter.files import load_yaml, parse_yaml
 from windflutter.schema import Spec, check_keys
 
 
@@ -175,8 +176,6 @@ def default_config_text() -> str:
 def default_config() -> AnalysisConfig:
     """The default analysis, read from the bundled YAML (so file and dataclass agree; read once:
     the config is immutable)."""
-    from windflutter.files import parse_yaml  # noqa: PLC0415
-
     return config_from_dict(parse_yaml(default_config_text(), "config", "analysis_default.yaml"),
                             "analysis_default.yaml")
 
@@ -197,8 +196,6 @@ def load_config(path: str | Path | None = None, overrides: dict | None = None,
         unreadable or non-UTF-8 file, bad YAML (duplicate key, too deep), unknown key or bad
         value (naming the field).
     """
-    from windflutter.files import load_yaml  # noqa: PLC0415
-
     cfg = default_config()
     if path is not None:
         data = load_yaml(path, "config", what="analysis YAML file")

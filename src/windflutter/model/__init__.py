@@ -7,7 +7,7 @@ file type (:mod:`windflutter.model.registry`); see ``docs/turbine_input.md``.
 
 from windflutter.model.beamprops import blade_beam_sections, tower_beam_sections
 from windflutter.model.bundled import bundled_turbines
-from windflutter.model.registry import TurbineReader, load_turbine, readers, register_reader
+from windflutter.model.registry import TurbineReader, load_turbine, readers, register_reader, unregister_reader
 from windflutter.model.turbine import (
     Airfoil,
     BeamProperties,
@@ -29,5 +29,5 @@ from windflutter.model.turbine import (
 __all__ = [
     "Airfoil", "BeamProperties", "Blade", "BladeDamping", "ControlSettings", "Hub", "Layer", "Layup", "Nacelle",
     "OperatingCurve", "Tower", "TowerDamping", "TowerLayer", "Turbine", "TurbineReader", "Web", "load_turbine",
-    "bundled_turbines", "readers", "register_reader", "blade_beam_sections", "tower_beam_sections",
+    "bundled_turbines", "readers", "register_reader", "unregister_reader", "blade_beam_sections", "tower_beam_sections",
 ]

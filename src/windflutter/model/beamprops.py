@@ -27,8 +27,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from windflutter.errors import InputError
+from windflutter.errors import InputError, InputWarning
 from windflutter.model.blade import PERM_BEAMDYN_TO_SECTION
+from windflutter.model.section import layup_beam_sections
 from windflutter.model.turbine import BeamProperties, IsotropicMaterial, OrthotropicMaterial, Turbine
 
 
@@ -87,8 +88,6 @@ def repair_precomp_inertia(M: np.ndarray, field: str, source: str | None = None)
     """
     import warnings
 
-    from windflutter.errors import InputWarning
-
     ie, ifl, mcp, ip = M[:, 3, 3], M[:, 4, 4], M[:, 3, 4], M[:, 5, 5]
     on = ie > 0
     if not on.any() or np.any(ifl[on] != 0.0) or not np.allclose(mcp[on], ie[on], rtol=1e-9, atol=0.0):
@@ -115,8 +114,6 @@ def blade_beam_sections(turbine: Turbine, source: str = "auto") -> BeamPropertie
     if source not in ("auto", "file", "layup"):
         raise InputError("source", source, "'auto', 'file' or 'layup'")
     if source == "layup" or (source == "auto" and turbine.blade.beam is None and turbine.blade.layup is not None):
-        from windflutter.model.section import layup_beam_sections
-
         return layup_beam_sections(turbine)
     if turbine.blade.beam is None:
         raise InputError("components.blade.elastic_properties", None,

@@ -35,10 +35,14 @@ from scipy.integrate import trapezoid
 from windflutter.errors import InputError
 from windflutter.model import plausibility as pl
 from windflutter.model.beamprops import beamdyn_to_section
+from windflutter.model.blade import BladeDamping
+from windflutter.model.consistency import finish_turbine
 from windflutter.model.hawc2_beam import hawc2_mass, hawc2_stiffness
 from windflutter.model.hawc2_bodies import H2_TO_WF, Body, place_bodies, read_bodies, to_wf
 from windflutter.model.hawc2_files import interpolate_profiles, read_ae, read_pc, read_st
 from windflutter.model.hawc2_htc import Block, model_folder, parse_htc
+from windflutter.model.operating import read_hawc2_opt
+from windflutter.model.supplement import apply_supplement, find_supplement
 from windflutter.model.tower_tube import equivalent_tube
 from windflutter.model.turbine import Airfoil, BeamProperties, Blade, Hub, Nacelle, Polar, Turbine
 
@@ -49,9 +53,6 @@ def load_hawc2(path: Path, validate: bool = True) -> Turbine:
     File names in the htc are relative to the model folder: the htc's folder, or its parent when
     the htc lives in a folder named ``htc`` (HAWC2's usual layout).
     """
-    from windflutter.model.consistency import finish_turbine
-    from windflutter.model.supplement import apply_supplement, find_supplement
-
     src = str(path)
     base = model_folder(path)
     root = parse_htc(path)
@@ -166,8 +167,6 @@ def _blade(body: Body, aero: Block, base: Path, src: str, notes: pl.Notes):
 def _blade_damping(blade: Blade, body: Body) -> tuple[Blade, str]:
     """The blade with the damping of its body's ``damping_aniso`` (module docstring), and a note."""
     from dataclasses import replace
-
-    from windflutter.model.blade import BladeDamping
 
     if body.damping is None:
         return blade, f"blade damping: none in main_body {body.name} (no damping_aniso)"
@@ -296,8 +295,6 @@ def _rotor_parts(parts: dict, geo: dict, src: str, notes: pl.Notes) -> tuple[Hub
 
 def _operating_curve(root: Block, base: Path, files: list, src: str):
     """HAWCStab2 ``operational_data_filename`` (wind, pitch deg, rpm ...), if the htc names one."""
-    from windflutter.model.operating import read_hawc2_opt
-
     for hs2 in root.children("hawcstab2"):
         vals = hs2.values("operational_data_filename", "hawcstab2", src, default=[""])
         if vals and vals[0]:

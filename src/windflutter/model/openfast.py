@@ -32,6 +32,7 @@ from windflutter.errors import InputError
 from windflutter.model import plausibility as pl
 from windflutter.model.aerodyn import AeroDynBlade, read_aerodyn_blade, read_aerodyn_main, read_airfoil
 from windflutter.model.beamdyn import read_beamdyn_blade, read_beamdyn_main
+from windflutter.model.consistency import finish_turbine
 from windflutter.model.elastodyn import (
     ElastoDynMain,
     read_elastodyn_blade,
@@ -40,6 +41,7 @@ from windflutter.model.elastodyn import (
     read_elastodyn_tower_table,
 )
 from windflutter.model.fastfile import FastFile
+from windflutter.model.supplement import apply_supplement, find_supplement
 from windflutter.model.tower_tube import STEEL, equivalent_tube
 from windflutter.model.turbine import Airfoil, Blade, BladeDamping, Hub, Nacelle, Turbine
 
@@ -52,9 +54,6 @@ def load_openfast(path: Path, validate: bool = True) -> Turbine:
     path : the ``.fst`` file.
     validate : unused (OpenFAST decks have no schema; the plausibility checks always run).
     """
-    from windflutter.model.consistency import finish_turbine
-    from windflutter.model.supplement import apply_supplement, find_supplement
-
     fst = FastFile(path, "OpenFAST main (.fst) file")
     notes = pl.Notes(fst.source)
     elast = fst.integer("CompElast", lo=1, hi=3)

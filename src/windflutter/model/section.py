@@ -31,6 +31,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.model.airfoil_geom import nd_arc
 from windflutter.model.turbine import BeamProperties, IsotropicMaterial, Material, Turbine
+from windflutter.model.v1arcs import contour_at
 
 
 # ------------------------------------------------------------------------------ laminate theory
@@ -269,8 +270,6 @@ def layup_beam_sections(turbine: Turbine, s: np.ndarray | None = None, n_contour
     s : span positions (default: 41 stations).
     n_contour : points on the resampled airfoil contour.
     """
-    from windflutter.model.v1arcs import contour_at
-
     b = turbine.blade
     if b.layup is None or not b.layup.layers:
         raise InputError("blade.layup", None, "a composite layup to compute section properties")

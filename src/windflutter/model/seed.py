@@ -22,6 +22,7 @@ import yaml
 from windflutter.model.airfoil_geom import arc_at_chord_x
 from windflutter.model.bundled import DATA_DIR
 from windflutter.model.airfoil_geom import orient_contour as _orient_contour
+from windflutter.model.operating import read_openfast_steady_csv
 from windflutter.model.yamlio import load_yaml_file
 from windflutter.units import RPM
 
@@ -295,8 +296,6 @@ def seed20mw_dict() -> dict:
 
 def _nrel_curve() -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """NREL 5 MW steady-state table at integer wind speeds 3..25 m/s plus rated 11.4 (rpm, deg)."""
-    from windflutter.model.operating import read_openfast_steady_csv
-
     c = read_openfast_steady_csv(DATA_DIR / "nrel5mw" / "NREL5MW_Oper_Onshore_Flexible_Discon.csv")
     v = np.unique(np.concatenate([np.arange(3.0, 25.01, 1.0), [11.4]]))
     w = np.round(c.rotor_speed_at(v) / RPM, 4)

@@ -48,14 +48,17 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.model import plausibility as pl
+from windflutter.model.beamdyn import read_beamdyn_blade, read_beamdyn_main
 from windflutter.model.checks import Reader
+from windflutter.model.elastodyn import read_elastodyn_blade
 from windflutter.model.operating import (
     curve_from_control,
     curve_from_inline,
     read_hawc2_opt,
     read_openfast_steady_csv,
 )
-from windflutter.model.turbine import BeamProperties, BladeDamping, TowerDamping, Turbine
+from windflutter.model.section import layup_beam_sections
+from windflutter.model.turbine import BeamProperties, BladeDamping, IsotropicMaterial, Tower, TowerDamping, TowerLayer, Turbine
 from windflutter.model.windio_common import inertia6
 from windflutter.model.yamlio import load_yaml_file
 from windflutter.units import DEG, PERCENT, RPM
@@ -97,8 +100,6 @@ def apply_supplement(turbine: Turbine, raw: dict | None, supp: dict | None, base
     if not np.isfinite(turbine.rated_rotor_speed) and turbine.operating_curve is not None:
         turbine = dataclasses.replace(turbine, rated_rotor_speed=turbine.operating_curve.rated_rotor_speed)
     if turbine.blade.beam == "layup":
-        from windflutter.model.section import layup_beam_sections
-
         t0 = dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, beam=None))
         turbine = dataclasses.replace(t0, blade=dataclasses.replace(t0.blade, beam=layup_beam_sections(t0)),
                                       notes=t0.notes + ("blade 6x6: thin-walled sections of the layup (model/section.py)",))
@@ -214,8 +215,6 @@ def _damping(turbine: Turbine, supp: dict, r: Reader, notes: pl.Notes) -> Turbin
 def _tower_override(turbine: Turbine, tw: dict, r: Reader, q: str) -> Turbine:
     """Replace the tower by a linear-taper tube: ``{height, base_z, outer_diameter: [base, top],
     wall_thickness: [base, top], n_stations, material: {name, E, G, rho}}``."""
-    from windflutter.model.turbine import IsotropicMaterial, Tower, TowerLayer
-
     h = r.number(tw, q, "height", positive=True)
     z0 = r.number(tw, q, "base_z", default=0.0)
     d = r.array(r.get(tw, q, "outer_diameter"), f"{q}.outer_diameter", min_len=2, positive=True)
@@ -275,9 +274,6 @@ def _curve(oc: dict, r: Reader, q: str, fdir: Path, files: list):
 
 def _beam(bb: dict, r: Reader, q: str, fdir: Path, length: float, files: list, notes: pl.Notes):
     """External 6x6 (``beamdyn`` / ``elastodyn`` file, or ``layup``) and the file's damping."""
-    from windflutter.model.beamdyn import read_beamdyn_blade, read_beamdyn_main
-    from windflutter.model.elastodyn import read_elastodyn_blade
-
     fmt = r.string(bb, q, "format", default="beamdyn")
     if fmt == "layup":
         return "layup", None  # computed after the supplement is applied (needs the final turbine)

@@ -29,6 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from windflutter.aero_types import Polar
+from windflutter.errors import InputError, ValidityWarning
 from windflutter.model.blade import (
     Airfoil,
     BeamProperties,
@@ -249,8 +250,6 @@ class OperatingCurve:
         took the 25 m/s pitch before)."""
         import warnings
 
-        from windflutter.errors import ValidityWarning
-
         lo, hi = float(self.wind_speed[0]), float(self.wind_speed[-1])
         if lo - 1e-9 <= v <= hi + 1e-9:
             return
@@ -375,8 +374,6 @@ class Turbine:
         InputError
             Naming the first missing item, the file and how to supply it.
         """
-        from windflutter.errors import InputError
-
         need = _NEEDED_BY_PART.get(part, _NEEDED_BY_PART["turbine"]) + (_NEEDED_FOR_AERODYNAMICS if aerodynamics else ())
         for item in need:
             if item in self.missing:

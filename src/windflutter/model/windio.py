@@ -30,6 +30,9 @@ from windflutter.errors import InputError
 from windflutter.model import plausibility as pl
 from windflutter.model import windio_blade, windio_parts
 from windflutter.model.checks import Reader, join
+from windflutter.model.consistency import finish_turbine
+from windflutter.model.registry import load_turbine as _load
+from windflutter.model.supplement import apply_supplement, find_supplement
 from windflutter.model.turbine import Turbine
 from windflutter.model.windio_common import V1, V2, Keys
 from windflutter.model.yamlio import load_yaml_file
@@ -106,9 +109,6 @@ def load_windio(path: Path, validate: bool = True) -> Turbine:
     path : the YAML file.
     validate : run the windIO schema validation (v2 files; ~0.2-1 s for large files).
     """
-    from windflutter.model.consistency import finish_turbine
-    from windflutter.model.supplement import apply_supplement, find_supplement
-
     data = load_yaml_file(path)
     source = str(path)
     turbine, raw = read_windio_dict(data, source=source, validate=validate)
@@ -169,6 +169,4 @@ def _read_parts(data: dict, k: Keys, r: Reader, version: str, notes: pl.Notes) -
 def load_turbine(path_or_name: str | Path, validate: bool = True) -> Turbine:
     """Any turbine file or bundled name: :func:`windflutter.model.registry.load_turbine` (kept
     here for existing imports)."""
-    from windflutter.model.registry import load_turbine as _load
-
     return _load(path_or_name, validate=validate)

@@ -12,9 +12,12 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.model import plausibility as pl
 from windflutter.model.airfoil_geom import orient_contour
+from windflutter.model.beamprops import beamdyn_mass_matrix, beamdyn_to_section, repair_precomp_inertia
 from windflutter.model.checks import Reader, join
 from windflutter.model.turbine import Airfoil, BeamProperties, Blade, BladeDamping, Polar
+from windflutter.model.v1arcs import contour_at
 from windflutter.model.windio_common import Keys, ref_axis, shape_and_axis
+from windflutter.model.windio_layup import layup_v1, layup_v2
 
 
 # ------------------------------------------------------------------------------------- airfoils
@@ -155,8 +158,6 @@ def _layup(b, r, k, materials, foils, pos_a, names, s, rthick, chord, pitch_axis
     struct = r.mapping(b, "components.blade", k.blade_struct, default=None)
     if struct is None:
         return None
-    from windflutter.model.v1arcs import contour_at
-    from windflutter.model.windio_layup import layup_v1, layup_v2
 
     sp = f"components.blade.{k.blade_struct}"
 
@@ -176,8 +177,6 @@ def blade_beam(b: dict, r: Reader, k: Keys, length: float, s_blade: np.ndarray, 
     """6x6 blade properties from the file (v2 ``structure.elastic_properties``, v1
     ``elastic_properties_mb.six_x_six``), checked at the file's stations and converted to the
     BeamSection convention; and the blade's ``structural_damping: mu`` if given."""
-    from windflutter.model.beamprops import beamdyn_to_section
-
     got = _v2_six_by_six(b, r, k, notes) if k.major >= 2 else _v1_six_by_six(b, r, notes)
     if got is None:
         return None, None
@@ -201,8 +200,6 @@ def _mu(ep: dict, r: Reader, p: str) -> np.ndarray | None:
 
 
 def _v2_six_by_six(b: dict, r: Reader, k: Keys, notes: pl.Notes):
-    from windflutter.model.beamprops import beamdyn_mass_matrix, repair_precomp_inertia
-
     st = b.get(k.blade_struct) or {}
     ep = st.get("elastic_properties")
     p = f"components.blade.{k.blade_struct}.elastic_properties"
@@ -240,8 +237,6 @@ def _v2_six_by_six(b: dict, r: Reader, k: Keys, notes: pl.Notes):
 
 
 def _v1_six_by_six(b: dict, r: Reader, notes: pl.Notes):
-    from windflutter.model.beamprops import repair_precomp_inertia
-
     epm = b.get("elastic_properties_mb") or {}
     ep = epm.get("six_x_six")
     p = "components.blade.elastic_properties_mb.six_x_six"

@@ -11,9 +11,11 @@ from typing import Any
 
 import numpy as np
 
-from windflutter.errors import InputError
+from windflutter.errors import InputError, InputWarning
+from windflutter.model.airfoil_geom import perimeter
 from windflutter.model.checks import Reader, join
 from windflutter.model.turbine import Layer, Layup, Web
+from windflutter.model.v1arcs import resolve_layer, resolve_web
 from windflutter.model.windio_common import explicit
 from windflutter.units import DEG
 
@@ -68,7 +70,6 @@ def layup_v2(st: dict, r: Reader, sp: str, materials: dict, geom=None) -> Layup:
         go, ao = resolve(a[other], join(ap, other), depth + 1)
         gw, wv = r.grid_values(a, ap, "width", nonneg=True)
         g = np.unique(np.concatenate([go, gw, np.linspace(0.0, 1.0, 41)]))
-        from windflutter.model.airfoil_geom import perimeter
 
         per = np.array([perimeter(*geom(sq)[:2]) * geom(sq)[2] for sq in g])
         wnd = np.interp(g, gw, wv) / per
@@ -119,8 +120,6 @@ def layup_v1(st: dict, r: Reader, sp: str, materials: dict, geom) -> Layup:
     neither (and no ``width``) cover the whole contour; parametric definitions (``offset_y_pa``,
     ``width``, ``midpoint_nd_arc``, arcs fixed to TE or to other layers) are resolved on the blade
     geometry by :mod:`windflutter.model.v1arcs`."""
-    from windflutter.model.v1arcs import resolve_layer, resolve_web
-
     uniform = np.linspace(0.0, 1.0, 41)
     webs = []
     for i, w in enumerate(r.seq(st, sp, "webs", default=[])):
@@ -188,8 +187,6 @@ def collapse_inverted(q: str, name: str, s: np.ndarray, t: np.ndarray, a0: np.nd
     6x6 of the IEA 10 MW has no such mass there (mass per length at 90 % span: ours 2.0x the
     file's before, 1.0x after)."""
     import warnings
-
-    from windflutter.errors import InputWarning
 
     inv = (a1 < a0) & (a0 - a1 < INVERTED_MAX) & (t > 0)
     if not inv.any():

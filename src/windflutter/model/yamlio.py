@@ -20,6 +20,7 @@ from typing import Any
 import yaml
 
 from windflutter.errors import InputError
+from windflutter.model.plausibility import MAX_FILE_BYTES
 
 _Base = getattr(yaml, "CSafeLoader", yaml.SafeLoader)
 
@@ -78,8 +79,6 @@ def load_yaml_file(path: str | Path) -> dict[str, Any]:
         If the file is missing, unreadable or not valid YAML (with line/column), or if the top
         level is not a mapping.
     """
-    from windflutter.model.plausibility import MAX_FILE_BYTES
-
     p = Path(path)
     try:
         size = p.stat().st_size

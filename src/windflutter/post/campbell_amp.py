@@ -24,6 +24,7 @@ from pathlib import Path
 import numpy as np
 
 from windflutter.errors import InputError
+from windflutter.post.campbell_export import cmb_tracks, writable_path, write_table
 
 #: HAWCStab2's 15 columns (name, unit) and windflutter's component of each (None: not given)
 AMP_COLUMNS: tuple[tuple[str, str, str | None], ...] = (
@@ -62,8 +63,6 @@ def write_amp(campbell, path, field: str = "--amp") -> Path:
         the result is not a Campbell result with modes (e.g. a dataset read back from a file), or the
         path cannot be written.
     """
-    from windflutter.post.campbell_export import writable_path, cmb_tracks, write_table  # noqa: PLC0415
-
     if not hasattr(campbell, "points") or not hasattr(campbell, "tracks"):
         raise InputError(field, type(campbell).__name__, "a Campbell result with its modes (the .amp needs the "
                          "mode shapes, which a results file does not keep)")

@@ -8,8 +8,9 @@
   the N track frequencies (Hz; damped, ``Im lambda / 2 pi``, as HAWCStab2 writes them -- its
   1st flap frequencies in operation match ours so, docs/notes/iea15mw_hawcstab2.md, "HAWCStab2's
   frequencies are damped frequencies"), the N damping ratios (% of critical); ``NaN`` where a track
-  has no mode at that wind speed.  Comment lines after the first name the tracks (``# mode k: name``)
-  and the frequency definition; numerical readers that skip ``#`` lines (``numpy.loadtxt``)
+  has no mode at that wind speed.  Comment lines after the first name the tracks (``# mode k: name``),
+  their two largest participations at each wind speed (``# participation of mode k ...``) and the
+  frequency definition; numerical readers that skip ``#`` lines (``numpy.loadtxt``)
   read the table as it is.  :func:`read_cmb` also reads HAWCStab2's own files (two or three
   blocks of N columns; the third, when present, is kept as ``extra``).
 """
@@ -158,10 +159,35 @@ def write_cmb(campbell, path, frequency: str = "damped", field: str = "--cmb") -
              f"# columns: wind speed (m/s); {frequency} frequency (Hz) of modes 1..{n}; damping ratio "
              f"(% of critical) of modes 1..{n}; NaN: mode not found at that wind speed"]
     lines += [f"# mode {k + 1}: {ds['track_name'].values[t]}" for k, t in enumerate(keep)]
+    lines += participation_lines(ds, keep)
     f = ds[_FREQUENCY_VARS[frequency]].values[:, keep]
     z = 100.0 * ds["damping_ratio"].values[:, keep]
     rows = [[v, *f[i], *z[i]] for i, v in enumerate(ds["wind_speed"].values)]
     return write_table(p, lines, rows, 17, 9, field)
+
+
+def participation_lines(ds, keep: list[int]) -> list[str]:
+    """Comment lines of the ``.cmb``: each mode's (track's) two largest participations at each wind
+    speed, ``# participation of mode k (wind m/s: largest % / second %): 3: 1st edge BW 92 / 1st flap
+    BW 5; ...`` (none when the dataset has no participations)."""
+    if "participation_1" not in ds:
+        return []
+    v = ds["wind_speed"].values
+    out = []
+    for k, t in enumerate(keep):
+        cells = []
+        for i in range(len(v)):
+            p1, s1 = str(ds["participation_1"].values[i, t]), ds["participation_1_share"].values[i, t]
+            if not p1 or not math.isfinite(s1):
+                continue
+            cell = f"{v[i]:g}: {p1} {100 * s1:.0f}"
+            p2, s2 = str(ds["participation_2"].values[i, t]), ds["participation_2_share"].values[i, t]
+            if p2 and math.isfinite(s2):
+                cell += f" / {p2} {100 * s2:.0f}"
+            cells.append(cell)
+        if cells:
+            out.append(f"# participation of mode {k + 1} (wind m/s: largest % / second %): " + "; ".join(cells))
+    return out
 
 
 def write_table(p: Path, header: list[str], rows, width: int, digits: int, field: str) -> Path:

@@ -106,7 +106,7 @@ def _sweep(ds: xr.Dataset, i: int):
     p = ds.isel(point=i)
     rpm = p["rotor_speed"].values
     ok = np.isfinite(rpm)
-    freq = p["frequency"].values[ok]
+    freq = p["damped_frequency" if "damped_frequency" in p else "frequency"].values[ok]  # (before issue 29: "frequency")
     zeta = p["damping_ratio"].values[ok]
     labels = [str(x) for x in p["mode_label"].values] if "mode_label" in p else []
     keep = [j for j in range(freq.shape[1]) if np.any(np.isfinite(freq[:, j]))]

@@ -40,6 +40,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import xarray as xr
 
+from windflutter.errors import InputError
+from windflutter.post.campbell_data import as_campbell_dataset
+
 if TYPE_CHECKING:  # pragma: no cover
     from windflutter.results import OperatingPoint, PointResult
 
@@ -61,7 +64,8 @@ VARIABLES: dict[str, tuple[str, str]] = {
     "reason": ("1", "why the point failed (empty if ok)"),
     "elapsed": ("s", "wall-clock time of the point"),
     "rotor_speed": ("rpm", "rotor speed of the sweep"),
-    "frequency": ("Hz", "damped frequency of the tracked mode"),
+    "frequency": ("Hz", "undamped natural frequency |lambda|/(2 pi) of the tracked mode"),
+    "damped_frequency": ("Hz", "damped frequency |Im lambda|/(2 pi) of the tracked mode"),
     "damping_ratio": ("1", "damping ratio zeta = -sigma/|lambda| of the tracked mode"),
     "mode_label": ("1", "label of the tracked mode"),
     "station_radius": ("m", "radius of the span station from the shaft axis"),
@@ -119,8 +123,10 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
     nm = freq.shape[1]
     labels = list(result.mode_labels or [])
     labels = (labels + [f"mode {i + 1}" for i in range(len(labels), nm)])[:nm]
+    lam = _eigenvalues(result, freq, zeta)
     data["rotor_speed"] = (("point", "sweep"), rpm[None, :])
-    data["frequency"] = (("point", "sweep", "mode"), freq[None])
+    data["frequency"] = (("point", "sweep", "mode"), (np.abs(lam) / (2 * np.pi))[None])
+    data["damped_frequency"] = (("point", "sweep", "mode"), freq[None])
     data["damping_ratio"] = (("point", "sweep", "mode"), zeta[None])
     data["mode_label"] = (("point", "mode"), np.array(labels, dtype=object).reshape(1, nm))
     r = np.asarray(result.station_radius if result.station_radius is not None else [], float).ravel()
@@ -129,7 +135,6 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
            else np.full((ns, 3), nan + 0j))
     w = (np.asarray(result.aero_work, float).reshape(ns, 3) if result.aero_work is not None and ns
          else np.full((ns, 3), nan))
-    lam = _eigenvalues(result, freq, zeta)
     data["eigenvalue_real"] = (("point", "sweep", "mode"), lam.real[None])
     data["eigenvalue_imag"] = (("point", "sweep", "mode"), lam.imag[None])
     data["station_radius"] = (("point", "station"), r[None])
@@ -301,7 +306,8 @@ def clean_temporaries(outdir: str | Path) -> int:
 
 #: what a stored point file must hold to be used again
 _POINT_VARS = ("flutter_rpm", "divergence_rpm", "status", "wind_speed", "aero", "method",
-               "flutter_torsion_real")  # the CF layout: a point file of the earlier layout is computed again
+               "flutter_torsion_real",  # the CF layout: a point file of the earlier layout is computed again
+               "damped_frequency")  # frequency undamped, damped_frequency damped: an older file is computed again
 
 
 def read_point(path: str | Path) -> xr.Dataset:
@@ -399,7 +405,6 @@ def open_results(path: str | Path) -> xr.Dataset:
     InputError
         no such file, a folder where the file should be, or a file that is not readable NetCDF.
     """
-    from windflutter.errors import InputError  # noqa: PLC0415
 
     given, path = str(path), Path(path)
     if path.is_dir():
@@ -431,7 +436,6 @@ def flutter_shape(ds: xr.Dataset) -> xr.DataArray:
 def write_campbell(outdir: str | Path, campbell) -> Path:
     """Store the operating-point Campbell diagram (a result or its dataset) as
     ``OUTDIR/campbell.nc`` (atomic; CF-1.8, dimensions wind_speed x track)."""
-    from windflutter.post.campbell_data import as_campbell_dataset  # noqa: PLC0415
 
     return atomic_write_netcdf(as_campbell_dataset(campbell), Path(outdir) / CAMPBELL_FILE)
 
@@ -444,8 +448,6 @@ def open_campbell(path: str | Path) -> xr.Dataset:
     InputError
         no such file, or not a readable Campbell dataset.
     """
-    from windflutter.errors import InputError  # noqa: PLC0415
-    from windflutter.post.campbell_data import as_campbell_dataset  # noqa: PLC0415
 
     given, path = str(path), Path(path)
     if path.is_dir():

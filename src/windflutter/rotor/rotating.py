@@ -30,6 +30,7 @@ from windflutter.errors import InputError, ModelError
 from windflutter.rotor.spin import spin_terms
 from windflutter.rotor.translational import coriolis_and_softening, spin_operator
 from windflutter.structure.fem import FEModel
+from windflutter.structure.prestress import geometric_stiffness, static_solve
 
 
 def rotating_nodes(fe: FEModel, group: str = "rotor") -> np.ndarray:
@@ -93,8 +94,6 @@ class RotorTerms:
 def _prestress(fe: FEModel, struct, Fr: np.ndarray, u0_solver=None, moments: bool = False) -> sp.csr_matrix:
     """Geometric stiffness of the static solution of ``Ks u0 = Fr`` (structural engineer's API);
     ``moments``: of every stress resultant of the beams (not the axial force's alone)."""
-    from windflutter.structure.prestress import geometric_stiffness, static_solve
-
     u0 = static_solve(struct, Fr) if u0_solver is None else u0_solver(struct, Fr)
     Kg = geometric_stiffness(fe, u0, moments=moments)
     return sp.csr_matrix(Kg)

@@ -40,7 +40,7 @@ import scipy.sparse as sp
 from windflutter.errors import InputError
 from windflutter.linalg_tools import congruence, skew
 from windflutter.rotor.translational import coriolis_and_softening
-from windflutter.structure.assembly import lumped_mass_matrices
+from windflutter.structure.assembly import coo_matrix_of, lumped_mass_matrices
 from windflutter.structure.beam import GAUSS_W, GAUSS_XI, block_rotation, shape_functions, beam_frames, element_dofs
 from windflutter.structure.fem import FEModel
 
@@ -147,8 +147,6 @@ def _lumped_terms(fe: FEModel, rotating: np.ndarray, axis: np.ndarray, center: n
 
 
 def _sparse(mats: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
-    from windflutter.structure.assembly import coo_matrix_of
-
     r, c, v = coo_matrix_of(mats, dofs)
     return sp.csr_matrix((v, (r, c)), shape=(n, n))
 
@@ -198,3 +196,11 @@ def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.n
         np.add.at(f1, de.ravel(), fe_.ravel())
     return (0.5 * (G1 - G1.T)).tocsr(), (0.5 * (Kr1 + Kr1.T)).tocsr(), f1
 
+
+def beam_spin_elements(fe: FEModel, axis: np.ndarray, center: np.ndarray):
+    """``(G1, Kr1, dofs)`` of every beam element of ``fe`` as a rigid-section rotating element, global
+    axes: (nb, 12, 12) Coriolis per rad/s and spin softening per (rad/s)^2, (nb, 12) global DOFs --
+    the element terms :func:`spin_terms` sums (before its final symmetrization), for derivatives
+    element by element (:mod:`windflutter.sensitivity`)."""
+    G, Kr, _, _, dofs = _beam_terms(fe, np.ones(len(fe.beam_conn), dtype=bool), np.asarray(axis, float), center)
+    return G, Kr, dofs

@@ -47,7 +47,7 @@ class MTAAeroelasticModel(AeroelasticModel):
         make results depend on the order the points are run in.
     mta_tol
         Relative cut-off of the correction directions (Gram eigenvalue of the unit-mass-norm
-        static responses, see :func:`windflutter.solve.reduction.m_orthonormalize`): a direction
+        static responses, see :func:`windflutter.structure.modal.m_orthonormalize`): a direction
         is kept when it carries more than ``sqrt(mta_tol)`` of the largest one's amplitude.
         ``1e-8`` (the default) is safe on every turbine checked.  ``1e-4`` keeps 44 of the 114
         directions on the NREL 5 MW whole turbine (basis 99 instead of 169, half the search

@@ -14,15 +14,16 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
+from windflutter.aero.induction import sections_induction, warn_outside_momentum_theory
 from windflutter.aero.sections import AeroSections, RotorGeometry
-from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero
+from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero, lift_drag_slopes
 from windflutter.errors import InputError, ModelError
 from windflutter.rotor.rotating import RotorTerms
 from windflutter.solve.qep import qep_pencil
+from windflutter.solve.reduction import structural_modes as lanczos_modes
+from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
 
 @dataclass
@@ -61,11 +62,8 @@ def structural_modes(K, M, n: int, shift: float = -1.0):
     if nn <= 800 or n >= nn - 1:
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
         Md = M.toarray() if sp.issparse(M) else np.asarray(M)
-        Kd = 0.5 * (Kd + Kd.T)
-        Md = 0.5 * (Md + Md.T)
-        w, V = sla.eigh(Kd, Md)
+        w, V = symmetric_eigs(Kd, Md)
         return w[:n], V[:, :n]
-    from windflutter.solve.reduction import structural_modes as lanczos_modes
 
     b = lanczos_modes(M, K, n, shift=shift, dense_below=0)
     return b.omega**2, b.Phi
@@ -118,8 +116,6 @@ class AeroelasticModel:
             # fit the polars once (not at every operating point)
             from dataclasses import replace
 
-            from windflutter.aero.strip import lift_drag_slopes
-
             cla, cda = lift_drag_slopes(self.sections, self.aero)
             self.aero = replace(self.aero, lift_slope=cla, drag_slope=cda)
         s = self.structure
@@ -155,7 +151,7 @@ class AeroelasticModel:
         if not (np.isfinite(zeta) and 0 <= zeta < 1):
             raise InputError("damping.ratio", zeta, "a damping ratio in [0, 1)")
         K0, M = np.asarray(self.Kr0), np.asarray(self.Mr)
-        w2, V = sla.eigh(0.5 * (K0 + K0.T), 0.5 * (M + M.T))
+        w2, V = symmetric_eigs(K0, M)
         MV = M @ V
         self.Dr = self.Dr + MV @ np.diag(2.0 * zeta * np.sqrt(np.maximum(w2, 0.0))) @ MV.T
 
@@ -177,11 +173,8 @@ class AeroelasticModel:
             _, V = structural_modes(K, self.Mr, self.n_modes)
             vecs.append(V)
         V = np.hstack(vecs)
-        if len(vecs) > 1:  # M-orthonormalize, dropping dependent vectors
-            G = V.T @ (self.Mr @ V)  # sparse M times the basis: no dense n x n copy (5.6 GB at 26k DOF)
-            w, U = np.linalg.eigh(0.5 * (G + G.T))
-            keep = w > 1e-10 * w.max()
-            V = V @ (U[:, keep] / np.sqrt(w[keep]))
+        if len(vecs) > 1:  # M-orthonormalize, dropping dependent vectors (sparse M times the basis)
+            V = m_orthonormalize(V, self.Mr, tol=1e-10, largest_first=False)
         return V
 
     def bem(self, wind_speed: float, omega_rot: float):
@@ -189,8 +182,6 @@ class AeroelasticModel:
         cached per operating point.  Its validity warning is given at every use, cached or not (a
         point first met by the reduction basis, whose warnings are not shown, still warns when a
         search uses it)."""
-        from windflutter.aero.induction import sections_induction, warn_outside_momentum_theory
-
         key = (float(wind_speed), float(omega_rot))
         if key not in self._induction_cache:
             self._induction_cache[key] = sections_induction(

@@ -38,12 +38,12 @@ from typing import Sequence
 import numpy as np
 import scipy.linalg as sla
 import scipy.sparse as sp
-import scipy.sparse.linalg as spla
 
-from windflutter.errors import ConvergenceError, InputError
+from windflutter.errors import InputError
 from windflutter.linalg_tools import mac_matrix as mac  # the column-by-column MAC (solve.reduction.mac)
 from windflutter.solve.linsolve import factorize
 from windflutter.solve.symmetric import spd_operator
+from windflutter.structure.modal import m_orthonormalize, mass_normalize, symmetric_eigs
 
 __all__ = [
     "ModalBasis",
@@ -143,7 +143,7 @@ def structural_modes(
     if n < dense_below:
         Md = M.toarray() if sp.issparse(M) else np.asarray(M)
         Kd = K.toarray() if sp.issparse(K) else np.asarray(K)
-        w2, V = sla.eigh(Kd, Md, subset_by_index=[0, n_modes - 1])
+        w2, V = symmetric_eigs(Kd, Md, n_modes)
     else:
         Ms = sp.csc_matrix(M)
         Ks = sp.csc_matrix(K)
@@ -151,49 +151,9 @@ def structural_modes(
         # fixed start vector: ARPACK's default one comes from a per-process random state that
         # advances with every call, so results would depend on what ran before in the process
         v0 = np.random.default_rng(20100).standard_normal(n)
-        try:
-            w2, V = spla.eigsh(Ks, k=n_modes, M=Ms, sigma=shift, which="LM", OPinv=f,
-                               v0=v0)
-        except spla.ArpackNoConvergence as err:  # pragma: no cover - rare
-            raise ConvergenceError(f"structural modes: ARPACK did not converge ({err})") from err
-        order = np.argsort(w2)
-        w2, V = w2[order], V[:, order]
-    V = np.asarray(V, dtype=float)
-    # mass-normalise (eigh/eigsh already M-orthonormalise; do it again for safety)
-    mm = np.einsum("ij,ij->j", V, M @ V)
-    V = V / np.sqrt(mm)
-    # deterministic sign: largest-magnitude component positive (helps interpolation and MAC)
-    idx = np.argmax(np.abs(V), axis=0)
-    V = V * np.sign(V[idx, np.arange(V.shape[1])])
+        w2, V = symmetric_eigs(Ks, Ms, n_modes, shift=shift, opinv=f, v0=v0)
+    V = mass_normalize(V, M)  # eigh/eigsh already M-orthonormalise; again for safety, and a deterministic sign
     return ModalBasis(Phi=V, omega=np.sqrt(np.maximum(w2, 0.0)), rotor_speed=rotor_speed)
-
-
-def m_orthonormalize(V: np.ndarray, M, *, tol: float = 1e-8) -> np.ndarray:
-    """Mass-orthonormal basis of ``span(V)``, dropping (numerically) dependent directions.
-
-    Uses the eigen-decomposition of the Gram matrix ``G = V^T M V``: directions whose
-    eigenvalue is below ``tol * max eigenvalue`` are discarded. The column order of an already
-    M-orthonormal ``V`` is *not* preserved; use :func:`augment` to append to an existing basis.
-
-    Parameters
-    ----------
-    V
-        ``(n, r)`` real array.
-    M
-        ``(n, n)`` symmetric positive definite mass matrix.
-    tol
-        Relative eigenvalue cut-off of the Gram matrix (a direction is kept if it carries more
-        than ``sqrt(tol)`` of the largest direction's mass-norm).
-    """
-    V = np.asarray(V, dtype=float)
-    if V.ndim != 2:
-        raise InputError("V", V.shape, "a 2-D (n, r) array")
-    G = V.T @ (M @ V)
-    G = 0.5 * (G + G.T)
-    g, U = np.linalg.eigh(G)
-    keep = g > tol * max(g.max(), np.finfo(float).tiny)
-    g, U = g[keep][::-1], U[:, keep][:, ::-1]
-    return V @ (U / np.sqrt(g))
 
 
 def static_correction_modes(

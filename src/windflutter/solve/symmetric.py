@@ -13,12 +13,13 @@ did not converge the highest wanted modes in 50 iterations on the NREL 5 MW shel
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError
 from windflutter.solve.linsolve import as_operator, factorize
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
+from windflutter.structure.modal import symmetric_eigs
 
 __all__ = ["spd_operator", "refine_modes"]
 
@@ -32,8 +33,6 @@ def spd_operator(A, backend: str = "auto") -> spla.LinearOperator:
     missing, or a rotating blade past its static stability)."""
     A = sp.csc_matrix(A)
     if backend == "auto":
-        from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-
         try:  # CHOLMOD only: without it (ImportError) the LU below is the one factorization
             F = SPDFactor(A, backend="cholmod")
         except (ImportError, NotPositiveDefinite):
@@ -81,7 +80,7 @@ def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1
                 return w2, X
         Kr, Mr = Y.T @ np.asarray(K @ Y), Y.T @ np.asarray(M @ Y)
         try:
-            w2, U = sla.eigh(0.5 * (Kr + Kr.T), 0.5 * (Mr + Mr.T))
+            w2, U = symmetric_eigs(Kr, Mr)
         except (np.linalg.LinAlgError, ValueError):  # lost rank: start again from scratch
             return None
         X = Y @ U

@@ -18,8 +18,11 @@ from __future__ import annotations
 import dataclasses
 from collections.abc import Callable
 
+from windflutter.aero.unsteady import UnsteadyOptions
 from windflutter.config.declarations import BEAM_SPAN_ELEMENTS, SHELL_SPAN_ELEMENTS
 from windflutter.errors import InputError
+from windflutter.stability.operational import OperationalStability, SearchSettings
+from windflutter.system.operational import OperationalOptions
 
 
 def mesh_settings(config) -> dict:
@@ -63,8 +66,6 @@ def with_span_count(config):
 def unsteady_options(config, aero: str):
     """The strip operator of method p for aero variant ``aero`` (viscous: the polars' local slopes;
     potential: a flat plate, 2 pi, no drag)."""
-    from windflutter.aero.unsteady import UnsteadyOptions
-
     s = config.solver
     return UnsteadyOptions(circulation=s.circulation, n_lag=s.n_lag,
                            polar="table" if aero == "viscous" else "flat_plate",
@@ -73,8 +74,6 @@ def unsteady_options(config, aero: str):
 
 def operational_options(config, aero: str):
     """:class:`~windflutter.system.operational.OperationalOptions` of a config (method p)."""
-    from windflutter.system.operational import OperationalOptions
-
     m, s = config.model, config.solver
     if m.type not in ("beam", "shell"):
         raise InputError("model.type", m.type, "'beam' or 'shell' for the turbine solver")
@@ -106,11 +105,9 @@ def resolved_structure(config) -> str:
 
 def search_settings(config):
     """The rotor-speed sweep of method p from the config's rotor_speed and campbell sections."""
-    from windflutter.stability.operational import SearchSettings
-
     r = config.rotor_speed
     step = (r.max_rpm - r.min_rpm) / max(r.n_points - 1, 1)
-    return SearchSettings(rpm_max=r.max_rpm, rpm_step=step, tolerance_rpm=r.tolerance_rpm,
+    return SearchSettings(max_rpm=r.max_rpm, rpm_step=step, tolerance_rpm=r.tolerance_rpm,
                           max_hz=config.campbell.max_hz, full_sweep=r.full_sweep)
 
 
@@ -138,8 +135,6 @@ class Method:
 
 
 def _p_solver(turbine, config, aero: str):
-    from windflutter.stability.operational import OperationalStability
-
     return OperationalStability(turbine, operational_options(config, aero), search_settings(config))
 
 

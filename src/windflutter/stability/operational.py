@@ -2,15 +2,16 @@
 
 At a wind speed the blade pitch is the operating curve's and the rotor speed is raised from the
 operating rotor speed of that wind speed (the steady operating point; lower speeds are not reached
-in steady operation) to ``rpm_max``.  At each rotor speed the turbine is linearized about its
+in steady operation) to ``max_rpm``.  At each rotor speed the turbine is linearized about its
 steady state (:class:`~windflutter.system.operational.OperationalModel`) and the eigenvalues of
 the first-order system with aerodynamic states are its damped modes -- valid at any damping, so
 no frequency matching is needed (the p-method; the seed's p-k and 8-k searches remain as methods
 ``pk`` and ``thesis`` on the seed's frozen-azimuth model, :mod:`windflutter.stability.turbine`).
 
 * Modes are named by their structural identity (:mod:`windflutter.system.identity`), each sweep
-  point continuing the previous one's, and followed along the rotor speed by their identities (the
-  Campbell arrays) and by the MAC of their physical signatures (the root searches).
+  point continuing the previous one's (a step where a named mode's frequency jumps is refined once
+  through its middle, as along the Campbell), and followed along the rotor speed by their identities
+  (the Campbell arrays) and by the MAC of their physical signatures (the root searches).
 * Flutter: the first rotor speed where a followed mode's damping ratio turns negative (the
   drivetrain's rigid-body root excluded), located by Brent's method on that mode.
 * Divergence: the blades' static stiffness in the rotating frame with the aerodynamic stiffness at
@@ -32,6 +33,7 @@ from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.stability.search import Onset
 from windflutter.stability.turbine import PointSummary
+from windflutter.system.campbell import ambiguous
 from windflutter.system.modes import point_modes
 
 RPM = math.pi / 30.0
@@ -42,12 +44,12 @@ POINT_CACHE = 6
 
 @dataclass(frozen=True)
 class SearchSettings:
-    """Rotor-speed sweep of method p: up to ``rpm_max`` (RPM) in steps of ``rpm_step`` from the
+    """Rotor-speed sweep of method p: up to ``max_rpm`` (RPM) in steps of ``rpm_step`` from the
     operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: the
     model's default, :meth:`windflutter.system.identity.StructuralReference.default_max_hz`);
     ``full_sweep`` False stops past both onsets."""
 
-    rpm_max: float = 40.0
+    max_rpm: float = 40.0
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
     max_hz: float | None = None
@@ -153,7 +155,7 @@ class OperationalStability:
         """Rotor speeds (RPM): the operating one, then the grid above it."""
         om_op = self.model.operating_point(wind_speed)[0] / RPM
         s = self.search
-        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), s.rpm_max + 1e-9, s.rpm_step) \
+        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), s.max_rpm + 1e-9, s.rpm_step) \
             if rpm_grid is None else np.asarray(rpm_grid, float)
         return np.concatenate([[om_op], g[g > om_op + 1e-9]])
 
@@ -166,6 +168,19 @@ class OperationalStability:
         if entry[1] is None:
             entry[1] = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous) if not m.rigid]
         return ps, entry[1]
+
+    def _continued(self, wind_speed: float, pitch: float, before: tuple, rpm: float):
+        """``(PointSystem, modes)`` at ``rpm``, continuing the names of the sweep point ``before``
+        (``(rpm, modes)``); where a named mode's frequency jumps across the step
+        (:func:`~windflutter.system.campbell.ambiguous`) the step is refined once, as along the
+        Campbell: the names are carried through its middle (not a sweep point)."""
+        ps, modes = self._modes(wind_speed, rpm, pitch, previous=before[1])
+        if ambiguous(before[1], modes):
+            mid_ps = self.model.at(wind_speed, rpm=0.5 * (before[0] + rpm), pitch=pitch)
+            mid = [m for m in point_modes(mid_ps, max_hz=self.max_hz(pitch), previous=before[1]) if not m.rigid]
+            modes = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=mid) if not m.rigid]
+            self._point(wind_speed, rpm, pitch)[1][1] = modes
+        return ps, modes
 
     def _point(self, wind_speed: float, rpm: float, pitch: float):
         """``(PointSystem, cache entry)`` at a rotor speed; the entry's modes are read on demand (the
@@ -192,7 +207,8 @@ class OperationalStability:
         flutter = None
         for i, rpm in enumerate(grid):
             try:
-                ps, modes = self._modes(wind_speed, rpm, pitch, previous=sweep[-1][1] if sweep else None)
+                ps, modes = self._continued(wind_speed, pitch, sweep[-1], rpm) if sweep else \
+                    self._modes(wind_speed, rpm, pitch)
             except ModelError as exc:  # no steady state (e.g. it diverges at this overspeed)
                 if not sweep:
                     raise

@@ -20,6 +20,7 @@ import scipy.sparse.linalg as spla
 from windflutter.errors import ModelError
 from windflutter.solve.linsolve import factorize
 from windflutter.solve.qep import qep_pencil, solve_qep
+from windflutter.structure.modal import symmetric_eigs
 from windflutter.linalg_tools import mac, mac_matrix
 
 #: the seed's reduced frequencies (ch. 3.3.2, step 3)
@@ -338,4 +339,4 @@ def static_min_eig(system) -> float:
 def structural_eig(system: FrequencyDomainSystem):
     """Eigenpairs ``(w^2, V)`` of the structural pencil ``(Ks(Omega), M)`` of ``system``, dense."""
     K, M = (dense(A) for A in system.structural_pencil())
-    return sla.eigh(0.5 * (K + K.T), 0.5 * (M + M.T))
+    return symmetric_eigs(K, M)

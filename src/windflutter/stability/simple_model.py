@@ -216,12 +216,12 @@ def first_unstable(
     V: float,
     *,
     frozen_k: bool = False,
-    rpm_max: float = 100.0,
+    max_rpm: float = 100.0,
     n_grid: int = 40,
 ) -> OnsetPoint:
-    """First unstable rotor speed at wind speed ``V`` (m/s) for rotor speeds up to ``rpm_max``.
+    """First unstable rotor speed at wind speed ``V`` (m/s) for rotor speeds up to ``max_rpm``.
 
-    The two modes are followed upwards on ``n_grid`` rotor speeds up to ``rpm_max`` (or 1.5 x
+    The two modes are followed upwards on ``n_grid`` rotor speeds up to ``max_rpm`` (or 1.5 x
     the divergence rotor speed)
     (p-k with k iterated to each mode's frequency, or with k frozen), the first crossing of a
     mode's real part through 0 is refined by Brent's method (rotor speed to 1e-10 rad/s).
@@ -229,17 +229,17 @@ def first_unstable(
     """
     if not (V >= 0 and math.isfinite(V)):
         raise InputError("wind_speed", V, "a non-negative wind speed (m/s)")
-    sec0, _ = section_at(rs, V, rpm_max / n_grid * RPM)
+    sec0, _ = section_at(rs, V, max_rpm / n_grid * RPM)
     ud = divergence_speed(sec0)
     d_rpm = float("nan")
     if ud is not None and ud > V:
         d_rpm = math.sqrt(ud * ud - V * V) / rs.radius / RPM
-    if d_rpm > rpm_max:
+    if d_rpm > max_rpm:
         d_rpm = float("nan")
-    # flutter is searched up to min(rpm_max, 1.5 x divergence), i.e. also beyond divergence
+    # flutter is searched up to min(max_rpm, 1.5 x divergence), i.e. also beyond divergence
     # (reported for information; the first instability is then the divergence).  p-k tracking
     # stops where the iteration has no oscillatory solution any more (real root pairs).
-    top = min(rpm_max, 1.5 * d_rpm) if math.isfinite(d_rpm) else rpm_max
+    top = min(max_rpm, 1.5 * d_rpm) if math.isfinite(d_rpm) else max_rpm
     omegas = np.linspace(top / n_grid, top, n_grid) * RPM
     lam0 = 1j * natural_frequencies(sec0)
     kw = {"frozen_omega": 2 * math.pi * rs.frozen_frequency_hz} if frozen_k else {}
@@ -258,12 +258,12 @@ def run_simple_model(
     wind_speeds: np.ndarray | None = None,
     *,
     frozen_k: bool = False,
-    rpm_max: float = 100.0,
+    max_rpm: float = 100.0,
     n_grid: int = 40,
 ) -> SimpleModelResult:
     """First unstable rotor speed for each wind speed (default 4, 5, ..., 25 m/s)."""
     if wind_speeds is None:
         wind_speeds = np.arange(4.0, 25.0 + 1e-9, 1.0)
-    pts = [first_unstable(rs, float(V), frozen_k=frozen_k, rpm_max=rpm_max, n_grid=n_grid)
+    pts = [first_unstable(rs, float(V), frozen_k=frozen_k, max_rpm=max_rpm, n_grid=n_grid)
            for V in wind_speeds]
     return SimpleModelResult(rs, frozen_k, pts)

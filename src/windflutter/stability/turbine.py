@@ -3,7 +3,7 @@
 For a wind speed ``V`` the blade pitch comes from the turbine's operating curve; the FE model
 (beam or shell, built by :func:`windflutter.mesh.turbine.build_model` at that pitch) is coupled
 with the rotating-frame terms (G, Kr and -- full physics -- the centrifugal prestress Ksigma) and
-the Theodorsen strips; the rotor speed is then increased over ``rpm_min .. rpm_max`` and the
+the Theodorsen strips; the rotor speed is then increased over ``min_rpm .. max_rpm`` and the
 first flutter and divergence onsets are located (:mod:`windflutter.stability.search`).
 
 Public API
@@ -53,7 +53,7 @@ class TurbineOptions:
         True gives results independent of where a beam's reference axis lies in its sections
         (:func:`windflutter.rotor.rotating.rotor_terms`).
     air_density : kg/m^3.
-    rpm_min, rpm_max, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
+    min_rpm, max_rpm, rpm_step : rotor-speed grid (RPM) of the search / Campbell sweep.
     tolerance_rpm : onset tolerance of the p-k root-finding (RPM).
     full_sweep : p-k: sweep the whole grid (Campbell data beyond the instabilities); ``False``
         stops at the first grid speed past both the flutter and the divergence onsets (same
@@ -97,8 +97,8 @@ class TurbineOptions:
     geometric_stiffness: bool = True
     rigid_sections: bool = False
     air_density: float = 1.225
-    rpm_min: float = 2.0
-    rpm_max: float = 40.0
+    min_rpm: float = 2.0
+    max_rpm: float = 40.0
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
     full_sweep: bool = False
@@ -128,8 +128,8 @@ class TurbineOptions:
             object.__setattr__(self, "basis_modes", 30)
         if self.aero_distribution == "skin" and self.model != "shell":
             raise InputError("aero_distribution", "skin", "'spline' for a beam model (skin quads need shells)")
-        if not (0 <= self.rpm_min < self.rpm_max):
-            raise InputError("rpm_min", self.rpm_min, f"0 <= rpm_min < rpm_max = {self.rpm_max}")
+        if not (0 <= self.min_rpm < self.max_rpm):
+            raise InputError("min_rpm", self.min_rpm, f"0 <= min_rpm < max_rpm = {self.max_rpm}")
         if not self.rpm_step > 0:
             raise InputError("rpm_step", self.rpm_step, "a positive step (RPM)")
         if not self.tolerance_rpm > 0:
@@ -151,8 +151,8 @@ class TurbineOptions:
 
     def grid(self) -> np.ndarray:
         """Rotor-speed grid (RPM)."""
-        n = max(int(math.ceil((self.rpm_max - self.rpm_min) / self.rpm_step - 1e-9)), 1)
-        return np.linspace(self.rpm_min, self.rpm_max, n + 1)
+        n = max(int(math.ceil((self.max_rpm - self.min_rpm) / self.rpm_step - 1e-9)), 1)
+        return np.linspace(self.min_rpm, self.max_rpm, n + 1)
 
 
 @dataclass
@@ -254,7 +254,7 @@ class TurbineStability:
         aero = AeroOptions(model=o.aero, apparent_mass_scaling=o.apparent_mass_scaling, steady_loads=o.mean_loads)
         kw = dict(structure=sm, sections=sections, rotor=terms, rotor_geometry=geom, aero=aero,
                   air_density=o.air_density, n_modes=None if o.reduction == "none" else o.basis_modes,
-                  omega_ref=(0.0, o.rpm_max * RPM), pitch=0.0)
+                  omega_ref=(0.0, o.max_rpm * RPM), pitch=0.0)
         if o.induction:
             kw["induction"], kw["high_thrust"] = True, o.high_thrust
         skin = None
@@ -456,7 +456,7 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
     s = config.solver
     return TurbineOptions(model=mtype, aero=aero, method=method,
                           geometric_stiffness=s.geometric_stiffness, rigid_sections=s.rigid_sections,
-                          air_density=config.air_density, rpm_min=r.min_rpm, rpm_max=r.max_rpm, rpm_step=step,
+                          air_density=config.air_density, min_rpm=r.min_rpm, max_rpm=r.max_rpm, rpm_step=step,
                           tolerance_rpm=r.tolerance_rpm, full_sweep=r.full_sweep, reduction=s.reduction,
                           basis_modes=s.basis_modes, correction_tol=s.correction_tol,
                           n_tracked=s.n_tracked, n_eig=s.n_eig, aero_distribution=s.aero_distribution,

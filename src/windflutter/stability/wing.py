@@ -18,6 +18,7 @@ from windflutter.aero.strip import AeroOptions
 from windflutter.errors import InputError
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.stability.search import Onset, pk_search, thesis_search
+from windflutter.structure.assembly import assemble
 from windflutter.structure.fem import BeamSection, FEModel
 
 
@@ -140,8 +141,6 @@ def build_wing(cfg: WingConfig) -> tuple[FEModel, AeroSections]:
 
 def wing_model(cfg: WingConfig, n_modes: int | None = None) -> AeroelasticModel:
     """The aeroelastic model of the wing (modal basis of ``cfg.n_modes`` modes unless given)."""
-    from windflutter.structure.assembly import assemble
-
     fe, sections = build_wing(cfg)
     st = assemble(fe)
     aero = AeroOptions(model="potential", lift_slope=cfg.lift_slope)

@@ -38,7 +38,7 @@ from windflutter.rotor.spin import spin_terms
 from windflutter.steady.fixedpoint import aitken, strip_change
 from windflutter.steady.geometry import Deflection, inner_edges, blade_strips, rotation_matrices, rotation_vectors
 from windflutter.structure.assembly import assemble_matrices
-from windflutter.structure.corotational import BeamConfiguration, deformed_model, reference_configuration
+from windflutter.structure.corotational import BeamConfiguration, deformed_model, reference_configuration, solve_equilibrium
 
 __all__ = ["centrifugal_loads", "deformed_motion_map", "configuration_deflection", "configuration_displacement"]
 
@@ -146,8 +146,6 @@ def iterate_corotational(fe, struct, sections, config: BeamConfiguration, aero_a
     (config, aero, f_aero, iterations, residual, converged): ``f_aero`` the nodal aerodynamic loads
     (N, N m) of the last equilibrium.
     """
-    from windflutter.structure.corotational import solve_equilibrium
-
     def nodal(a, c):
         return deformed_motion_map(sections.motion_map, c.R).T @ a.loads.loads.reshape(-1)
 

@@ -57,7 +57,9 @@ from windflutter.steady.geometry import (Deflection, deflected_sections, deflect
                                          tip_motion)
 from windflutter.steady.loads import (StripLoads, nodal_loads, rotor_totals, second_order_moments,
                                       strip_loads)
-from windflutter.structure.prestress import geometric_stiffness, static_solve
+from windflutter.structure.corotational import beam_tangent, chained_configuration, internal_forces
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
+from windflutter.structure.prestress import axial_geometric_stiffness, geometric_stiffness, static_solve
 
 __all__ = ["SteadyOptions", "SteadyState", "steady_state"]
 
@@ -274,7 +276,6 @@ class _Static:
         if not seed:
             K = struct.Kr if K_cf1 is None else struct.Kr + omega**2 * K_cf1
             K = sp.csc_matrix(K)
-            from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 
             try:
                 self._fac = SPDFactor(K)
@@ -416,8 +417,6 @@ def _stress(fe, struct, u, config):
     large-rotation ``u`` would not be its stress)."""
     if config is None:
         return struct.K @ u, geometric_stiffness(fe, u)
-    from windflutter.structure.corotational import beam_tangent, internal_forces
-    from windflutter.structure.prestress import axial_geometric_stiffness
 
     tan = beam_tangent(fe, config)
     return internal_forces(fe, config, tan), axial_geometric_stiffness(fe, tan.resultants[:, 6])
@@ -426,8 +425,6 @@ def _stress(fe, struct, u, config):
 def _exact(fe, struct, sections, rotor, u, point, options: SteadyOptions):
     """The co-rotational steady state from the linear one ``u`` (:mod:`windflutter.steady.exact`):
     (config, aero, nodal aero loads, nodal centrifugal loads, iterations, residual, converged)."""
-    from windflutter.structure.corotational import chained_configuration
-
     V, om, n_blades, rho, pitch = point
     cf = ex.centrifugal_loads(fe, om, np.asarray(rotor.hub_center, float), np.asarray(rotor.shaft_axis, float),
                               options.rotating_group)

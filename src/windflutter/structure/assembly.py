@@ -18,6 +18,8 @@ from windflutter.linalg_tools import skew as _skew
 from windflutter.structure.beam import beam_global_matrices, element_dofs
 from windflutter.structure.constraints import constraint_map
 from windflutter.structure.fem import DOF_NAMES, FEModel
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
+from windflutter.structure.shell import shell_coo
 
 
 @dataclass
@@ -210,8 +212,6 @@ def assemble_matrices(fe: FEModel, shell_mass: str = "consistent") -> tuple[sp.c
         add(Kt, Ke, d)
         add(Mt, Me, d)
     if len(fe.shell_conn):
-        from windflutter.structure.shell import shell_coo
-
         (r, c, v), (r2, c2, v2) = shell_coo(fe, mass=shell_mass)
         kr.append(r), kc.append(c), kv.append(v)
         mr.append(r2), mc.append(c2), mv.append(v2)
@@ -279,8 +279,6 @@ def check_constrained(st: Structural, max_ratio: float = 1e10) -> None:
     ``max_ratio`` times smaller than the matrix diagonal entry of its DOF (NASTRAN's MAXRATIO
     check; a genuine elastic structure gives ratios far below 1e10 in double precision).
     """
-    from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-
     Kr = st.Kr.tocsc()
     diag = Kr.diagonal()
     zero_k = np.nonzero(diag <= 0)[0]

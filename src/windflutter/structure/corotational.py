@@ -55,7 +55,8 @@ from scipy.spatial.transform import Rotation
 
 from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import congruence, skew
-from windflutter.structure.beam import beam_frames, beam_local_matrices, element_dofs
+from windflutter.structure.assembly import coo_matrix_of, spring_matrices
+from windflutter.structure.beam import beam_frames, beam_local_matrices, block_rotation, element_dofs
 from windflutter.structure.fem import FEModel
 
 __all__ = ["BeamConfiguration", "BeamTangent", "reference_configuration", "linear_configuration",
@@ -349,8 +350,6 @@ def beam_internal_forces(fe: FEModel, config: BeamConfiguration, elements: _Elem
 def linear_resultants(fe: FEModel, u: np.ndarray) -> np.ndarray:
     """(nb, 12) local end loads ``K_loc T u_e`` of the linear elements for the displacement ``u``
     (section frames of the reference configuration)."""
-    from windflutter.structure.beam import block_rotation
-
     un = _check_u(fe, u).reshape(-1)
     el = _Elements(fe)
     _, R0 = beam_frames(fe)
@@ -453,7 +452,6 @@ def internal_forces(fe: FEModel, config: BeamConfiguration, tangent: BeamTangent
 def _spring_stiffness(fe: FEModel) -> sp.csr_matrix | None:
     if not fe.springs:
         return None
-    from windflutter.structure.assembly import spring_matrices, coo_matrix_of
 
     gk, gd, tk, td = spring_matrices(fe)
     parts = [coo_matrix_of(m, d) for m, d in ((gk, gd), (tk, td)) if len(m)]

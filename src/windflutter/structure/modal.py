@@ -1,15 +1,26 @@
-"""Modal analysis: sparse shift-invert Lanczos (ARPACK via scipy ``eigsh``)."""
+"""Modal analysis: the one structural eigen-solver of the package and its normalisations.
+
+* :func:`symmetric_eigs` -- the lowest eigenpairs of a symmetric pencil ``K v = w^2 M v``, in this
+  argument order everywhere: dense LAPACK ``eigh`` for dense matrices (the full spectrum, or the
+  lowest ``n``; optionally inverted so that ``M`` may be singular), shift-invert Lanczos (ARPACK
+  ``eigsh``) for sparse ones;
+* :func:`mass_normalize` -- unit modal mass and a deterministic sign;
+* :func:`m_orthonormalize` -- a mass-orthonormal basis of a span, dependent directions dropped;
+* :func:`modes` -- the natural modes of an assembled :class:`Structural` with participation factors.
+"""
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from windflutter.errors import ConvergenceError, InputError
 from windflutter.structure.assembly import Structural
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 from windflutter.threads import blas_limit
 
 
@@ -59,6 +70,97 @@ def _default_shift(Kr: sp.spmatrix, Mr: sp.spmatrix) -> float:
     return -1e-6 * min(scale, 1.0e6)
 
 
+def symmetric_eigs(K, M, n: int | None = None, *, shift: float = 0.0, opinv=None, v0=None, tol: float = 0.0,
+                   vectors: bool = True, inverted: bool = False):
+    """The lowest eigenpairs ``(w2, V)`` of the real symmetric pencil ``K v = w2 M v``, ``w2`` ascending.
+
+    Parameters
+    ----------
+    K, M : stiffness and mass, both dense arrays (LAPACK ``eigh`` of their symmetric parts) or both
+        sparse (shift-invert Lanczos, ARPACK ``eigsh``).
+    n : number of pairs; None: the whole spectrum (dense only).
+    shift : the Lanczos shift (rad^2/s^2; pairs nearest to it), and of the inverted dense form.
+    opinv : the shift-invert operator ``(K - shift M)^-1`` (a LinearOperator or a callable); None:
+        ARPACK factorises with SuperLU.
+    v0 : the Lanczos start vector (None: ARPACK's random one, which depends on what ran before).
+    tol : ARPACK relative tolerance (0: machine precision).
+    vectors : False: the eigenvalues only (``V`` is None).
+    inverted : dense only: solve ``M v = mu (K - shift M) v``, ``w2 = shift + 1/mu``, keeping the
+        ``n`` largest finite ``mu`` (``M`` may be singular: massless DOFs).
+
+    Raises
+    ------
+    ConvergenceError
+        ARPACK did not converge.
+    """
+    if not sp.issparse(K):
+        Kd = np.asarray(K)
+        Md = np.asarray(M)
+        if inverted:
+            mu, Q = sla.eigh(Md, Kd - shift * Md)
+            pos = mu > 1e-14 * max(np.abs(mu).max(), 1e-300)
+            mu, Q = mu[pos], Q[:, pos]
+            order = np.argsort(-mu)[: mu.size if n is None else min(n, mu.size)]
+            w2, V = shift + 1.0 / mu[order], Q[:, order]
+            order = np.argsort(w2)
+            return w2[order], (V[:, order] if vectors else None)
+        Kd, Md = 0.5 * (Kd + Kd.T), 0.5 * (Md + Md.T)
+        subset = None if n is None or n >= Kd.shape[0] else [0, int(n) - 1]
+        if not vectors:
+            return sla.eigh(Kd, Md, eigvals_only=True, subset_by_index=subset), None
+        return sla.eigh(Kd, Md, subset_by_index=subset)
+    if n is None:
+        raise InputError("n", n, "a number of modes for a sparse pencil")
+    try:
+        out = spla.eigsh(K, k=int(n), M=M, sigma=shift, which="LM", OPinv=opinv, v0=v0, tol=tol,
+                         return_eigenvectors=vectors)
+    except spla.ArpackNoConvergence as exc:  # pragma: no cover - rare
+        raise ConvergenceError(f"structural modes: ARPACK did not converge for {n} modes ({exc})") from exc
+    w2, V = out if vectors else (out, None)
+    order = np.argsort(w2)
+    return w2[order], (V[:, order] if vectors else None)
+
+
+def mass_normalize(V: np.ndarray, M) -> np.ndarray:
+    """``V`` scaled to unit modal mass (``|v^T M v| = 1``), each column's largest-magnitude component
+    positive (a deterministic sign, for interpolation and MAC)."""
+    V = np.asarray(V, dtype=float)
+    mm = np.einsum("ij,ij->j", V, M @ V)
+    V = V / np.sqrt(np.abs(mm))[None, :]
+    imax = np.argmax(np.abs(V), axis=0)
+    return V * np.sign(V[imax, np.arange(V.shape[1])])[None, :]
+
+
+def m_orthonormalize(V: np.ndarray, M, *, tol: float = 1e-8, largest_first: bool = True,
+                     gram: np.ndarray | None = None) -> np.ndarray:
+    """Mass-orthonormal basis of ``span(V)``, dropping (numerically) dependent directions.
+
+    Uses the eigen-decomposition of the Gram matrix ``G = V^T M V``: directions whose eigenvalue
+    is below ``tol * max eigenvalue`` are discarded. The column order of an already M-orthonormal
+    ``V`` is *not* preserved (the Gram directions in descending, or with ``largest_first=False``
+    ascending, eigenvalue); use :func:`windflutter.solve.reduction.augment` to append to a basis.
+
+    Parameters
+    ----------
+    V : ``(n, r)`` real array.
+    M : ``(n, n)`` symmetric positive definite mass matrix (dense or sparse).
+    tol : relative eigenvalue cut-off of the Gram matrix (a direction is kept if it carries more
+        than ``sqrt(tol)`` of the largest direction's mass-norm).
+    gram : ``V^T M V`` when the caller has it (else computed as ``V.T @ (M @ V)``).
+    """
+    V = np.asarray(V, dtype=float)
+    if V.ndim != 2:
+        raise InputError("V", V.shape, "a 2-D (n, r) array")
+    G = V.T @ (M @ V) if gram is None else np.asarray(gram)
+    G = 0.5 * (G + G.T)
+    g, U = np.linalg.eigh(G)
+    keep = g > tol * max(g.max(), np.finfo(float).tiny)
+    g, U = g[keep], U[:, keep]
+    if largest_first:
+        g, U = g[::-1], U[:, ::-1]
+    return V @ (U / np.sqrt(g))
+
+
 def modes(
     struct: Structural,
     n: int = 20,
@@ -96,40 +198,19 @@ def modes(
     nq = struct.nq
     sigma = _default_shift(Kr, Mr) if shift is None else float(shift)
     if nq <= max(n + 2, 12) or nq < 200:
-        from scipy.linalg import eigh
-
-        # M may be singular (massless DOFs): solve M q = mu (K - sigma M) q, omega^2 = sigma + 1/mu
-        mu, Q = eigh(Mr.toarray(), (Kr - sigma * Mr).toarray())
-        pos = mu > 1e-14 * max(np.abs(mu).max(), 1e-300)
-        mu, Q = mu[pos], Q[:, pos]
-        order = np.argsort(-mu)[: min(n, mu.size)]
-        w, Q = sigma + 1.0 / mu[order], Q[:, order]
-        order = np.argsort(w)
-        w, Q = w[order], Q[:, order]
+        w, Q = symmetric_eigs(Kr.toarray(), Mr.toarray(), n, shift=sigma, inverted=True)
     else:
-        k = min(n, nq - 2)
-        from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-
         A = (Kr - sigma * Mr).tocsc()
         try:
             OPinv = SPDFactor(A).operator()
         except NotPositiveDefinite:  # shift above the lowest eigenvalue: general LU
             lu = spla.splu(A)
             OPinv = spla.LinearOperator(A.shape, matvec=lu.solve, dtype=float)
-        try:
-            # ARPACK's Lanczos work is level-2 BLAS on tall vectors: multi-threaded BLAS only adds
-            # overhead (3x slower measured on a loaded 2-core machine), so run it single-threaded.
-            with _single_thread_blas():
-                w, Q = spla.eigsh(Kr, k=k, M=Mr, sigma=sigma, which="LM", OPinv=OPinv, tol=tol)
-        except spla.ArpackNoConvergence as exc:  # pragma: no cover - rare
-            raise ConvergenceError(f"eigsh did not converge for {k} modes: {exc}") from exc
-        order = np.argsort(w)
-        w, Q = w[order], Q[:, order]
-    # unit modal mass and a deterministic sign (largest component positive)
-    mm = np.einsum("ij,ij->j", Q, Mr @ Q)
-    Q = Q / np.sqrt(np.abs(mm))[None, :]
-    imax = np.argmax(np.abs(Q), axis=0)
-    Q = Q * np.sign(Q[imax, np.arange(Q.shape[1])])[None, :]
+        # ARPACK's Lanczos work is level-2 BLAS on tall vectors: multi-threaded BLAS only adds
+        # overhead (3x slower measured on a loaded 2-core machine), so run it single-threaded.
+        with _single_thread_blas():
+            w, Q = symmetric_eigs(Kr, Mr, min(n, nq - 2), shift=sigma, opinv=OPinv, tol=tol)
+    Q = mass_normalize(Q, Mr)  # unit modal mass and a deterministic sign (largest component positive)
     shapes = struct.expand(Q)
     c = np.zeros(3) if center is None else np.asarray(center, dtype=float)
     R = struct.rigid_body_vectors(c)

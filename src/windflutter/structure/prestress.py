@@ -23,7 +23,11 @@ import scipy.sparse.linalg as spla
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew as _skew
 from windflutter.structure.assembly import Structural
+from windflutter.structure.beam import beam_axial_force, beam_geometric_matrices
+from windflutter.structure.corotational import beam_tangent, linear_resultants, reference_configuration
 from windflutter.structure.fem import FEModel
+from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
+from windflutter.structure.shell import shell_membrane_kg
 
 
 def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None = None) -> np.ndarray:
@@ -47,7 +51,6 @@ def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None 
     K = struct.Kr
     if K_extra is not None:
         K = (K + struct.reduce(sp.csr_matrix(K_extra))).tocsr()
-    from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 
     try:
         q = SPDFactor(K.tocsc()).solve(struct.reduce_vector(F))
@@ -73,22 +76,16 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> s
     rows, cols, vals = [], [], []
     if len(fe.beam_conn):
         if moments:
-            from windflutter.structure.corotational import beam_tangent, linear_resultants, reference_configuration
-
             KG = beam_tangent(fe, reference_configuration(fe), linear_resultants(fe, u0)).K_geo.tocoo()
             rows.append(KG.row)
             cols.append(KG.col)
             vals.append(KG.data)
         else:
-            from windflutter.structure.beam import beam_axial_force
-
             KG = axial_geometric_stiffness(fe, beam_axial_force(fe, u0)).tocoo()
             rows.append(KG.row)
             cols.append(KG.col)
             vals.append(KG.data)
     if len(fe.shell_conn):
-        from windflutter.structure.shell import shell_membrane_kg
-
         r, c, v = shell_membrane_kg(fe, u0)
         rows.append(r)
         cols.append(c)
@@ -106,8 +103,6 @@ def axial_geometric_stiffness(fe: FEModel, axial_force: np.ndarray) -> sp.csr_ma
     co-rotational beam's ``BeamTangent.resultants[:, 6]`` at a deflected equilibrium, acting on
     the elements of ``fe``'s (undeformed) geometry.
     """
-    from windflutter.structure.beam import beam_geometric_matrices
-
     N = np.asarray(axial_force, dtype=float)
     if N.shape != (len(fe.beam_conn),) or not np.all(np.isfinite(N)):
         raise InputError("axial_force", N.shape, f"finite axial forces of the {len(fe.beam_conn)} beam elements")
@@ -207,8 +202,6 @@ def membrane_geometric_stiffness(fe: FEModel, resultants: np.ndarray) -> sp.csr_
     """Geometric stiffness (full numbering, CSR, symmetric) of given shell membrane resultants
     ``(Nxx, Nyy, Nxy)`` (ne, 3) (N/m, each element's material frame) on the geometry of ``fe``:
     a stress field carried with its elements to another configuration of the same mesh."""
-    from windflutter.structure.shell import shell_membrane_kg
-
     r, c, v = shell_membrane_kg(fe, None, resultants=resultants)
     n = fe.n_dof
     A = sp.coo_matrix((v, (r, c)), shape=(n, n)).tocsr()

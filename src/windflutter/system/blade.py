@@ -35,6 +35,7 @@ import scipy.sparse as sp
 from windflutter.errors import InputError
 from windflutter.rotor.spin import spin_terms
 from windflutter.structure.assembly import rigid_body_vectors
+from windflutter.structure.prestress import geometric_stiffness, static_solve
 
 
 def axis_skew_translations(n_nodes: int, axis: np.ndarray) -> sp.csr_matrix:
@@ -129,8 +130,6 @@ class RotorBlade:
 
     def prestress(self, load: np.ndarray):
         """``(Ksigma (full, sparse), Klink (3, 3), u0)`` of the static state under ``load`` (N)."""
-        from windflutter.structure.prestress import geometric_stiffness, static_solve
-
         u0 = static_solve(self.struct, load) if self.struct.nq else np.zeros(self.fe.n_dof)
         Kg = geometric_stiffness(self.fe, u0)
         Kl = link_geometric_stiffness(self.fe, self.struct.K @ u0 - load, self.hub_node)

@@ -16,7 +16,9 @@ session): the shell map in 2 min 5 s - 2 min 25 s").
 from __future__ import annotations
 
 import numpy as np
-import scipy.linalg as sla
+
+from windflutter.solve import symmetric  # module access: tests patch symmetric.refine_modes
+from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
 #: blade models up to this many free DOFs get their basis from a dense eigen-solve (beams: ~200);
 #: above (shells: ~8000 per blade) from one sparse factorization
@@ -59,13 +61,11 @@ class BladeBasis:
         Ks = 0.5 * (Ks + Ks.T)
         if st.nq <= DENSE_BASIS_LIMIT:
             K, M = Ks.toarray(), st.Mr.toarray()
-            _, V = sla.eigh(K, 0.5 * (M + M.T), subset_by_index=[0, n - 1])
+            _, V = symmetric_eigs(K, M, n)
             solve = lambda F: np.linalg.solve(K, F)  # noqa: E731
         else:
-            from windflutter.solve.symmetric import spd_operator
-
             M = st.Mr.tocsc()
-            solve = spd_operator(Ks)
+            solve = symmetric.spd_operator(Ks)
             V = self._sparse_modes(Ks, M, solve, n)
         if not (self.corrections and blocks is not None):
             return V
@@ -73,18 +73,12 @@ class BladeBasis:
 
     def _sparse_modes(self, K, M, solve, n: int) -> np.ndarray:
         """The ``n`` lowest modes of a large blade; :data:`GUARD_MODES` more kept as the next start."""
-        import scipy.sparse.linalg as spla
-
-        from windflutter.solve.symmetric import refine_modes
-
         p = min(n + GUARD_MODES, K.shape[0] - 2)
         prev = self.start
         ok = prev is not None and prev.shape == (K.shape[0], p)
-        out = refine_modes(K, M, solve, prev, n, tol=MODES_TOL) if ok else None
+        out = symmetric.refine_modes(K, M, solve, prev, n, tol=MODES_TOL) if ok else None
         if out is None:
-            w2, V = spla.eigsh(K, k=p, M=M, sigma=0.0, OPinv=solve, which="LM", v0=np.ones(K.shape[0]))
-            order = np.argsort(w2)
-            out = w2[order], V[:, order]
+            out = symmetric_eigs(K, M, p, shift=0.0, opinv=solve, v0=np.ones(K.shape[0]))
         self.start = out[1]
         return out[1][:, :n]
 
@@ -98,7 +92,4 @@ class BladeBasis:
                                axis=2).reshape(3 * ns, -1)
         X = np.asarray(solve(np.asarray(T.T @ (strip_P.T @ loads))))
         X -= V @ (V.T @ (M @ X))
-        G = X.T @ M @ X
-        w, U = np.linalg.eigh(0.5 * (G + G.T))
-        keep = w > self.correction_tol * w.max()
-        return X @ (U[:, keep] / np.sqrt(w[keep]))
+        return m_orthonormalize(X, M, tol=self.correction_tol, largest_first=False, gram=X.T @ M @ X)

@@ -23,6 +23,7 @@ import scipy.sparse as sp
 
 from windflutter.structure.assembly import assemble_matrices
 from windflutter.structure.fem import BeamSection
+from windflutter.structure.modal import symmetric_eigs
 
 
 def blade_mu(turbine) -> np.ndarray | None:
@@ -80,10 +81,8 @@ def support_modal_damping(K: np.ndarray, M: np.ndarray, M_rotor: np.ndarray, fa:
         return None
     fa = fa if fa.size else ss
     ss = ss if ss.size else fa
-    import scipy.linalg as sla
-
     Mt = M + M_rotor
-    w2, V = sla.eigh(0.5 * (K + K.T), 0.5 * (Mt + Mt.T))
+    w2, V = symmetric_eigs(K, Mt)
     zeta = np.zeros(w2.size)
     count = {"fa": 0, "ss": 0}
     for i in range(w2.size):
@@ -127,10 +126,7 @@ def turbine_damping_matrix(turbine, struct) -> sp.csr_matrix | None:
     D = blade_damping_matrix(element_subset(fe, "blade"), blade_mu(turbine))
     zeta = tower_ratio(turbine)
     if zeta > 0 and "tower" in fe.region_names:
-        import scipy.sparse.linalg as spla
-
-        Kr, Mr = struct.Kr.tocsc(), struct.Mr.tocsc()
-        w2 = spla.eigsh(Kr, k=1, M=Mr, sigma=-1.0, which="LM", return_eigenvectors=False)[0]
+        w2 = symmetric_eigs(struct.Kr.tocsc(), struct.Mr.tocsc(), 1, shift=-1.0, vectors=False)[0][0]
         _, Kt = assemble_matrices(element_subset(fe, "tower"))
         Dt = sp.csr_matrix((2.0 * zeta / np.sqrt(max(w2, 1e-12))) * Kt)
         D = Dt if D is None else (D + Dt).tocsr()

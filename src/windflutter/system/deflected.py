@@ -40,11 +40,13 @@ import scipy.sparse as sp
 
 from windflutter.errors import InputError
 from windflutter.steady.exact import centrifugal_loads, deformed_motion_map
+from windflutter.steady.geometry import rotation_vectors
 from windflutter.structure.assembly import Structural, assemble_matrices
 from windflutter.structure.constraints import constraint_map
 from windflutter.structure.corotational import (Equilibrium, chained_configuration, deformed_model,
                                                  internal_forces, reference_configuration, solve_equilibrium)
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
+from windflutter.system.damping import blade_damping_matrix
 
 __all__ = ["DeflectedBlade", "deflected_blade"]
 
@@ -78,8 +80,6 @@ class DeflectedBlade:
     def displacement(self) -> np.ndarray:
         """(n_nodes, 6) node translations (m) from the undeformed blade and rotation vectors (rad)
         of the equilibrium, global axes."""
-        from windflutter.steady.geometry import rotation_vectors
-
         c = self.equilibrium.config
         return np.hstack([c.x - self.reference, rotation_vectors(c.R)])
 
@@ -122,8 +122,6 @@ def deflected_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None 
 
 def _linearized(rb: RotorBlade, steady, eq: Equilibrium, mu) -> DeflectedBlade:
     """The deformed blade's substructure and stress terms at the equilibrium ``eq``."""
-    from windflutter.system.damping import blade_damping_matrix
-
     fe, struct = rb.fe, rb.struct
     fe_d = deformed_model(fe, eq.config)
     M_d, _ = assemble_matrices(fe_d)

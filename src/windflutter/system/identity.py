@@ -36,10 +36,10 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 from scipy.optimize import linear_sum_assignment
 
 from windflutter.linalg_tools import mac_matrix
+from windflutter.structure.modal import symmetric_eigs
 from windflutter.structure.labels import blade_motion_components, ordinal
 
 #: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
@@ -53,6 +53,12 @@ REFERENCE_MODES = 24
 #: than half of its largest participation) is not given to it (the identities that fit it are taken
 #: by modes that fit them better): the mode is named by its two largest participations, as mixed
 MIN_ASSIGNED_SHARE = 0.1
+#: along a sweep, a mode that continues the previous point's carrier of an identity (MAC of their
+#: signatures at least this) keeps that identity whatever its share (reported mixed, with its largest
+#: participation): a mode whose own part fades as it couples keeps its name, as HAWCStab2's
+#: continuation keeps it (the IEA 15 MW's tower torsion, 16-27 % damped at 16-25 m/s, its kinetic
+#: energy more and more the blades' flap)
+CONTINUED_MAC = 0.8
 #: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
 RIGID_HZ = 0.15
 #: the default frequency limit of the Campbell and the overspeed sweep: this factor x the blade's 1st
@@ -166,9 +172,7 @@ def support_reference(support) -> tuple[list, np.ndarray | None]:
     """(named modes, mass-normalized shapes) of the support alone (tower, nacelle, hub; no rotor)."""
     if support is None:
         return [], None
-    Ms = 0.5 * (support.M + support.M.T)
-    Ks = 0.5 * (support.K + support.K.T)
-    w2, Phi = sla.eigh(Ks, Ms)
+    w2, Phi = symmetric_eigs(support.K, support.M)
     md = np.asarray(support.struct.M.diagonal())
     U = np.asarray(support.expand @ Phi)  # the support nodes' motion in every mode at once
     e = (md[:, None] * np.abs(U) ** 2).reshape(-1, 6, Phi.shape[1]).sum(axis=0)  # (6, n): per component
@@ -207,8 +211,7 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
     M, K = ps.blade_structure
     e = slice(6, None)
     Me = 0.5 * (M[e, e] + M[e, e].T)
-    Ke = 0.5 * (K[e, e] + K[e, e].T)
-    w2, V = sla.eigh(Ke, Me)
+    w2, V = symmetric_eigs(K[e, e], Me)
     comps = basis_components @ V
     sig = strip_signatures(ps.blade.sections, comps)
     mac = mac_matrix(reference.signatures, sig)
@@ -326,13 +329,21 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
 # ------------------------------------------------------------------------------------------------
 # 4. assignment
 # ------------------------------------------------------------------------------------------------
-def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 0.5) -> np.ndarray:
+def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 0.2) -> np.ndarray:
     """(n_modes,) the identity index given to each mode (largest total share, one identity per mode;
     -1 for none); ``continuity`` (n_modes, n_ids), optional, adds ``weight`` times each mode's
-    similarity to the mode that carried the identity at the previous point of a sweep -- only where
-    the identity has at least :data:`MIN_ASSIGNED_SHARE` of the mode (continuity chooses among the
-    identities a mode can carry; it does not pull a name onto a mode that is not made of it)."""
-    C = S if continuity is None else S + weight * np.where(S >= MIN_ASSIGNED_SHARE, continuity, 0.0)
+    similarity to the mode that carried the identity at the previous point of a sweep -- where the
+    identity has at least :data:`MIN_ASSIGNED_SHARE` of the mode, or the mode continues that carrier
+    (similarity at least :data:`CONTINUED_MAC`): continuity chooses among the identities a mode can
+    carry and keeps a continued one; it does not pull a name onto a mode that is neither made of it
+    nor its continuation.  The weight is small (0.2), a tie-breaker: through a veering, where two
+    modes exchange character, the names follow the participation, not the branch (with 0.5 the IEA
+    15 MW's 1st torsion FW and 3rd tower fore-aft had kept the branch's names at 13-21 m/s, the
+    tower's name on a mode with 18 % tower and 24 % torsion)."""
+    if continuity is None:
+        C = S
+    else:
+        C = S + weight * np.where((S >= MIN_ASSIGNED_SHARE) | (continuity >= CONTINUED_MAC), continuity, 0.0)
     out = np.full(S.shape[0], -1)
     if S.size == 0:
         return out
@@ -341,13 +352,16 @@ def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 
     return out
 
 
-def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False) -> None:
+def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False,
+                continued: bool = False) -> None:
     """Give mode record ``rec`` the identity ``ids[k]`` (its shares ``shares`` over ``ids``), in place:
-    family, order, whirl, name, the dominant and second participations, mixed and rigid flags."""
+    family, order, whirl, name, the dominant and second participations, mixed and rigid flags;
+    ``continued``: the mode continues the previous point's carrier of ``ids[k]`` (kept whatever its
+    share, :data:`CONTINUED_MAC`)."""
     order = np.argsort(shares)[::-1]
     first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
-    floor = max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
+    floor = 0.0 if continued else max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
     if k < 0 or shares[k] < floor:  # no identity of its own: named by its participations
         rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
         rec.rigid, rec.share, rec.mixed = False, 0.0, True

@@ -261,7 +261,8 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
 def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[ModeRecord] | None = None):
     """Name ``modes`` (their structural coordinates the columns of ``Q``) by their participation in
     the structural identities of ``ps.reference``, in place; returns ``modes``."""
-    from windflutter.system.identity import HEAVY_DAMPING, assign, name_record, participations, point_own_modes
+    from windflutter.system.identity import (CONTINUED_MAC, HEAVY_DAMPING, assign, name_record, participations,
+                                             point_own_modes)
 
     if not modes:
         return modes
@@ -285,5 +286,7 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
             cont[:, cols] = mac_matrix(A, B)
     got = assign(S, cont)
     for i, rec in enumerate(modes):
-        name_record(rec, ids, S[i], int(got[i]), heavy=bool(zetas[i] > HEAVY_DAMPING))
+        k = int(got[i])
+        continued = cont is not None and k >= 0 and cont[i, k] >= CONTINUED_MAC
+        name_record(rec, ids, S[i], k, heavy=bool(zetas[i] > HEAVY_DAMPING), continued=continued)
     return modes

@@ -25,13 +25,26 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from windflutter.aero.flow import OperatingPoint
+from windflutter.aero.momentum import HIGH_THRUST
+from windflutter.aero.operators import make_operator
 from windflutter.aero.sections import RotorGeometry
-from windflutter.errors import InputError
+from windflutter.aero.unsteady import UnsteadyOptions
+from windflutter.errors import InputError, check_choice
+from windflutter.mesh.parts import hub_mass
+from windflutter.mesh.settings import MeshSettings
+from windflutter.steady import SteadyOptions, steady_state
 from windflutter.steady.geometry import pitching_frames
-from windflutter.system.blade import RotorBlade
+from windflutter.structure.assembly import assemble
+from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
+from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 from windflutter.system.blade_basis import BladeBasis
-from windflutter.system.blade_aero import blade_system, project_blade_aero
-from windflutter.system.multiblade import FixedFrame, MultiBladeSystem, multiblade_system
+from windflutter.system.blade_aero import blade_system, project_blade_aero, quasi_steady_blocks
+from windflutter.system.damping import blade_damping_matrix, blade_mu, support_modal_damping, tower_ratios
+from windflutter.system.deflected import deflected_blade
+from windflutter.system.deflected_shell import deflected_shell_blade
+from windflutter.system.multiblade import FixedFrame, MultiBladeSystem, axis_rotation, multiblade_system
+from windflutter.system.pitch import pitch_rotation, rotate_blade
 from windflutter.system.support import Drivetrain, fixed_frame, rigid_body_mass, support_model
 from windflutter.units import RPM
 
@@ -68,8 +81,10 @@ class OperationalOptions:
     Parameters
     ----------
     model : ``"beam"`` or ``"shell"`` blades (and tower).
-    part : ``"turbine"`` (rotor on the flexible tower) or ``"rotor"`` (rotor on a fixed nacelle,
-        drivetrain free: HAWCStab2's / OpenFAST's rotor-only analysis).
+    part : ``"turbine"`` (rotor on the flexible tower) or ``"rotor"`` (rotor on a fixed nacelle, no
+        tower -- the config's ``model.part: rotor``; the shaft as ``drivetrain`` says: free with
+        ``flexible``/``rigid``, HAWCStab2's / OpenFAST's rotor-only analysis, the hub clamped with
+        ``locked``, the seed's methods' only case).
     mesh : extra :class:`~windflutter.mesh.settings.MeshSettings` fields.
     basis_modes : fixed-interface blade modes in the basis (the config's ``solver.basis_modes``); ``None``: full order.
     corrections : add static corrections (modal truncation augmentation) of the aerodynamic loads
@@ -119,22 +134,17 @@ class OperationalOptions:
     air_density: float = 1.225
 
     def __post_init__(self):
-        from windflutter.errors import check_choice
-
         check_choice("model", self.model, ("beam", "shell"))
         check_choice("part", self.part, PARTS)
         check_choice("drivetrain", self.drivetrain, DRIVETRAINS)
         check_choice("damping", self.damping, ("file", "none"))
         check_choice("structure", self.structure, ("undeformed", "deflected"))
-        from windflutter.aero.momentum import HIGH_THRUST
 
         check_choice("high_thrust", self.high_thrust, HIGH_THRUST)
         if self.structure == "deflected" and not self.deflection:
             raise InputError("structure", self.structure, "'undeformed' unless the blades are linearized about the "
                                                           "deflected steady state (deflection on)")
         if self.aero == "default":
-            from windflutter.aero.unsteady import UnsteadyOptions
-
             object.__setattr__(self, "aero", UnsteadyOptions())
         for name in ("basis_modes", "support_modes"):
             v = getattr(self, name)
@@ -184,6 +194,10 @@ class PointSystem:
     tip_basis: np.ndarray | None = field(default=None, repr=False)
     #: the turbine's own structural modes that name the modes (:mod:`windflutter.system.identity`)
     reference: object = field(default=None, repr=False)
+    #: the blade's full-numbering initial-stress matrix of the steady state and the hub-link term it was
+    #: linearized with (what :meth:`OperationalModel.assemble_point` takes)
+    ksigma: object = field(default=None, repr=False)
+    klink: np.ndarray | None = field(default=None, repr=False)
 
 
 class OperationalModel:
@@ -207,8 +221,6 @@ class OperationalModel:
 
     # -- parts -------------------------------------------------------------------------------
     def _mesh(self, part: str, pitch: float = 0.0):
-        from windflutter.mesh.settings import MeshSettings
-
         return MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": part, "pitch": float(pitch)})
 
     def blade(self, pitch: float) -> RotorBlade:
@@ -216,9 +228,6 @@ class OperationalModel:
         assembled once and turned about the pitch axis (:mod:`windflutter.system.pitch`)."""
         key = round(float(pitch), 8)
         if key not in self._blades:
-            from windflutter.system.damping import blade_damping_matrix, blade_mu
-            from windflutter.system.pitch import pitch_rotation, rotate_blade
-
             fe, st, sec = self._blade0()
             if key != 0.0:
                 R, root = pitch_rotation(self.turbine, pitch)
@@ -232,11 +241,19 @@ class OperationalModel:
         """The pitch-0 blade model ``(fe, struct, sections)``, built once."""
         if getattr(self, "_blade_zero", None) is None:
             from windflutter.mesh.turbine import build_model
-            from windflutter.structure.assembly import assemble
 
             fe, sec = build_model(self.turbine, self._mesh("rotor_blade", 0.0))
             self._blade_zero = (fe, assemble(fe), sec)
         return self._blade_zero
+
+    def variant(self, turbine, options: OperationalOptions | None = None) -> "OperationalModel":
+        """A model of ``turbine`` (a changed copy of this one's: support, nacelle, drivetrain) that
+        shares this model's cached blade parts and identities -- the blade's data must be unchanged
+        (design sensitivities, :mod:`windflutter.sensitivity`)."""
+        out = OperationalModel(turbine, options or self.options)
+        out._blades, out._blade_zero = self._blades, getattr(self, "_blade_zero", None)
+        out._reference = getattr(self, "_reference", None)
+        return out
 
     def reference(self):
         """The structural identities of this model (:func:`windflutter.system.identity.
@@ -253,7 +270,6 @@ class OperationalModel:
             return None
         if self._support is None:
             from windflutter.mesh.turbine import build_model
-            from windflutter.structure.assembly import assemble
 
             fe, _ = build_model(self.turbine, self._mesh("support"))
             st = assemble(fe)
@@ -271,8 +287,6 @@ class OperationalModel:
 
     def _support_damping(self, sm):
         """The files' tower modal ratios on the turbine's tower modes (support + rotor lumped at the hub)."""
-        from windflutter.system.damping import support_modal_damping, tower_ratios
-
         fa, ss = tower_ratios(self.turbine)
         if self.options.tower_damping is not None:
             fa = ss = np.array([float(self.options.tower_damping)])
@@ -290,8 +304,6 @@ class OperationalModel:
     def rotor_rigid_mass(self, pitch: float = 0.0) -> np.ndarray:
         """(6, 6) rigid-body mass of the whole rotor (hub + blades) at the apex, ground-fixed axes:
         ``sum_b Q_b^T (Gamma^T M Gamma) Q_b`` over the blade azimuths plus the hub."""
-        from windflutter.system.multiblade import axis_rotation
-
         rb = self.blade(pitch)
         G = rb.Gamma
         Mb = G.T @ (rb.struct.M @ G)
@@ -304,8 +316,6 @@ class OperationalModel:
         return out
 
     def hub_mass(self) -> np.ndarray:
-        from windflutter.mesh.parts import hub_mass
-
         hm = hub_mass(self.turbine, 0)
         return rigid_body_mass(hm.mass, hm.inertia, hm.offset)
 
@@ -324,7 +334,6 @@ class OperationalModel:
                     f"{', mean-load terms' if a.mean_loads else ''}{', dynamic stall' if a.dynamic_stall else ''}")
         else:
             aero = f"quasi-steady Theodorsen strips ({getattr(a, 'model', '?')})"
-        from windflutter.system.damping import blade_mu, tower_ratios
 
         mu = blade_mu(self.turbine) if o.damping == "file" else None
         fa, ss = tower_ratios(self.turbine) if o.damping == "file" else (np.zeros(0), np.zeros(0))
@@ -366,7 +375,6 @@ class OperationalModel:
         o = self.options
         if o.aero is None or wind_speed <= 0 or not rb.sections.n_sections:
             return None
-        from windflutter.steady import SteadyOptions, steady_state
 
         key = (id(rb), round(float(wind_speed), 9))
         prev = self._last_steady.get(key)
@@ -390,9 +398,6 @@ class OperationalModel:
         tip_frame = pitching_frames(rb.sections, self.rotor)[0] if rb.sections.n_sections else None
         st = self.steady(rb, wind_speed, omega)
         if self.options.structure == "deflected":  # the blade rebuilt and linearized about its deflected shape
-            from windflutter.system.damping import blade_mu
-            from windflutter.system.deflected import deflected_blade
-            from windflutter.system.deflected_shell import deflected_shell_blade
 
             mu = blade_mu(self.turbine) if self.options.damping == "file" else None
             build = deflected_shell_blade if len(rb.fe.shell_conn) else deflected_blade
@@ -400,8 +405,18 @@ class OperationalModel:
             rb, st, ksig, klink = d.blade, d.steady, d.ksigma, d.klink
         else:
             ksig, klink = self._prestress(rb, st, omega)
+        return self.assemble_point(rb, st, ksig, klink, wind_speed, omega, pitch, tip_frame=tip_frame)
+
+    def assemble_point(self, rb: RotorBlade, st, ksig, klink, wind_speed: float, omega: float, pitch: float, *,
+                       tip_frame=None, Phi=None) -> PointSystem:
+        """The :class:`PointSystem` of the blade ``rb`` linearized about the steady state ``st`` (its
+        full-numbering initial-stress matrix ``ksig`` and hub-link term ``klink``) on this model's
+        support, hub and drivetrain: the second half of :meth:`at`.  ``Phi``: the blade basis to use
+        (None: computed at the point).  Design sensitivities (:mod:`windflutter.sensitivity`) call it
+        with a blade or a support of changed data and the steady state held fixed."""
         blocks, strip_P = self._aero_blocks(rb, st, wind_speed, omega)
-        Phi = self.blade_basis(rb, omega, ksig, blocks, strip_P)
+        if Phi is None:
+            Phi = self.blade_basis(rb, omega, ksig, blocks, strip_P)
         bm = rb.matrices(Phi, ksigma_full=ksig, klink=klink)
         M, C, K = bm.at(omega, ksigma=bm.Ks1)
         aero = None
@@ -414,7 +429,7 @@ class OperationalModel:
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
                            blade_system=blade, blade_structure=(M, K), blade_damping=C,
-                           fixed=ff, tip_frame=tip_frame, reference=self.reference())
+                           fixed=ff, tip_frame=tip_frame, reference=self.reference(), ksigma=ksig, klink=klink)
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):
@@ -422,7 +437,6 @@ class OperationalModel:
         if st is None:
             Kg1, Kl1, _ = rb.unit_prestress()
             return Kg1 * omega**2, Kl1 * omega**2
-        from windflutter.system.blade import link_geometric_stiffness
 
         return st.Ksigma, link_geometric_stiffness(rb.fe, st.f_internal - st.load, rb.hub_node)
 
@@ -431,8 +445,6 @@ class OperationalModel:
         o = self.options
         if o.aero is None or not rb.sections.n_sections:
             return None, None
-        from windflutter.aero.flow import OperatingPoint
-        from windflutter.aero.operators import make_operator
 
         if st is not None:
             sections, op = self._linearized_strips(rb, st), st.operating_point(self.rotor)
@@ -442,8 +454,6 @@ class OperationalModel:
             sections, op = rb.sections, OperatingPoint(wind_speed, omega, o.air_density, self.rotor, 0.0)
         oper = make_operator(sections, op, o.aero)
         if not oper.time_domain:
-            from windflutter.system.blade_aero import quasi_steady_blocks
-
             return quasi_steady_blocks(oper), oper.P
         return oper.state_space(), oper.P
 
@@ -484,14 +494,10 @@ def _support_basis(st, n_modes: int) -> np.ndarray:
 
     K, M = st.Kr.tocsc(), st.Mr.tocsc()
     n = min(n_modes, K.shape[0] - 2)
-    w2, V = spla.eigsh(K, k=n, M=M, sigma=0.0, which="LM")
+    _, V = symmetric_eigs(K, M, n, shift=0.0)
     hub = int(st.fe.node_groups["hub"][0])
     H = np.asarray(st.T[6 * hub: 6 * hub + 6].todense()).T
     X = spla.splu(K).solve(H)
     X -= V @ (V.T @ (M @ X))  # the part the modes miss, at unit mass-norm
     X /= np.sqrt(np.maximum(np.einsum("ij,ij->j", X, M @ X), 1e-300))
-    B = np.hstack([V, X])
-    G = B.T @ (M @ B)
-    w, U = np.linalg.eigh(0.5 * (G + G.T))
-    keep = w > 1e-10 * w.max()
-    return B @ (U[:, keep] / np.sqrt(w[keep]))
+    return m_orthonormalize(np.hstack([V, X]), M, tol=1e-10, largest_first=False)

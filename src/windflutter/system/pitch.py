@@ -17,14 +17,13 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse as sp
 
+from windflutter.mesh.frames import blade_placement
 from windflutter.structure.assembly import Structural
 
 
 def pitch_rotation(turbine, pitch: float) -> tuple[np.ndarray, np.ndarray]:
     """``(R, point)``: the rotation (3, 3) from the pitch-0 blade 0 (azimuth 0) to pitch ``pitch``
     (rad, towards feather) and a point of its axis (the blade root)."""
-    from windflutter.mesh.frames import blade_placement
-
     R0, root = blade_placement(turbine.rotor_apex, turbine.hub.radius, 0.0, turbine.hub.precone, 0.0,
                                turbine.nacelle.shaft_tilt)
     R1, _ = blade_placement(turbine.rotor_apex, turbine.hub.radius, pitch, turbine.hub.precone, 0.0,

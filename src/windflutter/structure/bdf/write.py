@@ -11,6 +11,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.structure.bdf.beam import BEAM_E, BEAM_G, BEAM_NU, BeamCardValues, dropped_terms
 from windflutter.structure.bdf.cards import CARDS, BdfApproximationWarning
+from windflutter.structure.constraints import diaphragm_rows
 from windflutter.structure.fem import FEModel, IsotropicMaterial, OrthotropicMaterial
 
 META_TAG = "$WF "
@@ -202,8 +203,6 @@ class _Deck:
         """One MPC (set :data:`MPC_SET`) per eliminated DOF of every diaphragm: ``u_dep - sum a u = 0``
         (the relation :mod:`windflutter.structure.constraints` imposes); the diaphragms themselves in
         the ``$WF`` data."""
-        from windflutter.structure.constraints import diaphragm_rows
-
         x = np.asarray(self.fe.nodes, float)
         for k, dia in enumerate(self.fe.diaphragms):
             for rows, cols, vals, deps in diaphragm_rows(x, dia, k):

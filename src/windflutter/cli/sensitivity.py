@@ -1,0 +1,79 @@
+"""`windflutter sensitivity TURBINE`: which blade property, at which station, buys damping -- the
+derivative of each named mode's frequency and damping ratio with respect to the blade's section
+properties per station and global parameters (:func:`windflutter.api.sensitivity`), printed as a
+ranked table, optionally written as NetCDF and plotted.
+"""
+
+from __future__ import annotations
+
+import argparse
+
+from windflutter.cli.options import PLOT_EXTENSIONS, SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error
+from windflutter.errors import InputError
+
+FLAGS = (
+    Flag("--wind-speeds", "wind_speeds", nargs="+", metavar="V",
+         help="wind speeds (m/s); default: the operating curve's within 3-25 m/s"),
+    Flag("--aero", "aero", help="aerodynamic variant (default viscous: the airfoil polars)"),
+    Flag("--max-hz", "campbell.max_hz", metavar="F", help="modes up to this frequency (Hz; default 1.25 x the "
+         "first blade torsion frequency)"),
+) + SOLVER_FLAGS
+
+
+def add_parser(sub: argparse._SubParsersAction) -> None:
+    p = sub.add_parser("sensitivity", help="design sensitivities: what to change to raise a mode's damping",
+                       description="The derivative of the frequency and damping ratio of each named mode at each "
+                                   "wind speed with respect to the blade's section properties per station (flap, "
+                                   "edge, torsion and axial stiffness, mass, mass and elastic centre, structural "
+                                   "damping) and global parameters (tower and drivetrain stiffness, nacelle "
+                                   "mass, air density); first-order eigenvalue perturbation about the point's "
+                                   "steady state (held fixed). Beam blades.")
+    p.add_argument("turbine", help="turbine file (windIO, OpenFAST .fst, HAWC2 .htc) or bundled name")
+    add_flags(p, FLAGS)
+    p.add_argument("--modes", nargs="+", default=None, metavar="NAME",
+                   help="modes to analyse by name, e.g. '1st edge BW' (quoted); default every mode")
+    p.add_argument("--total", action="store_true", help="also whole re-analyses with the steady state recomputed "
+                   "(whole blade and global parameters; two re-analyses per parameter and wind speed)")
+    p.add_argument("--top", type=int, default=12, metavar="N", help="lines of the ranked table (default 12)")
+    p.add_argument("--out", default=None, metavar="FILE", help="write the sensitivities as NetCDF (.nc)")
+    p.add_argument("--plot", default=None, metavar="FILE", help="plot the spanwise sensitivity of the least "
+                   "damped mode's damping (" + ", ".join(PLOT_EXTENSIONS) + ")")
+    p.set_defaults(func=run)
+
+
+def run(args: argparse.Namespace) -> int:
+    from windflutter.api import sensitivity  # noqa: PLC0415
+    from windflutter.config import load_config  # noqa: PLC0415
+    from windflutter.files import check_output_file, prepare_output_file  # noqa: PLC0415
+    from windflutter.sensitivity.results import segment_table, sentence, spanwise_figure, total_table  # noqa: PLC0415
+
+    try:
+        config = load_config(None, config_overrides(args, FLAGS))
+    except InputError as exc:
+        raise flag_error(exc, args, FLAGS, {}) from None
+    if args.top < 1:
+        raise InputError("--top", args.top, "a positive number of lines")
+    for flag, exts in (("--out", (".nc",)), ("--plot", PLOT_EXTENSIONS)):
+        path = getattr(args, flag.lstrip("-"))
+        if path is not None:  # before the analysis
+            check_output_file(path, flag, exts)
+    winds = config.wind_speeds if args.wind_speeds is not None else None
+    ds = sensitivity(args.turbine, winds, modes=args.modes, total=args.total, config=config)
+    if args.out:
+        out = ds.copy()
+        out["defined"] = out["defined"].astype("int8")  # NetCDF has no boolean
+        out.to_netcdf(prepare_output_file(args.out))
+    if args.plot:
+        spanwise_figure(ds).savefig(prepare_output_file(args.plot), dpi=config.output.dpi)
+    rows = segment_table(ds, modes=args.modes)
+    print(f"{ds.attrs.get('title', '')}: {len(ds['mode'])} modes, {len(ds['wind_speed'])} wind speeds; "
+          "steady state held fixed; largest damping changes first" +
+          ("" if args.modes else " of the 3 least damped modes at each wind speed"))
+    for r in rows[:args.top]:
+        print("  " + sentence(r))
+    lines = total_table(ds, modes=args.modes)
+    if lines:
+        print("whole re-analyses (steady state recomputed), largest first:")
+        for line in lines[:args.top]:
+            print("  " + line)
+    return 0

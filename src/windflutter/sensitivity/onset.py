@@ -1,0 +1,126 @@
+"""The sensitivity of an instability's onset rotor speed (implicit function theorem).
+
+At the onset ``Omega*`` of a mode at a wind speed and pitch, its eigenvalue's real part is zero:
+``sigma(Omega*, p) = 0``.  Then
+
+    ``dOmega*/dp = -(d sigma/dp) / (d sigma/dOmega)``
+
+with ``d sigma/dp`` the mode's design sensitivity at the onset (:func:`~windflutter.sensitivity.
+point.point_sensitivities`, steady state held fixed) and ``d sigma/dOmega`` a central difference of
+two points at ``Omega* +- dOmega`` (their steady states recomputed).  :func:`onset` finds the onset
+of a named mode by the secant method on ``sigma``, for the nominal model or a changed one (the
+reference of the derivative, tests/sensitivity/test_sensitivity_onset.py).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from windflutter.errors import InputError
+from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
+from windflutter.sensitivity.point import point_sensitivities
+from windflutter.system.modes import point_modes
+from windflutter.sensitivity.finite_difference import changed_blade
+from windflutter.sensitivity.point import UNIT_OFFSET, UNIT_RELATIVE
+
+
+def _named(modes, name: str):
+    for m in modes:
+        if m.identity_name == name:
+            return m
+    return None
+
+
+def mode_sigma(point_of, rpm: float, name: str, max_hz: float, previous=None) -> tuple[float, list]:
+    """(Re lambda (1/s) of the mode ``name``, the point's named modes) at ``rpm`` (RPM), the point
+    system given by ``point_of(rpm)``."""
+    modes = point_modes(point_of(rpm), max_hz, previous=previous)
+    m = _named(modes, name)
+    if m is None:
+        raise InputError("mode", name, f"a mode of the point at {rpm:g} RPM below {max_hz:g} Hz")
+    return float(m.eigenvalue.real), modes
+
+
+def onset(point_of, name: str, rpm_a: float, rpm_b: float, max_hz: float, tol: float = 1e-5,
+          max_iter: int = 20) -> float:
+    """The rotor speed (RPM) where the mode ``name`` of ``point_of(rpm)`` crosses ``Re lambda = 0``,
+    by the secant method from ``rpm_a``, ``rpm_b`` (near the onset, the mode damped at one of them
+    and not at the other, or both close)."""
+    fa, prev = mode_sigma(point_of, rpm_a, name, max_hz)
+    fb, prev = mode_sigma(point_of, rpm_b, name, max_hz, prev)
+    a, b = float(rpm_a), float(rpm_b)
+    for _ in range(max_iter):
+        if fb == fa:
+            break
+        c = b - fb * (b - a) / (fb - fa)
+        a, fa = b, fb
+        b = c
+        fb, prev = mode_sigma(point_of, b, name, max_hz, prev)
+        if abs(b - a) < tol:
+            return b
+    raise InputError("onset", name, f"a mode crossing Re lambda = 0 near {rpm_a:g}-{rpm_b:g} RPM (no convergence)")
+
+
+@dataclass
+class OnsetSensitivity:
+    """``rpm`` the onset (RPM); ``dsigma_drpm`` (1/s per RPM); ``drpm[name]`` (RPM per unit of the
+    parameter: the blade properties summed over the whole blade, and the global parameters)."""
+
+    name: str
+    wind_speed: float
+    rpm: float
+    dsigma_drpm: float
+    drpm: dict
+
+
+def onset_sensitivity(om, wind_speed: float, name: str, rpm: float, pitch: float, max_hz: float,
+                      d_rpm: float = 0.05, blade_properties=None, global_parameters=None) -> OnsetSensitivity:
+    """:class:`OnsetSensitivity` of the mode ``name`` of the operating-point model ``om`` whose
+    onset at ``wind_speed`` (m/s) and ``pitch`` (rad) is ``rpm`` (RPM)."""
+    point_of = lambda r: om.at(wind_speed, rpm=r, pitch=pitch)  # noqa: E731
+    s_plus, prev = mode_sigma(point_of, rpm + d_rpm, name, max_hz)
+    s_minus, _ = mode_sigma(point_of, rpm - d_rpm, name, max_hz, prev)
+    ds = (s_plus - s_minus) / (2 * d_rpm)
+    ps = point_of(rpm)
+    m = _named(point_modes(ps, max_hz, previous=prev), name)
+    res = point_sensitivities(om, ps, [m], blade_properties, global_parameters)
+    out = {k: -float(v[0].sum().real) / ds for k, v in res.blade.items()}
+    out.update({k: -float(v[0].real) / ds for k, v in res.globals_.items()})
+    return OnsetSensitivity(name=name, wind_speed=float(wind_speed), rpm=float(rpm), dsigma_drpm=ds, drpm=out)
+
+
+def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
+    """``point_of(rpm)`` of the model with the parameter ``name`` changed by ``p`` (a blade property
+    over the whole blade, or a global parameter), the steady state at each rotor speed the nominal
+    model's (as the sensitivities hold it)."""
+
+    if name in BLADE_PROPERTIES:
+        def point_of(rpm):
+            ps = om.at(wind_speed, rpm=rpm, pitch=pitch)
+            return om.assemble_point(changed_blade(om, ps, name, p), ps.steady, ps.ksigma, ps.klink, ps.wind_speed,
+                                     ps.omega, ps.pitch, tip_frame=ps.tip_frame)
+        return point_of
+    g = GLOBAL_PARAMETERS[name]
+    mod = om.variant(*g.change(om.turbine, om.options, p))
+    if g.part == "aero":
+        import dataclasses
+
+        def point_of(rpm):
+            ps = om.at(wind_speed, rpm=rpm, pitch=pitch)
+            st = dataclasses.replace(ps.steady, air_density=mod.options.air_density)
+            return mod.assemble_point(ps.blade, st, ps.ksigma, ps.klink, ps.wind_speed, ps.omega, ps.pitch,
+                                      tip_frame=ps.tip_frame)
+        return point_of
+    return lambda rpm: mod.at(wind_speed, rpm=rpm, pitch=pitch)
+
+
+def unit_change(name: str) -> float:
+    """The table's unit change of a parameter: 1 % (relative) or 1 cm (offsets)."""
+
+    return UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
+
+
+def most_influential(sens: OnsetSensitivity, n: int = 2) -> list[str]:
+    """The ``n`` parameters whose unit change moves the onset most."""
+    return sorted(sens.drpm, key=lambda k: -abs(sens.drpm[k] * unit_change(k)))[:n]
+

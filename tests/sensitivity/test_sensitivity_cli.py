@@ -1,0 +1,68 @@
+"""``windflutter sensitivity``: the ranked table, the NetCDF dataset and the plot; bad input refused
+in one line before any analysis."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from windflutter.cli import main
+
+
+def _run(argv, capsys):
+    rc = main(argv)
+    out, err = capsys.readouterr()
+    return rc, out, err
+
+
+@pytest.mark.slow
+def test_table_dataset_and_plot(tmp_path, capsys):
+    """One wind speed, one mode: the table's sentences, the dataset's dimensions and units, the
+    figure; the sentence's number is the dataset's segment sum for +1 %."""
+    import xarray as xr
+
+    nc, png = tmp_path / "s.nc", tmp_path / "s.png"
+    rc, out, err = _run(["sensitivity", "nrel5mw", "--wind-speeds", "15", "--max-hz", "1.0", "--modes",
+                         "1st edge BW", "--out", str(nc), "--plot", str(png), "--top", "40"], capsys)
+    assert rc == 0, err
+    lines = [ln.strip() for ln in out.splitlines()[1:]]
+    assert len(lines) == 40 and all("the 1st edge BW damping at 15 m/s by" in ln for ln in lines)
+    assert png.stat().st_size > 10_000
+    ds = xr.open_dataset(nc)
+    assert dict(ds["ddamping"].sizes) == {"mode": 1, "wind_speed": 1, "parameter": 8, "station": 30}
+    assert ds["ddamping"].attrs["units"] == "1" and ds["dfrequency"].attrs["units"] == "Hz"
+    assert ds["wind_speed"].attrs["units"] == "m/s" and list(ds["mode"].values) == ["1st edge BW"]
+    st = ds["station"].values
+    dz = ds["ddamping"].sel(mode="1st edge BW", parameter="edge_stiffness").values[0]
+    seg = dz[(st >= 0.2) & (st < 0.4)].sum() * 0.01 * 100
+    line = next(ln for ln in lines if ln.startswith("+1 % edge stiffness at r/R 0.2-0.4"))
+    value = float(line.split(" by ")[1].split(" points")[0])
+    assert value == pytest.approx(abs(seg), rel=2e-3)
+    assert ("raises" in line) == (seg > 0)
+    assert np.all(ds["defined"].values == 1)
+
+
+@pytest.mark.parametrize("argv, words", [
+    pytest.param(["--modes", "99th edge BW"], ["modes", "99th edge BW"], marks=pytest.mark.slow),
+    (["--out", "x.csv"], ["--out", ".nc"]),
+    (["--wind-speeds", "-3"], ["wind"]),
+    (["--top", "0"], ["--top"]),
+])
+def test_bad_input_is_one_line(argv, words, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    rc, out, err = _run(["sensitivity", "nrel5mw", "--wind-speeds", "15", "--max-hz", "0.5"] + argv
+                        if "--wind-speeds" not in argv else ["sensitivity", "nrel5mw"] + argv, capsys)
+    lines = [ln for ln in err.splitlines() if ln.strip()]
+    assert rc == 2 and len(lines) == 1, err
+    assert "Traceback" not in err
+    for w in words:
+        assert w in lines[0], (w, lines[0])
+
+
+def test_unknown_parameter_names_the_keyword():
+    from windflutter.errors import InputError
+    from windflutter.sensitivity.parameters import BLADE_PROPERTIES, check_parameters
+
+    with pytest.raises(InputError) as exc:
+        check_parameters(["flap_stifness"], BLADE_PROPERTIES, "blade_properties")
+    assert "blade_properties" in str(exc.value) and "flap_stiffness" in str(exc.value)
