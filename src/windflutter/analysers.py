@@ -23,7 +23,7 @@ from windflutter.errors import InputError, InputWarning, ModelError, ValidityWar
 from windflutter.operating import operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult
-from windflutter.stability.build import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts
+from windflutter.stability.build import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts, with_span_count
 from windflutter.units import RPM
 
 # --------------------------------------------------------------------------------------------
@@ -75,7 +75,7 @@ def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any 
     the solver module)."""
     if module is None:
         return _opts(config, aero, method)
-    opts = module.options_from_config(config, aero, method)
+    opts = module.options_from_config(with_span_count(config), aero, method)
     return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
 
 

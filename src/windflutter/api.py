@@ -54,7 +54,7 @@ MESH_PARTS = ("turbine", "blade", "tower", "rotor")
 #: the model every command builds unless told otherwise
 DEFAULT_MODEL = "beam"
 #: the options that only the shell model has
-SHELL_ONLY = ("n_chord", "tower_model", "tip_closure")
+SHELL_ONLY = ("n_chord", "tower_model", "tip_closure", "element_length", "reference_surface")
 
 #: options of :func:`modes` and ``windflutter mesh`` (keyword -> check); the CLI flag of each is the
 #: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
@@ -70,9 +70,12 @@ MESH_OPTIONS: dict[str, Spec] = {
     "tower_model": Spec("choice", choices=MESH_MODELS, nullable=True, doc="shell model: the tower as shell "
                         "(default) or beam"),
     "tip_closure": dataclasses.replace(field_spec("model.tip_closure"), nullable=True),
+    "element_length": field_spec("model.element_length"),
+    "reference_surface": dataclasses.replace(field_spec("model.reference_surface"), nullable=True),
 }
 MESH_DEFAULTS: dict[str, Any] = {"part": "turbine", "model": DEFAULT_MODEL, "pitch": 0.0, "azimuth": 0.0,
-                                 "n_chord": None, "n_span": None, "tower_model": None, "tip_closure": None}
+                                 "n_chord": None, "n_span": None, "tower_model": None, "tip_closure": None,
+                                 "element_length": None, "reference_surface": None}
 
 #: the options of :func:`modes` besides the mesh
 MODES_OPTIONS: dict[str, Spec] = {
@@ -197,7 +200,8 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
                                  "shell)")
     kw = dict(model=v["model"], part=v["part"], pitch=math.radians(v["pitch"]), azimuth=math.radians(v["azimuth"]),
               tower_model=v["tower_model"] or "shell")
-    kw.update({k: v[k] for k in ("n_chord", "n_span", "tip_closure") if v[k] is not None})
+    kw.update({k: v[k] for k in ("n_chord", "n_span", "tip_closure", "element_length", "reference_surface")
+               if v[k] is not None})
     return MeshSettings(**kw)
 
 

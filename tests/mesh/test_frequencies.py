@@ -22,7 +22,7 @@ import pytest
 
 from synthetic import STEEL, synthetic_turbine, tube_beam_props, tube_blade
 from windflutter.mesh.analysis import turbine_modes
-from windflutter.mesh.settings import MeshSettings
+from windflutter.mesh.settings import SEED_MESH, MeshSettings
 from windflutter.model.turbine import IsotropicMaterial, Tower, TowerLayer
 from windflutter.structure.fem import OrthotropicMaterial
 
@@ -49,11 +49,13 @@ def test_elliptic_tube_blade_vs_analytic(model):
     """Straight isotropic elliptical tube (t/c 0.4, wall 10 mm) clamped at the root: bending.
 
     Tolerance 1.5 % (24x20 shell mesh; shear deformation and the discrete contour make up
-    < 1 %)."""
+    < 1 %).  The reference's wall midline is the given ellipse: the shell's skin on it
+    (``reference_surface="outer"``; the default midsurface would put the wall t/2 inside it)."""
     L, c, th, t = 40.0, 2.0, 0.4, 0.01
     ref, bp = tube_reference(L, c, th, t)
     tb = synthetic_turbine(tube_blade(L, c, th, t, beam=bp))
-    res = turbine_modes(tb, MeshSettings(model=model, part="blade", n_chord=24, n_span=20), n_modes=5)
+    kw = {"reference_surface": "outer"} if model == "shell" else {}
+    res = turbine_modes(tb, MeshSettings(model=model, part="blade", n_chord=24, n_span=20, **kw), n_modes=5)
     assert first(res, "1st flap") == pytest.approx(ref["flap1"], rel=0.015)
     assert first(res, "1st edge") == pytest.approx(ref["edge1"], rel=0.015)
     assert first(res, "2nd flap") == pytest.approx(ref["flap2"], rel=0.015)
@@ -182,12 +184,12 @@ def test_iea15mw_blade_shell_and_beam():
     """IEA 15 MW blade: Gaertner 2020 flap 1 0.555 Hz, edge 1 0.642 Hz.  The WISDEM-example
     windIO file is a later revision of the blade (tapered-chord tip; pyBmodes on the ElastoDyn
     deck it ships gives 0.538 / 0.729 Hz, i.e. +14 % in edge against the report).  Measured:
-    shell (windIO layup, default mesh) 0.560 / 0.702, beam (windIO 6x6) 0.505 / 0.692 Hz.
+    shell (windIO layup, the seed's mesh SEED_MESH: 40 x 30, outer mould line) 0.560 / 0.702, beam (windIO 6x6) 0.505 / 0.692 Hz.
     Bound: 12 % (the revision gap shown by pyBmodes), flap of the shell 5 %."""
     from windflutter.model.windio import load_turbine
 
     tb = load_turbine("iea15mw")
-    sh = turbine_modes(tb, MeshSettings(model="shell", part="blade"), n_modes=3)
+    sh = turbine_modes(tb, MeshSettings(model="shell", part="blade", **SEED_MESH), n_modes=3)
     bm = turbine_modes(tb, MeshSettings(model="beam", part="blade"), n_modes=3)
     print("shell", sh.frequencies_hz, sh.labels, "beam", bm.frequencies_hz, bm.labels)
     assert first(sh, "1st flap") == pytest.approx(0.555, rel=0.05)
@@ -203,7 +205,7 @@ def test_iea10mw_blade_shell_and_beam():
     (``RotatingBlade.from_windio(windIO_v1/IEA-10-198-RWT.yaml, elastic="file")``; the v2 file's
     width-placeholder anchors are not supported by pyBmodes): 0.3892 / 0.6559 / 1.0335 Hz
     (flap 1, edge 1, flap 2).  Beam (30 elements, same 6x6) measured 0.3853 / 0.6434 / 1.0164:
-    2.5 %.  Shell (default mesh) measured 0.4044 / 0.6213 / 1.0780: 8 % (midsurface on the outer
+    2.5 %.  Shell (the seed's mesh, SEED_MESH) measured 0.4044 / 0.6213 / 1.0780: 8 % (midsurface on the outer
     mould line stiffens flap; no 6x6 shear terms in the file).  Shell blade mass 48.58 t vs the 6x6
     48.90 t: 2 %; both vs the HAWC2 blade of the RWT repository (IEAWindTask37/IEA-10.0-198-RWT
     hawc2/data/iea10mw_rc1_hawc2_blade_st.dat @ b00b748, mass per length over its 19 stations,
@@ -219,12 +221,12 @@ def test_iea10mw_blade_shell_and_beam():
         tb = load_turbine("iea10mw")
     ref = (0.3892, 0.6559, 1.0335)
     bm = turbine_modes(tb, MeshSettings(model="beam", part="blade", n_span=30), n_modes=4)
-    sh = turbine_modes(tb, MeshSettings(model="shell", part="blade"), n_modes=4)
+    sh = turbine_modes(tb, MeshSettings(model="shell", part="blade", **SEED_MESH), n_modes=4)
     print("beam", bm.frequencies_hz, "shell", sh.frequencies_hz)
     for res, tol in ((bm, 0.025), (sh, 0.08)):
         for lab, f in zip(("1st flap", "1st edge", "2nd flap"), ref):
             assert first(res, lab) == pytest.approx(f, rel=tol)
-    fe, _ = build_model(tb, MeshSettings(model="shell", part="blade"))
+    fe, _ = build_model(tb, MeshSettings(model="shell", part="blade", **SEED_MESH))
     M = assemble(fe).M
     u = np.zeros(M.shape[0])
     u[0::6] = 1.0
@@ -238,7 +240,7 @@ def test_seed5mw_shell_and_thin_walled_beam():
     beams of the same layup.  Against Jonkman 2009 / BModes (flap 1 ~0.675, edge 1 ~1.08,
     flap 2 ~1.96 Hz): 12 % -- the UpWind layup is not the ElastoDyn blade (seed ch. 4 notes the
     inconsistency; chordwise extents are from the WISDEM anchors; the shell blade weighs 22.0 t
-    against 17.7 t, see docs/turbine_input.md).  Measured (default mesh): 0.754 / 1.018 / 2.113 Hz
+    against 17.7 t, see docs/turbine_input.md).  Measured (the seed's mesh, SEED_MESH): 0.754 / 1.018 / 2.113 Hz
     (+11.6 / -5.8 / +7.8 %).  Shell vs thin-walled beam (classical theory, model/section.py: wall
     midline offset inwards by t/2, no shear lag, no section deformation): measured beam/shell
     0.977 / 1.033 / 0.962.  The shell mesh puts the laminate midsurface on the outer mould line,
@@ -248,7 +250,7 @@ def test_seed5mw_shell_and_thin_walled_beam():
     from windflutter.model.windio import load_turbine
 
     tb = load_turbine("seed5mw")
-    sh = turbine_modes(tb, MeshSettings(model="shell", part="blade"), n_modes=6)  # default 40x30
+    sh = turbine_modes(tb, MeshSettings(model="shell", part="blade", **SEED_MESH), n_modes=6)  # the seed's 40x30
     bm = turbine_modes(tb, MeshSettings(model="beam", part="blade"), n_modes=6)
     print("shell", sh.frequencies_hz, sh.labels, "beam", bm.frequencies_hz, bm.labels)
     for lab, ref in (("1st flap", 0.675), ("1st edge", 1.08), ("2nd flap", 1.96)):

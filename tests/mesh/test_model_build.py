@@ -8,7 +8,7 @@ from synthetic import synthetic_turbine, tube_beam_props, tube_blade
 from windflutter.errors import InputError
 from windflutter.mesh import loft as lf
 from windflutter.mesh.blade_shell import blade_shell_mesh
-from windflutter.mesh.settings import MeshSettings
+from windflutter.mesh.settings import SEED_MESH, MeshSettings
 from windflutter.mesh.turbine import blade_mass_points, build_model
 
 
@@ -19,7 +19,8 @@ def test_lofted_sections_match_input(nrel5mw):
     the blade's t/c to 2 % (thickness-matched blend of two airfoils whose thickest points are at
     different chordwise positions, sampled by 120 points around the contour)."""
     b = nrel5mw.blade
-    bm = blade_shell_mesh(b, nrel5mw.airfoils, nrel5mw.materials, MeshSettings(n_chord=120, n_span=20))
+    bm = blade_shell_mesh(b, nrel5mw.airfoils, nrel5mw.materials, MeshSettings(n_chord=120, n_span=20,
+                                                                       reference_surface="outer"))
     for i, eta in enumerate(bm.eta):
         p = bm.nodes[bm.station_nodes[i]]
         q = p - bm.ref_axis[i]
@@ -64,7 +65,7 @@ def test_webs_share_skin_nodes_and_layers_follow_arcs(nrel5mw):
 
 def test_default_size_matches_seed(nrel5mw):
     """Seed table 4.6: 4650 CQUAD4, 4455 nodes, 26136 DOF.  Defaults within 5 %."""
-    fe, sec = build_model(nrel5mw, MeshSettings())
+    fe, sec = build_model(nrel5mw, MeshSettings(**SEED_MESH))
     assert len(fe.shell_conn) == pytest.approx(4650, rel=0.05)
     assert fe.n_nodes == pytest.approx(4455, rel=0.05)
     assert fe.n_dof == pytest.approx(26136, rel=0.06)
@@ -167,7 +168,7 @@ def test_seed5mw_model_size_matches_seed():
     independent DOF (all minus clamped and rigidly tied nodes): within 3 %."""
     from windflutter.model.windio import load_turbine
 
-    fe, sec = build_model(load_turbine("seed5mw"), MeshSettings())
+    fe, sec = build_model(load_turbine("seed5mw"), MeshSettings(**SEED_MESH))
     dep = set(np.concatenate([np.atleast_1d(r.dependent) for r in fe.rigid_links]).tolist())
     nq = fe.n_dof - 6 * len(set(fe.spc) | dep)
     print(fe.n_nodes, len(fe.shell_conn), fe.n_dof, nq)

@@ -58,13 +58,19 @@ def test_stability_cli_rejects_skin_on_beams(capsys):
 
 def test_config_reaches_the_turbine_options():
     # every solver / rotor-speed setting of a run config arrives in TurbineOptions
+    # (through build.with_span_count: a beam config's null model.n_aero_sections means 30 elements)
     from windflutter.config import config_from_dict
-    from windflutter.stability.turbine import options_from_config
+    from windflutter.stability.build import with_span_count
+    from windflutter.stability.turbine import options_from_config as _from_config
+
+    def options_from_config(c, aero, method):
+        return _from_config(with_span_count(c), aero, method)
 
     c = config_from_dict({"rotor_speed": {"full_sweep": True},
                           "solver": {"correction_tol": 1e-6, "basis_modes": 12, "n_eig": 8, "reduction": "modal",
                                      "mean_loads": False}})
     o = options_from_config(c, "viscous", "pk")
+    assert o.mesh["n_span"] == 30
     assert (o.full_sweep, o.correction_tol, o.basis_modes, o.n_eig, o.reduction, o.aero, o.mean_loads) == (
         True, 1e-6, 12, 8, "modal", "viscous", False)
     d = options_from_config(config_from_dict({}), "potential", "pk")

@@ -22,7 +22,8 @@ from windflutter import __version__, threads
 from windflutter.errors import InputError, ModelError, WindflutterError, one_line
 
 #: Sub-command modules, in the order shown by ``--help``.
-COMMANDS = ("section", "simple", "wing", "modes", "mesh", "stability", "campbell", "sensitivity", "simulate", "run")
+COMMANDS = ("section", "simple", "wing", "modes", "mesh", "beam_properties", "stability", "campbell", "sensitivity",
+            "simulate", "run")
 
 
 @functools.lru_cache(maxsize=1)

@@ -22,6 +22,13 @@ SEARCH_METHODS = ("p", "pk", "thesis")
 MODEL_TYPES = ("shell", "beam", "section")
 MODEL_PARTS = ("turbine", "rotor")
 TIP_CLOSURES = ("rib", "rigid", "open")
+REFERENCE_SURFACES = ("midsurface", "outer")
+#: beam blades: elements along the span unless told
+BEAM_SPAN_ELEMENTS = 30
+#: shell blades without an element length: the target length along the span is the blade length over
+#: this (the convergence study of tests/mesh/test_mesh_convergence.py: the error of the Campbell
+#: frequencies is set by the elements per blade length, alike on blades of 61.5 m and 138 m)
+SHELL_SPAN_ELEMENTS = 100
 DAMPING_MODELS = ("file", "none", "stiffness", "rayleigh", "modal")
 DRIVETRAINS = ("flexible", "rigid", "locked")
 CIRCULATIONS = ("jones", "rfa", "quasi_steady")
@@ -141,10 +148,22 @@ class ModelConfig:
                     "fixed nacelle, no tower; the shaft as model.drivetrain says: method p free by default, locked = "
                     "hub clamped; pk and thesis always hub clamped)", choices=MODEL_PARTS)
     mesh_density: float = opt(1.0, "float", "multiplier on the element counts (blade elements along the span "
-                              "n_aero_sections x density; shells also around each section and on the tower)",
+                              "n_aero_sections x density, or the shell's element length / density; shells also "
+                              "around each section and on the tower)",
                               lower=0.1, upper=4.0, unit="-")
-    n_aero_sections: int = opt(30, "int", "blade elements along the span, one aerodynamic strip each (at "
-                               "mesh_density 1)", lower=4, upper=MAX_BLADE_ELEMENTS)
+    n_aero_sections: int | None = opt(None, "int", "blade elements along the span, one aerodynamic strip each (at "
+                                      "mesh_density 1); null: 30 for beams, for shells from the element length",
+                                      lower=4, upper=MAX_BLADE_ELEMENTS, nullable=True)
+    element_length: float | None = opt(None, "float", "shell models, when n_aero_sections is null: target length "
+                                       "of the blade's skin elements along the span (the elements around a "
+                                       "section follow, at least 40); null: the blade length / 80, the default "
+                                       "chosen by the mesh convergence study (docs/mesh.md)", lower=0.0,
+                                       lower_open=True, upper=100.0, nullable=True, unit="m")
+    reference_surface: str = opt("midsurface", "choice", "shell models: the skin's reference surface -- "
+                                 "midsurface (the laminate midsurface, inside the outer mould line by half the "
+                                 "laminate: the walls the layup describes) or outer (the seed's: on the outer "
+                                 "mould line, half of each laminate outside the airfoil)",
+                                 choices=REFERENCE_SURFACES)
     tip_closure: str = opt("rib", "choice", "shell models: how each blade's end section is closed -- rib (a thin "
                            "rib: the section keeps its shape in its plane, warping free), rigid (a rigid section) or "
                            "open (the skin's free edge; it buckles locally under the steady compression at overspeed, "

@@ -14,7 +14,9 @@ from pathlib import Path
 from typing import Any
 
 from windflutter.config.declarations import (
-    RENAMED, MAX_BLADE_ELEMENTS, MAX_GRID_POINTS, MAX_RPM, AnalysisConfig, field_spec)
+    RENAMED, MAX_BLADE_ELEMENTS, MAX_GRID_POINTS, MAX_RPM, SHELL_SPAN_ELEMENTS, BEAM_SPAN_ELEMENTS,
+    AnalysisConfig,
+    field_spec)
 from windflutter.errors import InputError, InputWarning
 from windflutter.files import load_yaml, parse_yaml
 from windflutter.schema import Spec, check_keys
@@ -87,9 +89,15 @@ def _rule_solver(c: AnalysisConfig, given: set[str], src: str | None) -> Analysi
 
 def _rule_mesh(c: AnalysisConfig, given: set[str], src: str | None) -> AnalysisConfig:
     m = c.model
-    n_span = round(m.n_aero_sections * m.mesh_density)
+    if m.element_length is not None and m.type != "shell":
+        raise InputError("model.element_length", m.element_length, f"null with model.type {m.type} (the "
+                         "element length sets the shell blade's mesh; beams take n_aero_sections)", src)
+    if m.n_aero_sections is None and m.element_length is not None:
+        return c  # the counts follow from the blade's size: checked when the mesh is built
+    n0 = m.n_aero_sections or (SHELL_SPAN_ELEMENTS if m.type == "shell" else BEAM_SPAN_ELEMENTS)
+    n_span = round(n0 * m.mesh_density)
     if not 4 <= n_span <= MAX_BLADE_ELEMENTS:
-        bad = "mesh_density" if "model.mesh_density" in given else "n_aero_sections"
+        bad = "mesh_density" if "model.mesh_density" in given or m.n_aero_sections is None else "n_aero_sections"
         raise InputError(f"model.{bad}", getattr(m, bad), f"n_aero_sections x mesh_density in [4, "
                          f"{MAX_BLADE_ELEMENTS}] blade elements (it gives {n_span})", src)
     return c

@@ -16,6 +16,7 @@ import numpy as np
 from windflutter.errors import InputError, check_choice
 from windflutter.mesh import loft as lf
 from windflutter.mesh.layup import group_laminates, layer_tables
+from windflutter.config.declarations import REFERENCE_SURFACES
 from windflutter.mesh.settings import MeshSettings
 from windflutter.mesh.shell_layup import (  # noqa: F401  (fill_web_keys: importable here)
     arc_interval, choose_key_arcs, extend_to_blade_ends, fill_uncovered, fill_web_keys, layer_material)
@@ -59,6 +60,14 @@ class BladeShellMesh:
     pitch_axis: np.ndarray
 
 
+@dataclass(frozen=True)
+class _BladeOnly:
+    """What :meth:`MeshSettings.resolved` reads of a turbine: its blade and airfoils."""
+
+    blade: object
+    airfoils: dict
+
+
 def station_positions(n_span: int, clustering: float = 0.0) -> np.ndarray:
     """Span positions of ``n_span + 1`` stations on [0, 1]: uniform blended with cosine spacing."""
     u = np.linspace(0.0, 1.0, n_span + 1)
@@ -79,11 +88,8 @@ def _oriented_stack(blade, airfoils) -> tuple[np.ndarray, list[np.ndarray]]:
     return pos, shapes
 
 
-REFERENCE_SURFACES = ("outer", "midsurface")
-
-
 def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSettings,
-                     reference_surface: str = "outer") -> BladeShellMesh:
+                     reference_surface: str | None = None) -> BladeShellMesh:
     """Loft and mesh one blade (skin + webs) with laminates from its layup.
 
     Parameters
@@ -91,14 +97,18 @@ def blade_shell_mesh(blade, airfoils: dict, materials: dict, settings: MeshSetti
     blade : :class:`windflutter.model.turbine.Blade` with a layup.
     airfoils : name -> :class:`windflutter.model.turbine.Airfoil`.
     materials : name -> FE material.
-    settings : element counts.
-    reference_surface : where the skin elements' reference (mid-)surface lies: ``"outer"`` on
+    settings : element counts (or the element length they follow from) and the reference surface.
+    reference_surface : overrides ``settings.reference_surface``: where the skin elements' reference
+        (mid-)surface lies: ``"outer"`` on
         the outer mould line (the seed's model: half of each laminate outside the airfoil), or
-        ``"midsurface"`` moved inwards in the section plane by half the local laminate thickness
+        ``"midsurface"`` (the default) moved inwards in the section plane by half the local laminate thickness
         (capped at a quarter of the local airfoil thickness), the wall midline of the thin-walled
         beam sections (:mod:`windflutter.model.section`); the webs then end on the moved skin.
     """
-    check_choice("reference_surface", reference_surface, REFERENCE_SURFACES)
+    reference_surface = reference_surface or settings.reference_surface
+    check_choice("mesh.reference_surface", reference_surface, REFERENCE_SURFACES)
+    if settings.n_span is None or settings.n_chord is None:
+        settings = settings.resolved(_BladeOnly(blade, airfoils))
     if blade.layup is None or not blade.layup.layers:
         raise InputError("blade.layup", None, "a composite layup (layers and webs) for the shell model")
     eta = station_positions(settings.n_span, settings.span_clustering)

@@ -62,7 +62,7 @@ def build_model(turbine, settings: MeshSettings | None = None):
         ``hub``, ``nacelle``, ``tower_top`` as present.
     sections : :class:`AeroSections`, ``n_span`` strips per blade (empty without blades).
     """
-    st = settings or MeshSettings()
+    st = (settings or MeshSettings()).resolved(turbine)
     if hasattr(turbine, "require"):  # refuse a turbine file that lacks what this part needs
         turbine.require(st.part)
     if st.model == "shell" and st.part != "support":  # the shell blades are the layup's blade
@@ -107,6 +107,7 @@ def blade_mass_points(turbine, settings: MeshSettings) -> tuple[np.ndarray, np.n
     Shell: element area x areal mass at the element centroid; beam: mass per length x length at
     the element midpoint (offset by the section mass centre).
     """
+    settings = settings.resolved(turbine)
     if settings.model == "shell":
         bm = blade_shell_mesh(turbine.blade, turbine.airfoils, turbine.materials, settings)
         p = bm.nodes[bm.conn]

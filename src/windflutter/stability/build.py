@@ -19,24 +19,48 @@ import dataclasses
 from collections.abc import Callable
 
 from windflutter.aero.unsteady import UnsteadyOptions
+from windflutter.config.declarations import BEAM_SPAN_ELEMENTS, SHELL_SPAN_ELEMENTS
 from windflutter.errors import InputError
 from windflutter.stability.operational import OperationalStability, SearchSettings
 from windflutter.system.operational import OperationalOptions
 
 
 def mesh_settings(config) -> dict:
-    """Mesh-setting overrides from ``model.part``, ``model.mesh_density`` and ``model.n_aero_sections``: blade
-    elements (= strips) along the span ``n_aero_sections * density``; for shells also the elements
-    around a section (default 40, kept even) and along / around the tower, and ``model.tip_closure``."""
-    d = config.model.mesh_density
-    out = {"part": config.model.part, "n_span": max(4, int(round(config.model.n_aero_sections * d)))}
-    if config.model.type == "shell":
-        out["tip_closure"] = config.model.tip_closure
-    if config.model.type == "shell" and d != 1.0:
-        out["n_chord"] = max(8, 2 * int(round(20 * d)))
+    """Mesh-setting overrides from ``model.part``, ``model.mesh_density``, ``model.n_aero_sections`` and,
+    for shells, ``model.element_length``, ``model.reference_surface`` and ``model.tip_closure``: blade
+    elements (= strips) along the span ``n_aero_sections * density``; shells without ``n_aero_sections``
+    take theirs from the element length / density (null: the blade length / 80 at density 1,
+    :func:`windflutter.mesh.settings.resolve_counts`); for shells at density != 1 also the elements
+    around a section (default 40, kept even) and along / around the tower."""
+    m = config.model
+    d = m.mesh_density
+    out: dict = {"part": m.part}
+    if m.n_aero_sections is not None or m.type != "shell":
+        out["n_span"] = max(4, int(round((m.n_aero_sections or BEAM_SPAN_ELEMENTS) * d)))
+    if m.type != "shell":
+        return out
+    out["tip_closure"] = m.tip_closure
+    out["reference_surface"] = m.reference_surface
+    if m.n_aero_sections is None:
+        if m.element_length is not None:
+            out["element_length"] = m.element_length / d
+        elif d != 1.0:
+            out["n_span"] = max(4, int(round(SHELL_SPAN_ELEMENTS * d)))
+    if d != 1.0:
+        if "element_length" not in out:
+            out["n_chord"] = max(8, 2 * int(round(20 * d)))
         out["n_tower_circ"] = max(8, int(round(20 * d)))
         out["n_tower_axial"] = max(4, int(round(22 * d)))
     return out
+
+
+def with_span_count(config):
+    """``config`` with ``model.n_aero_sections`` filled for beams (null means 30 for them): for
+    readers that take it as the beam's element count."""
+    m = config.model
+    if m.n_aero_sections is not None or m.type == "shell":
+        return config
+    return dataclasses.replace(config, model=dataclasses.replace(m, n_aero_sections=BEAM_SPAN_ELEMENTS))
 
 
 def unsteady_options(config, aero: str):
@@ -91,7 +115,7 @@ def turbine_options(config, aero: str, method: str):
     """The seed's solver options (methods pk, thesis) of one case, with the mesh."""
     from windflutter.stability.turbine import options_from_config
 
-    opts = options_from_config(config, aero, method)
+    opts = options_from_config(with_span_count(config), aero, method)
     return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
 
 
@@ -150,5 +174,5 @@ def stability_analysis(turbine, config, aero: str, method_name: str):
     return method(method_name).solver(turbine, config, aero)
 
 
-__all__ = ["METHODS", "Method", "method", "case_options", "mesh_settings", "unsteady_options", "operational_options", "search_settings", "turbine_options",
+__all__ = ["METHODS", "Method", "method", "case_options", "mesh_settings", "with_span_count", "unsteady_options", "operational_options", "search_settings", "turbine_options",
            "stability_analysis"]

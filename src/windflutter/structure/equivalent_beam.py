@@ -12,9 +12,21 @@ rate, two curvatures) per unit resultant.  The inverse of that 4 x 4 compliance 
 stiffness -- EA, GJ, EI_2, EI_3 and their couplings -- about the reference axis, in the section
 axes ``(e1 along the axis, e2, e3)``.
 
-The shear stiffness and the mass are not extracted (yet): the 6 x 6 of
-:class:`~windflutter.structure.fem.BeamSection` has them, so a full blade-station table needs
-transverse-load cases with the bending part removed.
+:func:`section_properties` adds the two transverse unit forces at the loaded node.  Their
+resultants are not constant along the segment (the moment grows from the tip), so the relative
+rigid motion of the rings is the integral of the generalized strains over the distance between them:
+with the section forces ``F(x) = F0 + F1 x`` (x from the first ring) and the section compliance
+``S`` (strains ``(eps, gamma2, gamma3, kappa1, kappa2, kappa3)`` from ``(N, V2, V3, T, M2, M3)``)
+
+    d_theta = S_k (F0 l + F1 l^2 / 2)
+    d_u - theta_a x e1 l = S_e (F0 l + F1 l^2 / 2) + J S_k (F0 l^2 / 2 + F1 l^3 / 6),  J k = k x e1
+
+in the section axes; the six load cases give the 6 x 6 ``S`` by two linear solves (rotations first).
+From it, about the reference axis: the tension centre (an axial force there gives no curvature), the
+shear centre (a transverse force there gives no twist) and the 6 x 6 stiffness ``S^-1``; from the
+elements between the rings, the mass per length, the mass centre and the mass moments of inertia
+(element masses lumped at their centroids: the walls' own rotary inertia through their thickness is
+left out).
 
 Units: SI (m, N, N m, N m^2).
 """
@@ -30,7 +42,7 @@ from windflutter.structure.assembly import assemble
 from windflutter.structure.fem import FEModel, RigidLink
 from windflutter.structure.prestress import static_solve
 
-__all__ = ["SegmentStiffness", "ring_rigid_motion", "segment_stiffness"]
+__all__ = ["SegmentStiffness", "SectionProperties", "ring_rigid_motion", "section_properties", "segment_stiffness"]
 
 
 @dataclass(frozen=True)
@@ -130,3 +142,115 @@ def segment_stiffness(fe: FEModel, root: np.ndarray, tip: np.ndarray, rings: tup
         C[:, j] = np.r_[du @ E[0], E @ dth] / length
     C = 0.5 * (C + C.T)
     return SegmentStiffness(stiffness=np.linalg.inv(C), compliance=C, axes=E, length=length)
+
+
+@dataclass(frozen=True)
+class SectionProperties:
+    """Beam section of a shell segment about its reference axis (module docstring), in the
+    :class:`~windflutter.structure.fem.BeamSection` order and the section axes ``axes`` (rows e1 along
+    the axis, e2, e3).
+
+    ``stiffness`` / ``compliance`` (6, 6): ``(N, V2, V3, T, M2, M3)`` from ``(eps, gamma2, gamma3,
+    kappa1, kappa2, kappa3)``; ``mass`` (6, 6) per length (kg/m, kg, kg m) for ``(u, theta)`` of the
+    reference point; ``tension_centre``, ``shear_centre``, ``mass_centre`` (2,) their (e2, e3)
+    offsets from the reference axis (m); ``asymmetry``: the measured compliance's relative
+    asymmetry (a check of the extraction, ~1e-3 and below).
+    """
+
+    stiffness: np.ndarray
+    compliance: np.ndarray
+    mass: np.ndarray
+    axes: np.ndarray
+    length: float
+    tension_centre: np.ndarray
+    shear_centre: np.ndarray
+    mass_centre: np.ndarray
+    asymmetry: float
+
+
+def _section_compliance(fe2, load_node: int, E: np.ndarray, X: np.ndarray, rings, refs, length: float,
+                        x_load: float) -> tuple[np.ndarray, float]:
+    """The 6 x 6 section compliance from six unit loads at ``load_node`` (module docstring)."""
+    st = assemble(fe2)
+    F = np.zeros((fe2.n_dof, 6))
+    for k in range(3):
+        F[6 * load_node: 6 * load_node + 3, k] = E[k]  # forces along e1, e2, e3
+        F[6 * load_node + 3: 6 * load_node + 6, 3 + k] = E[k]  # moments about e1, e2, e3
+    U = static_solve(st, F)
+    # section forces F(x) = F0 + F1 x of each case (x from the first ring; the load at x_load on the axis)
+    F0, F1 = np.eye(6), np.zeros((6, 6))
+    F0[5, 1], F1[5, 1] = x_load, -1.0  # a force along e2 at distance d ahead: M3 = d
+    F0[4, 2], F1[4, 2] = -x_load, 1.0  # a force along e3: M2 = -d
+    G = F0 * length + F1 * length**2 / 2
+    H = F0 * length**2 / 2 + F1 * length**3 / 6
+    dth, du = np.zeros((3, 6)), np.zeros((3, 6))
+    for j in range(6):
+        u = U[:, j].reshape(-1, 6)[:, :3]
+        ma = ring_rigid_motion(X[rings[0]], u[rings[0]], refs[0])
+        mb = ring_rigid_motion(X[rings[1]], u[rings[1]], refs[1])
+        du[:, j] = E @ (mb[:3] - ma[:3] - np.cross(ma[3:], refs[1] - refs[0]))
+        dth[:, j] = E @ (mb[3:] - ma[3:])
+    Sk = np.linalg.solve(G.T, dth.T).T
+    J = np.array([[0.0, 0, 0], [0, 0, 1], [0, -1, 0]])
+    Se = np.linalg.solve(G.T, (du - J @ Sk @ H).T).T
+    S = np.vstack([Se, Sk])
+    asym = float(
+        np.max(np.abs(S - S.T) / np.sqrt(np.outer(np.abs(np.diag(S)), np.abs(np.diag(S))))))
+    return 0.5 * (S + S.T), asym
+
+
+def _segment_mass(fe: FEModel, E: np.ndarray, refs, length: float) -> tuple[np.ndarray, np.ndarray]:
+    """(6 x 6 mass per length about the reference axis, (e2, e3) mass centre) of the elements whose
+    centroids lie between the two measuring rings (lumped at the centroids)."""
+    X = np.asarray(fe.nodes, float)
+    conn = np.asarray(fe.shell_conn)
+    p = X[conn]
+    area = 0.5 * np.linalg.norm(np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1]), axis=1)
+    mpa = np.array([pr.mass_per_area for pr in fe.shell_properties])[np.asarray(fe.shell_prop)]
+    c = p.mean(axis=1)
+    axial = (refs[1] - refs[0]) / np.linalg.norm(refs[1] - refs[0])
+    s = (c - refs[0]) @ axial
+    keep = (s >= 0) & (s < np.linalg.norm(refs[1] - refs[0]))
+    m = area[keep] * mpa[keep]
+    r = c[keep] - (refs[0] + s[keep, None] * axial)  # from the reference axis at the same station
+    r = r @ E.T
+    r[:, 0] = 0.0
+    mt = float(m.sum())
+    cm = (m[:, None] * r).sum(axis=0) / mt
+    Jm = np.eye(3) * np.sum(m * np.sum(r * r, axis=1)) - (m[:, None] * r).T @ r
+    Sk = np.array([[0.0, -cm[2], cm[1]], [cm[2], 0, -cm[0]], [-cm[1], cm[0], 0]])
+    M = np.zeros((6, 6))
+    M[:3, :3] = mt * np.eye(3)
+    M[:3, 3:] = -mt * Sk
+    M[3:, :3] = mt * Sk
+    M[3:, 3:] = Jm
+    return M / length, cm[1:]
+
+
+def section_properties(fe: FEModel, root: np.ndarray, tip: np.ndarray, rings: tuple[np.ndarray, np.ndarray],
+                       refs: tuple[np.ndarray, np.ndarray], axis, e2=None) -> SectionProperties:
+    """The full beam section of the shell segment ``fe`` (module docstring; arguments as
+    :func:`segment_stiffness`)."""
+    E = _axes(axis, e2)
+    refs = [np.asarray(r, float) for r in refs]
+    length = float((refs[1] - refs[0]) @ E[0])
+    if not length > 0:
+        raise InputError("refs", refs, "two reference points along the axis, root side first")
+    X = np.asarray(fe.nodes, float)
+    tip = np.asarray(tip, dtype=np.int64)
+    dref = (refs[1] - refs[0]) / np.linalg.norm(refs[1] - refs[0])
+    x_load = float((X[tip].mean(axis=0) - refs[0]) @ dref)
+    c = refs[0] + x_load * dref  # the loads act on the reference axis
+    load_node = fe.n_nodes
+    spc = {int(n): (0, 1, 2, 3, 4, 5) for n in np.asarray(root, dtype=np.int64)}
+    fe2 = replace(fe, nodes=np.vstack([X, c]), spc={**fe.spc, **spc},
+                  rigid_links=list(fe.rigid_links) + [RigidLink(independent=load_node, dependent=tip)])
+    S, asym = _section_compliance(fe2, load_node, E, X, rings, refs, length, x_load)
+    # tension centre: N at (y, z) gives M2 = z N, M3 = -y N and no curvature
+    A = np.array([[-S[4, 5], S[4, 4]], [-S[5, 5], S[5, 4]]])
+    tc = np.linalg.solve(A, -S[[4, 5], 0])
+    # shear centre: V2 at (y, z) gives T = -z V2, V3 gives T = y V3, and no twist
+    sc = np.array([-S[3, 2] / S[3, 3], S[3, 1] / S[3, 3]])
+    M, cm = _segment_mass(fe, E, refs, length)
+    return SectionProperties(stiffness=np.linalg.inv(S), compliance=S, mass=M, axes=E, length=length,
+                             tension_centre=tc, shear_centre=sc, mass_centre=cm, asymmetry=asym)
