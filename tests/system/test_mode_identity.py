@@ -106,21 +106,28 @@ def test_iea22mw_shell_no_false_alarm_from_rigid_or_local_buckling_modes():
     rigid) or made of a statically unstable own mode of the prestressed blade (family buckling) --
     and then the blade's structure at that point is indeed not positive definite, checked by another
     path (stability.operational.blade_structural_margin, the elastic pencil's lowest eigenvalue).
-    Measured: the rigid rotation at 3-12 m/s (-6 to -25 %), a local tip-panel buckling of the
-    30-element span mesh at 11 m/s (-99.95 %); the verdict's list of instabilities is empty."""
+    The seed's mesh (SEED_MESH: 30 span elements, outer mould line), which has a local tip-panel
+    buckling at 11 m/s (the converged default mesh has one at 25 m/s, docs/mesh.md).  Measured: the
+    rigid rotation at 3-12 m/s (-6 to -25 %), the tip-panel buckling at 11 m/s (-99.95 %); the
+    verdict's list of instabilities is empty."""
+    from windflutter.mesh.settings import SEED_MESH
     from windflutter.stability.operational import blade_structural_margin
     from windflutter.system.modes import point_modes
     from windflutter.system.operational import OperationalOptions
 
-    om = OperationalModel(load_turbine("iea22mw"), OperationalOptions(model="shell", structure="deflected"))
+    om = OperationalModel(load_turbine("iea22mw"), OperationalOptions(model="shell", structure="deflected",
+                                                                      mesh=dict(SEED_MESH)))
+    found = set()
     for v in (3.0, 8.0, 11.0):
         ps = om.at(v)
         for m in point_modes(ps, max_hz=5.0):
             if m.damping_ratio >= 0:
                 continue
             assert (m.rigid and m.frequency_hz < 0.15) or m.family == "buckling", (v, m.name, m.damping_ratio)
+            found.add(m.family)
             if m.family == "buckling":
                 assert blade_structural_margin(ps) < 0, (v, m.name)
+    assert "buckling" in found  # the case the test is about is there
 
 
 @pytest.mark.slow

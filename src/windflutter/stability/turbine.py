@@ -452,7 +452,7 @@ def options_from_config(config, aero: str, method: str) -> TurbineOptions:
         raise InputError("model.type", mtype, "'beam' or 'shell' for the turbine solver")
     mesh = {}
     if mtype == "beam":
-        mesh["n_span"] = max(2, int(config.model.n_aero_sections))
+        mesh["n_span"] = max(2, int(config.model.n_aero_sections or 30))
     s = config.solver
     return TurbineOptions(model=mtype, aero=aero, method=method,
                           geometric_stiffness=s.geometric_stiffness, rigid_sections=s.rigid_sections,
