@@ -117,6 +117,7 @@ class TurbineDynamics:
         self.apex = np.asarray(apex, float)
         self.el = beam_elements(blade.fe)
         self.T = sp.csr_matrix(blade.T)
+        self.TT = self.T.T.tocsr()
         self.nF, self.nq = ground.M.shape[0], self.T.shape[1]
         self.n_lag = 0 if blade.aero is None else blade.aero.ns * blade.aero.n_lag
         self.n_states = self.N * self.n_lag
@@ -200,7 +201,7 @@ class TurbineDynamics:
         f = beam_internal_forces(bl.fe, cfg, self.el).reshape(-1, 6) - loads
         load = np.concatenate([loads[:, :3].sum(axis=0), (loads[:, 3:] + cross(rel, loads[:, :3])).sum(axis=0)])
         f[:, 3:] = np.einsum("nji,nj->ni", Jl, f[:, 3:])
-        return self.T.T @ f.reshape(-1), load, np.asarray(zdot, float).reshape(-1)
+        return self.TT @ f.reshape(-1), load, np.asarray(zdot, float).reshape(-1)
 
     def forces(self, t, q, v, z):
         self.evaluations += 1

@@ -30,7 +30,8 @@ from windflutter.simulate.integrator import Trajectory, integrate, step_for_freq
 from windflutter.simulate.turbine import BladePart, GroundPart, TurbineDynamics, check_blades
 from windflutter.units import RPM
 
-__all__ = ["TurbineRun", "ground_part", "turbine_dynamics", "simulate_turbine", "multiblade_channels"]
+__all__ = ["TurbineRun", "ground_part", "turbine_dynamics", "simulate_turbine", "multiblade_channels", "kick",
+           "KICK_LOADS"]
 
 
 @dataclass
@@ -152,23 +153,30 @@ def turbine_dynamics(turbine, rpm: float, wind_speed: float = 0.0, pitch_deg: fl
     return dyn
 
 
-def kick(dyn: TurbineDynamics, amplitude: float = 1e-2, tower_amplitude: float = 2e-3) -> np.ndarray:
-    """Initial displacements (module docstring): blade 1's largest translation ``amplitude`` (m),
-    the tower top's ``tower_amplitude`` (m)."""
+#: the kick's nodal load on blade 1 (force x, y, z, moment x, y, z; the blade's axes at azimuth 0:
+#: x about downwind (flap), y in the rotor plane (edge), z along the blade)
+KICK_LOADS = (1.0, 1.0, 1.0, 0.3, 0.3, 0.3)
+
+
+def kick(dyn: TurbineDynamics, amplitude: float = 1e-2, tower_amplitude: float = 2e-3,
+         loads=KICK_LOADS) -> np.ndarray:
+    """Initial displacements (module docstring): blade 1's static deflection under ``loads`` at
+    the recorded nodes, largest translation ``amplitude`` (m); the tower top's under unit
+    fore-aft and side-side hub forces, ``tower_amplitude`` (m; 0: none)."""
     from windflutter.structure.corotational import beam_tangent  # noqa: PLC0415
 
     b = dyn.b
     T = dyn.T
     K = np.asarray((T.T @ beam_tangent(b.fe, b.base, elements=dyn.el).K @ T).todense())
     f = np.zeros((b.fe.n_dof // 6, 6))
-    f[dyn.record] = [1.0, 1.0, 1.0, 0.3, 0.3, 0.3]
+    f[dyn.record] = np.asarray(loads, float)
     qb = np.linalg.solve(K, T.T @ f.reshape(-1))
     qb *= amplitude / np.abs((T @ qb).reshape(-1, 6)[:, :3]).max()
     ns = dyn.g.labels.index("azimuth")
     Ks = dyn.g.K[:ns, :ns]
     H = dyn.g.L[:, :ns]
     xs = np.linalg.solve(Ks, H[:3].T @ np.array([1.0, 1.0, 0.0]))
-    xs *= tower_amplitude / np.abs(H[:3] @ xs).max()
+    xs *= float(tower_amplitude) / np.abs(H[:3] @ xs).max()
     q0 = np.zeros(dyn.nF + dyn.N * dyn.nq)
     q0[:ns] = xs
     q0[dyn.nF: dyn.nF + dyn.nq] = qb
@@ -188,12 +196,37 @@ def multiblade_channels(dyn: TurbineDynamics, t: np.ndarray, y: np.ndarray) -> n
     return np.hstack([hub, a0, a1, b1])
 
 
+def scaled_channels(dyn: TurbineDynamics, t, y, floor: float = 1e-4) -> np.ndarray:
+    """The :func:`multiblade_channels` each scaled to unit peak, without those whose peak is below
+    ``floor`` of the largest of their kind (hub translations, hub rotations, blade translations,
+    blade rotations): a channel the kick left still holds only round-off, which the scaling would
+    make as large as the response."""
+    ch = multiblade_channels(dyn, t, y)
+    peak = np.abs(ch).max(axis=0)
+    kind = np.zeros(ch.shape[1], dtype=int)
+    kind[3:6] = 1
+    rest = np.arange(ch.shape[1] - 6) % 6
+    kind[6:] = np.where(rest < 3, 2, 3)
+    keep = np.zeros(ch.shape[1], bool)
+    for k in range(4):
+        sel = kind == k
+        if np.any(sel) and peak[sel].max() > 0:
+            keep |= sel & (peak >= floor * peak[sel].max())
+    return ch[:, keep] / peak[keep]
+
+
 def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 30.0,
                      pitch_deg: float | None = None, n_span: int = 30, f_max_hz: float = 8.0,
                      points_per_period: float = 30.0, rho_inf: float = 0.9, amplitude: float = 1e-2,
                      circulation: str = "jones", air_density: float = 1.225, drivetrain: str = "flexible",
-                     sv_tol: float = 1e-7, tol: float = 1e-7, progress=None) -> TurbineRun:
-    """Free response of the whole turbine (module docstring) and its identified modes."""
+                     sv_tol: float = 1e-7, tol: float = 1e-7, kick_loads=KICK_LOADS, tower_kick: float = 2e-3,
+                     progress=None) -> TurbineRun:
+    """Free response of the whole turbine (module docstring) and its identified modes.
+
+    ``amplitude`` and ``kick_loads``: blade 1's kick (:func:`kick`); ``tower_kick`` the tower
+    top's (m).  ``tol``: the Newton iteration's relative increment (1e-7 of the largest
+    displacement: a force error far below what the identification resolves).  Other parameters
+    as :func:`windflutter.simulate.run.simulate`."""
     from windflutter.simulate.blade import corrected_modes  # noqa: PLC0415
 
     if not (np.isfinite(rpm) and rpm >= 0):
@@ -202,12 +235,10 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     dyn = turbine_dynamics(turbine, rpm, wind_speed, pitch_deg, n_span, circulation=circulation,
                            air_density=air_density, drivetrain=drivetrain)
-    q0 = kick(dyn, amplitude)
+    q0 = kick(dyn, amplitude, tower_kick, kick_loads)
     z0 = np.tile(dyn.steady_lags(), dyn.N)
     dt = step_for_frequency(f_max_hz, points_per_period)
     tr = integrate(dyn, q0, np.zeros_like(q0), z0, dt, duration, rho_inf=rho_inf, tol=tol, progress=progress)
-    ch = multiblade_channels(dyn, tr.t, tr.y)
-    ch = ch / np.maximum(np.abs(ch).max(axis=0), 1e-300)
-    ident = identify(tr.t, ch, sv_tol=sv_tol)
+    ident = identify(tr.t, scaled_channels(dyn, tr.t, tr.y), sv_tol=sv_tol)
     return TurbineRun(rpm=float(rpm), wind_speed=float(wind_speed), nodes=dyn.record, trajectory=tr,
                       identification=ident, modes=corrected_modes(ident, dt, rho_inf))
