@@ -159,9 +159,10 @@ KICK_LOADS = (1.0, 1.0, 1.0, 0.3, 0.3, 0.3)
 
 
 def kick(dyn: TurbineDynamics, amplitude: float = 1e-2, tower_amplitude: float = 2e-3,
-         loads=KICK_LOADS) -> np.ndarray:
+         loads=KICK_LOADS, blades=None) -> np.ndarray:
     """Initial displacements (module docstring): blade 1's static deflection under ``loads`` at
-    the recorded nodes, largest translation ``amplitude`` (m); the tower top's under unit
+    the recorded nodes, largest translation ``amplitude`` (m) -- or every blade's, times its
+    weight in ``blades`` (N,) (e.g. ``cos(2 pi b / N)``: a cyclic kick); the tower top's under unit
     fore-aft and side-side hub forces, ``tower_amplitude`` (m; 0: none)."""
     from windflutter.structure.corotational import beam_tangent  # noqa: PLC0415
 
@@ -179,7 +180,11 @@ def kick(dyn: TurbineDynamics, amplitude: float = 1e-2, tower_amplitude: float =
     xs *= float(tower_amplitude) / np.abs(H[:3] @ xs).max()
     q0 = np.zeros(dyn.nF + dyn.N * dyn.nq)
     q0[:ns] = xs
-    q0[dyn.nF: dyn.nF + dyn.nq] = qb
+    weights = np.eye(dyn.N)[0] if blades is None else np.asarray(blades, float)
+    if weights.shape != (dyn.N,):
+        raise InputError("kick blades", weights.tolist(), f"{dyn.N} weights, one per blade")
+    for k, w in enumerate(weights):
+        q0[dyn.nF + k * dyn.nq: dyn.nF + (k + 1) * dyn.nq] = w * qb
     return q0
 
 
@@ -220,11 +225,11 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
                      points_per_period: float = 30.0, rho_inf: float = 0.9, amplitude: float = 1e-2,
                      circulation: str = "jones", air_density: float = 1.225, drivetrain: str = "flexible",
                      sv_tol: float = 1e-7, tol: float = 1e-7, kick_loads=KICK_LOADS, tower_kick: float = 2e-3,
-                     progress=None) -> TurbineRun:
+                     kick_blades=None, progress=None) -> TurbineRun:
     """Free response of the whole turbine (module docstring) and its identified modes.
 
-    ``amplitude`` and ``kick_loads``: blade 1's kick (:func:`kick`); ``tower_kick`` the tower
-    top's (m).  ``tol``: the Newton iteration's relative increment (1e-7 of the largest
+    ``amplitude``, ``kick_loads`` and ``kick_blades``: the blades' kick (:func:`kick`);
+    ``tower_kick`` the tower top's (m).  ``tol``: the Newton iteration's relative increment (1e-7 of the largest
     displacement: a force error far below what the identification resolves).  Other parameters
     as :func:`windflutter.simulate.run.simulate`."""
     from windflutter.simulate.blade import corrected_modes  # noqa: PLC0415
@@ -235,7 +240,7 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     dyn = turbine_dynamics(turbine, rpm, wind_speed, pitch_deg, n_span, circulation=circulation,
                            air_density=air_density, drivetrain=drivetrain)
-    q0 = kick(dyn, amplitude, tower_kick, kick_loads)
+    q0 = kick(dyn, amplitude, tower_kick, kick_loads, kick_blades)
     z0 = np.tile(dyn.steady_lags(), dyn.N)
     dt = step_for_frequency(f_max_hz, points_per_period)
     tr = integrate(dyn, q0, np.zeros_like(q0), z0, dt, duration, rho_inf=rho_inf, tol=tol, progress=progress)
