@@ -16,6 +16,7 @@ from windflutter.cli import main
     (["simulate", "nrel5mw", "--rpm", "10", "--n-span", "1"], ["--n-span"]),
     (["simulate", "nrel5mw", "--rpm", "10", "--circulation", "wagner"], ["--circulation"]),
     (["simulate", "nrel5mw", "--confirm-onset"], ["--wind-speed", "--confirm-onset"]),
+    (["simulate", "nrel5mw", "--rpm", "10", "--part", "tower"], ["--part"]),
 ])
 def test_bad_input_is_one_line(argv, words, capsys):
     assert main(argv) == 2

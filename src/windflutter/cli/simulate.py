@@ -99,6 +99,9 @@ def run(args: argparse.Namespace) -> int:
           + (" (INTERRUPTED: identified from the partial record)" if tr.interrupted else ""))
     print(f"identification residual {res.identification.residual:.2e} (matrix pencil; spread = growth-rate "
           "difference between the record's halves)")
+    if res.identification.residual > 0.05:
+        print("the fit leaves more than 5 % of the response: the modes are not resolved -- simulate longer "
+              "(--duration; close pairs such as the tower's fore-aft and side-side need about 60 s)")
     print(f"{'freq (Hz)':>10}  {'damping %':>9}  {'share':>7}  {'spread 1/s':>10}")
     for m in modes:
         if m["share"] >= 1e-3:
