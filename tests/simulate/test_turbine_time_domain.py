@@ -64,6 +64,20 @@ def test_rotor_mass_on_the_hub(nrel5mw):
         assert abs(dyn.n @ Mr[:3, 3:] @ dyn.n) < 1e-6 * blade
 
 
+def test_files_damping_as_method_p_defines_it(nrel5mw):
+    """``damping="file"``: the tower's modal damping on the turbine's tower modes (the rotor lumped
+    at the hub: here from the simulation's own blade mass turned to the three azimuths) equals
+    method p's support damping; the blades get the files' stiffness-proportional damping."""
+    from windflutter.system.operational import OperationalModel, OperationalOptions
+
+    dyn = turbine_dynamics(nrel5mw, 12.1, 0.0, n_span=6, damping="file")
+    D = OperationalModel(nrel5mw, OperationalOptions(mesh={"n_span": 6})).support().D
+    ns = dyn.g.labels.index("azimuth")
+    assert np.abs(dyn.g.C[:ns, :ns] - D).max() < 1e-9 * np.abs(D).max()
+    assert dyn.b.damping is not None and dyn.b.damping.nnz > 0
+    assert turbine_dynamics(nrel5mw, 12.1, 0.0, n_span=6).b.damping is None
+
+
 def test_structured_solve_and_rest(nrel5mw):
     """In the wind at its steady state the turbine stays put (the forces vanish at every azimuth);
     the structured solve of a step's iteration matrix equals the dense solve with central

@@ -29,6 +29,10 @@ FLAGS = (
                               doc="highest frequency retained (sets the time step: 30 steps per period)"),
          default=8.0, metavar="HZ"),
     Flag("--circulation", spec=Spec("choice", choices=("jones", "rfa"), doc="lag states of C(k)"), default="jones"),
+    Flag("--damping", spec=Spec("choice", choices=("none", "file"),
+                                doc="structural damping of blades and tower: none, or the turbine files' "
+                                    "(--part turbine)"),
+         default="none"),
     Flag("--part", spec=Spec("choice", choices=("turbine", "blade"),
                              doc="the whole turbine (blades, tower, drivetrain) or one blade on a rigid hub"),
          default="turbine"),
@@ -82,7 +86,7 @@ def run(args: argparse.Namespace) -> int:
     turbine = load_turbine(args.turbine)
     res = simulate(turbine, v["rpm"], v["wind_speed"], duration=v["duration"], pitch_deg=v["pitch"],
                    n_span=v["n_span"], f_max_hz=v["f_max"], circulation=v["circulation"], part=v["part"],
-                   progress=None if args.json else _progress(args.quiet))
+                   damping=v["damping"], progress=None if args.json else _progress(args.quiet))
     tr = res.trajectory
     if args.output:
         _write_csv(args.output, res, v["part"])
@@ -123,7 +127,7 @@ def _confirm(args, v) -> int:
         check_png(args.plot)
     turbine = load_turbine(args.turbine)
     res = confirm_onset(turbine, v["wind_speed"], n_span=v["n_span"], duration=v["duration"], f_max_hz=v["f_max"],
-                        part="turbine" if v["part"] == "turbine" else "rotor",
+                        part="turbine" if v["part"] == "turbine" else "rotor", damping=v["damping"],
                         progress=None if args.json else _progress(args.quiet))
     if args.plot:
         from windflutter.post.simulate_plot import plot_onset_check  # noqa: PLC0415
@@ -135,7 +139,8 @@ def _confirm(args, v) -> int:
                           "checks": [c.summary() for c in res.checks]}))
         return 0
     what = "the whole turbine" if res.part == "turbine" else "rotor on a clamped hub"
-    print(f"{turbine.name}, {res.wind_speed:g} m/s, {what}, no structural damping: method p's first "
+    damp = "no structural damping" if v["damping"] == "none" else "the files' structural damping"
+    print(f"{turbine.name}, {res.wind_speed:g} m/s, {what}, {damp}: method p's first "
           f"instability {res.mode} at {res.onset_rpm:.2f} RPM (pitch {res.pitch_deg:.2f} deg)")
     fcol = "f (Hz)" if res.part == "turbine" else "f rot (Hz)"
     print(f"{'x onset':>7}  {'RPM':>7}  {fcol:>10}  {'sigma eig':>10}  {'sigma sim':>10}  {'spread':>8}  "

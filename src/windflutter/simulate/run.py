@@ -14,8 +14,9 @@ What is simulated (``part``):
 
 Both: co-rotational beams (the blades' own motion kept whole; the hub's small motion to first
 order in the blades' kinematics), strip aerodynamics with lag states (Jones' or the Roger fit's)
-and the BEM induction of the steady state frozen.  Not included: gravity, dynamic inflow, dynamic
-stall, structural damping of the blades and tower, a controller.
+and the BEM induction of the steady state frozen.  Structural damping: none, or (the turbine)
+the files' blade and tower damping as method p defines it.  Not included: gravity, dynamic
+inflow, dynamic stall, a controller.
 """
 
 from __future__ import annotations
@@ -42,7 +43,7 @@ INCLUDED = {
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 20.0, pitch_deg: float | None = None,
              n_span: int = 30, f_max_hz: float = 8.0, points_per_period: float = 30.0, rho_inf: float = 0.9,
              amplitude: float | None = None, circulation: str = "jones", air_density: float = 1.225,
-             part: str = "turbine", progress=None):
+             part: str = "turbine", damping: str = "none", progress=None):
     """Free response of a turbine's blade (module docstring) kicked by impulses, and the
     frequency and damping of its modes identified from it.
 
@@ -55,7 +56,8 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         ``points_per_period`` steps in its period.  rho_inf : generalized-alpha spectral radius.
     amplitude : size of the kick (m): the turbine's blade 1 deflection (default 1e-2), the blade's
         largest initial velocity (m/s, rad/s; default 1e-3).  circulation : ``jones`` | ``rfa``.
-    part : ``turbine`` | ``blade`` (module docstring).  progress : ``progress(step, n_steps, t)``.
+    part : ``turbine`` | ``blade`` (module docstring).  damping : ``none`` | ``file`` (the turbine
+        files' blade and tower damping, ``part="turbine"``).  progress : ``progress(step, n_steps, t)``.
 
     Returns
     -------
@@ -77,6 +79,8 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         raise InputError("n_span", n_span, "an integer in [2, 200] (blade elements)")
     if circulation not in ("jones", "rfa"):
         raise InputError("circulation", circulation, "jones or rfa")
+    if damping not in ("none", "file") or (damping == "file" and part != "turbine"):
+        raise InputError("damping", damping, "none, or file with part turbine")
     if wind_speed > 0.0 and rpm == 0.0:
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     if part == "turbine":
@@ -85,7 +89,7 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         return simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
                                 f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,
                                 amplitude=amplitude, circulation=circulation, air_density=air_density,
-                                progress=progress)
+                                damping=damping, progress=progress)
     if wind_speed == 0.0:
         return blade_in_vacuum(turbine, rpm, duration=duration, n_span=int(n_span), f_max_hz=f_max_hz,
                                points_per_period=points_per_period, rho_inf=rho_inf, amplitude=amplitude,

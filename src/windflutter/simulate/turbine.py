@@ -76,7 +76,8 @@ class BladePart:
     fe, T (n_dof, nq), M (n_dof, n_dof) full-numbering mass (structure + apparent mass) at the base
     configuration ``base``; ``inertia`` its :class:`SpinningMass`; ``aero`` a
     :class:`BladeAero` or None; ``wind_axial`` (ns, 3) the part of the aerodynamic inflow that
-    turns with the hub (free wind and axial induction) and ``wind_rest`` the rest."""
+    turns with the hub (free wind and axial induction) and ``wind_rest`` the rest; ``damping`` the
+    structural damping matrix (full numbering) on the blade's own velocities, or None."""
 
     fe: object
     T: object
@@ -86,6 +87,8 @@ class BladePart:
     aero: object = None
     wind_axial: np.ndarray | None = None
     wind_rest: np.ndarray | None = None
+    #: (n_dof, n_dof) structural damping on the blade's velocities relative to its frame, or None
+    damping: object = None
 
 
 @dataclass
@@ -199,6 +202,8 @@ class TurbineDynamics:
             fa, zdot = bl.aero(t, cfg, x_tot, om_rel + dw, z)
             loads = loads + np.asarray(fa).reshape(-1, 6)
         f = beam_internal_forces(bl.fe, cfg, self.el).reshape(-1, 6) - loads
+        if bl.damping is not None:
+            f = f + (bl.damping @ ud.reshape(-1)).reshape(-1, 6)
         load = np.concatenate([loads[:, :3].sum(axis=0), (loads[:, 3:] + cross(rel, loads[:, :3])).sum(axis=0)])
         f[:, 3:] = np.einsum("nji,nj->ni", Jl, f[:, 3:])
         return self.TT @ f.reshape(-1), load, np.asarray(zdot, float).reshape(-1)

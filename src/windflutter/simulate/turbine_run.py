@@ -27,7 +27,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.simulate.identify import Identification, identify
 from windflutter.simulate.integrator import Trajectory, integrate, step_for_frequency
-from windflutter.simulate.turbine import BladePart, GroundPart, TurbineDynamics, check_blades
+from windflutter.simulate.turbine import BladePart, GroundPart, TurbineDynamics, check_blades, rigid_map
 from windflutter.units import RPM
 
 __all__ = ["TurbineRun", "ground_part", "turbine_dynamics", "simulate_turbine", "multiblade_channels", "kick",
@@ -48,9 +48,11 @@ class TurbineRun:
     modes: tuple
 
 
-def ground_part(turbine, axis, drivetrain: str = "flexible") -> GroundPart:
-    """The support, hub rigid body and drivetrain (module docstring)."""
-    from windflutter.mesh.parts import hub_mass  # noqa: PLC0415
+def ground_part(turbine, axis, drivetrain: str = "flexible", rotor_mass: np.ndarray | None = None) -> GroundPart:
+    """The support, hub rigid body and drivetrain (module docstring).  ``rotor_mass``: the rotor's
+    (6, 6) rigid-body mass at the apex (blades and hub): given, the support gets the files' tower
+    modal damping on the tower modes with the rotor lumped at the hub
+    (:func:`windflutter.system.damping.support_modal_damping`, the damping's definition)."""
     from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
     from windflutter.mesh.turbine import build_model  # noqa: PLC0415
     from windflutter.structure.assembly import assemble  # noqa: PLC0415
@@ -76,16 +78,13 @@ def ground_part(turbine, axis, drivetrain: str = "flexible") -> GroundPart:
     L = np.zeros((6, nF))
     L[:, :ns] = H
     L[3:, ns] = n  # the azimuth about the shaft
-    hm = hub_mass(turbine, 0)
-    cg = skew3(np.asarray(hm.offset, float))
-    Mh = np.zeros((6, 6))
-    Mh[:3, :3] = hm.mass * np.eye(3)
-    Mh[:3, 3:], Mh[3:, :3] = -hm.mass * cg, hm.mass * cg
-    Mh[3:, 3:] = np.asarray(hm.inertia, float) - hm.mass * cg @ cg
+    Mh = _hub_rigid_mass(turbine)
     M = np.zeros((nF, nF))
     K = np.zeros((nF, nF))
     C = np.zeros((nF, nF))
     M[:ns, :ns], K[:ns, :ns] = Ms, Ks
+    if rotor_mass is not None:
+        C[:ns, :ns] = _tower_damping(turbine, st, Ms, Ks, H.T @ rotor_mass @ H)
     M += L.T @ Mh @ L
     gen = np.zeros(nF)  # the generator's absolute rotation: the nacelle's about the shaft + its own
     gen[:ns] = n @ H[3:]
@@ -100,11 +99,40 @@ def ground_part(turbine, axis, drivetrain: str = "flexible") -> GroundPart:
     return GroundPart(M=M, C=C, K=K, L=L, labels=labels)
 
 
+def _hub_rigid_mass(turbine) -> np.ndarray:
+    """(6, 6) the hub's rigid-body mass at the apex (the turbine's hub mass and inertia)."""
+    from windflutter.mesh.parts import hub_mass  # noqa: PLC0415
+
+    hm = hub_mass(turbine, 0)
+    cg = skew3(np.asarray(hm.offset, float))
+    Mh = np.zeros((6, 6))
+    Mh[:3, :3] = hm.mass * np.eye(3)
+    Mh[:3, 3:], Mh[3:, :3] = -hm.mass * cg, hm.mass * cg
+    Mh[3:, 3:] = np.asarray(hm.inertia, float) - hm.mass * cg @ cg
+    return Mh
+
+
+def _tower_damping(turbine, st, Ms, Ks, Mr):
+    """The files' tower modal ratios on the support's modes with the rotor lumped at the hub."""
+    from windflutter.system.damping import support_modal_damping, tower_ratios  # noqa: PLC0415
+
+    fa, ss = tower_ratios(turbine)
+    md = np.asarray(st.M.diagonal())
+    T = st.T
+
+    def direction(v):
+        e = (md * np.asarray(T @ v) ** 2).reshape(-1, 6).sum(axis=0)
+        return e[0], e[1]
+
+    D = support_modal_damping(Ks, Ms, Mr, fa, ss, direction)
+    return np.zeros_like(Ks) if D is None else D
+
+
 def skew3(v):
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
-def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_density):
+def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_density, damping="none"):
     """The blade at its spinning equilibrium (in the wind: with the strips), and its pitch (deg)."""
     from windflutter.simulate.beam import spin_equilibrium  # noqa: PLC0415
     from windflutter.simulate.blade import blade_model, wind_setup  # noqa: PLC0415
@@ -120,7 +148,8 @@ def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_de
         inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
         base = spin_equilibrium(fe, struct.T, inertia)
         M = np.asarray(assemble(deformed_model(fe, base)).M.todense())
-        return BladePart(fe=fe, T=struct.T, M=M, base=base, inertia=inertia), apex, axis
+        return BladePart(fe=fe, T=struct.T, M=M, base=base, inertia=inertia,
+                         damping=_blade_damping(turbine, fe, damping)), apex, axis
     from windflutter.aero.unsteady import circulation as make_circulation  # noqa: PLC0415
     from windflutter.simulate.rotor_aero import BladeAero  # noqa: PLC0415
 
@@ -133,19 +162,45 @@ def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_de
     a = np.broadcast_to(np.asarray(st.bem.a, float), (aero.ns,))
     axial = (1.0 - a)[:, None] * (float(wind_speed) * axis)[None, :]
     return BladePart(fe=fe, T=struct.T, M=M, base=base, inertia=inertia, aero=aero, wind_axial=axial,
-                     wind_rest=aero.wind - axial), apex, axis
+                     wind_rest=aero.wind - axial, damping=_blade_damping(turbine, fe, damping)), apex, axis
+
+
+def _blade_damping(turbine, fe, damping):
+    """The files' blade damping (stiffness-proportional per direction,
+    :func:`windflutter.system.damping.blade_damping_matrix`), or None for ``damping="none"``."""
+    if damping not in ("none", "file"):
+        raise InputError("damping", damping, "none or file (the turbine files' structural damping)")
+    if damping == "none":
+        return None
+    from windflutter.system.damping import blade_damping_matrix, blade_mu  # noqa: PLC0415
+
+    C = blade_damping_matrix(fe, blade_mu(turbine))
+    return None if C is None else C.tocsr()
 
 
 def turbine_dynamics(turbine, rpm: float, wind_speed: float = 0.0, pitch_deg: float | None = None,
                      n_span: int = 30, n_record: int = 3, circulation: str = "jones", air_density: float = 1.225,
-                     drivetrain: str = "flexible") -> TurbineDynamics:
+                     drivetrain: str = "flexible", damping: str = "none") -> TurbineDynamics:
     """The :class:`TurbineDynamics` of ``turbine`` at ``rpm`` in ``wind_speed`` (0: vacuum),
     recording ``n_record`` blade nodes (the tip last); the mean rotor load on the hub at the
-    start is the support's preload."""
+    start is the support's preload.  ``damping``: ``none`` or ``file`` (the turbine files' blade
+    and tower damping, defined as method p's)."""
     N = check_blades(turbine.n_blades)
     blade, apex, axis = _blade_part(turbine, float(rpm), float(wind_speed), pitch_deg, int(n_span), circulation,
-                                    air_density)
-    ground = ground_part(turbine, axis, drivetrain)
+                                    air_density, damping)
+    rotor = None
+    if damping == "file":  # the rotor's rigid-body mass at the apex: the blades turned to their azimuths + hub
+        from windflutter.simulate.turbine import axis_turn  # noqa: PLC0415
+
+        from windflutter.structure.assembly import assemble  # noqa: PLC0415
+
+        G = rigid_map(np.asarray(blade.fe.nodes, float), apex)  # the undeformed blade's structural mass
+        Mb = G.T @ np.asarray(assemble(blade.fe).M.todense()) @ G
+        rotor = _hub_rigid_mass(turbine)
+        for k in range(N):
+            Q = np.kron(np.eye(2), axis_turn(axis, 2 * np.pi * k / N))
+            rotor = rotor + Q @ Mb @ Q.T
+    ground = ground_part(turbine, axis, drivetrain, rotor)
     nn = blade.fe.n_nodes
     record = np.unique(np.linspace(nn - 1, 1, n_record).round().astype(int))
     dyn = TurbineDynamics(blade, ground, N, float(rpm) * RPM, axis, apex, record=record)
@@ -225,11 +280,12 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
                      points_per_period: float = 30.0, rho_inf: float = 0.9, amplitude: float = 1e-2,
                      circulation: str = "jones", air_density: float = 1.225, drivetrain: str = "flexible",
                      sv_tol: float = 1e-7, tol: float = 1e-7, kick_loads=KICK_LOADS, tower_kick: float = 2e-3,
-                     kick_blades=None, progress=None) -> TurbineRun:
+                     kick_blades=None, damping: str = "none", progress=None) -> TurbineRun:
     """Free response of the whole turbine (module docstring) and its identified modes.
 
     ``amplitude``, ``kick_loads`` and ``kick_blades``: the blades' kick (:func:`kick`);
-    ``tower_kick`` the tower top's (m).  ``tol``: the Newton iteration's relative increment (1e-7 of the largest
+    ``tower_kick`` the tower top's (m).  ``damping``: ``none`` or ``file`` (:func:`turbine_dynamics`).
+    ``tol``: the Newton iteration's relative increment (1e-7 of the largest
     displacement: a force error far below what the identification resolves).  Other parameters
     as :func:`windflutter.simulate.run.simulate`."""
     from windflutter.simulate.blade import corrected_modes  # noqa: PLC0415
@@ -239,7 +295,7 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
     if wind_speed > 0 and rpm <= 0:
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     dyn = turbine_dynamics(turbine, rpm, wind_speed, pitch_deg, n_span, circulation=circulation,
-                           air_density=air_density, drivetrain=drivetrain)
+                           air_density=air_density, drivetrain=drivetrain, damping=damping)
     q0 = kick(dyn, amplitude, tower_kick, kick_loads, kick_blades)
     z0 = np.tile(dyn.steady_lags(), dyn.N)
     dt = step_for_frequency(f_max_hz, points_per_period)
