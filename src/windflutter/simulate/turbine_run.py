@@ -149,7 +149,7 @@ def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_de
         base = spin_equilibrium(fe, struct.T, inertia)
         M = np.asarray(assemble(deformed_model(fe, base)).M.todense())
         return BladePart(fe=fe, T=struct.T, M=M, base=base, inertia=inertia,
-                         damping=_blade_damping(turbine, fe, damping)), apex, axis
+                         damping=_blade_damping(turbine, deformed_model(fe, base), damping)), apex, axis
     from windflutter.aero.unsteady import circulation as make_circulation  # noqa: PLC0415
     from windflutter.simulate.rotor_aero import BladeAero  # noqa: PLC0415
 
@@ -162,12 +162,16 @@ def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_de
     a = np.broadcast_to(np.asarray(st.bem.a, float), (aero.ns,))
     axial = (1.0 - a)[:, None] * (float(wind_speed) * axis)[None, :]
     return BladePart(fe=fe, T=struct.T, M=M, base=base, inertia=inertia, aero=aero, wind_axial=axial,
-                     wind_rest=aero.wind - axial, damping=_blade_damping(turbine, fe, damping)), apex, axis
+                     wind_rest=aero.wind - axial, damping=_blade_damping(turbine, deformed_model(fe, base), damping)), \
+        apex, axis
 
 
 def _blade_damping(turbine, fe, damping):
     """The files' blade damping (stiffness-proportional per direction,
-    :func:`windflutter.system.damping.blade_damping_matrix`), or None for ``damping="none"``."""
+    :func:`windflutter.system.damping.blade_damping_matrix`) of the blade ``fe`` at its steady
+    (deflected) configuration, or None for ``damping="none"``: built on the deflected elements,
+    the damping acts on their deformation rates and not on the rigid rotation of a deflected
+    element (the undeformed blade's matrix would damp that motion of the bent blade)."""
     if damping not in ("none", "file"):
         raise InputError("damping", damping, "none or file (the turbine files' structural damping)")
     if damping == "none":
