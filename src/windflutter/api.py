@@ -391,8 +391,9 @@ def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rp
 # the time domain: a second implementation
 # --------------------------------------------------------------------------------------------
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, **options):
-    """A nonlinear time-domain run of one blade on a rigid hub and the frequency and damping of its
-    modes identified from the response: ``windflutter simulate`` (what is included:
+    """A nonlinear time-domain run of the whole turbine (``part="turbine"``, the default) or of one
+    blade on a rigid hub (``part="blade"``) and the frequency and damping of its modes identified
+    from the response: ``windflutter simulate`` (what is included:
     :mod:`windflutter.simulate.run`; keywords as :func:`windflutter.simulate.run.simulate`).
 
     Parameters
@@ -402,7 +403,7 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, **options):
 
     Returns
     -------
-    windflutter.simulate.blade.BladeRun
+    windflutter.simulate.turbine_run.TurbineRun (or windflutter.simulate.blade.BladeRun)
     """
     import inspect  # noqa: PLC0415
 
@@ -414,7 +415,8 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, **options):
 
 
 def confirm_onset(turbine, wind_speed: float, **options):
-    """Method p's first instability of the rotor on a clamped hub at ``wind_speed`` (m/s) simulated in
+    """Method p's first instability at ``wind_speed`` (m/s) -- of the whole turbine (``part=
+    "turbine"``, the default) or of the rotor on a clamped hub (``part="rotor"``) -- simulated in
     the time domain at 0.97 and 1.03 x its rotor speed: ``windflutter simulate --confirm-onset``
     (keywords as :func:`windflutter.simulate.onset.confirm_onset`)."""
     import inspect  # noqa: PLC0415

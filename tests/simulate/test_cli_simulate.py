@@ -16,6 +16,7 @@ from windflutter.cli import main
     (["simulate", "nrel5mw", "--rpm", "10", "--n-span", "1"], ["--n-span"]),
     (["simulate", "nrel5mw", "--rpm", "10", "--circulation", "wagner"], ["--circulation"]),
     (["simulate", "nrel5mw", "--confirm-onset"], ["--wind-speed", "--confirm-onset"]),
+    (["simulate", "nrel5mw", "--rpm", "10", "--part", "tower"], ["--part"]),
 ])
 def test_bad_input_is_one_line(argv, words, capsys):
     assert main(argv) == 2
@@ -27,8 +28,8 @@ def test_short_run_json_and_csv(tmp_path, capsys):
     """A blade in vacuum at 12.1 RPM, 6 elements, 2.5 s: the 1st flap and edge are found; the
     response is written."""
     out = tmp_path / "r.csv"
-    rc = main(["simulate", "nrel5mw", "--rpm", "12.1", "--n-span", "6", "--duration", "2.5", "--f-max", "5",
-               "--json", "--output", str(out)])
+    rc = main(["simulate", "nrel5mw", "--part", "blade", "--rpm", "12.1", "--n-span", "6", "--duration", "2.5",
+               "--f-max", "5", "--json", "--output", str(out)])
     assert rc == 0
     d = json.loads(capsys.readouterr().out)
     f = sorted(m["frequency_hz"] for m in d["modes"] if m["share"] > 0.01)

@@ -1,5 +1,6 @@
-"""`windflutter simulate TURBINE --rpm R [--wind-speed V] [--duration T] ...`: a nonlinear time-domain
-run of one blade on a rigid hub (:mod:`windflutter.simulate.run`: what is and is not included),
+"""`windflutter simulate TURBINE --rpm R [--wind-speed V] [--duration T] [--part turbine|blade] ...`: a
+nonlinear time-domain run of the whole turbine (or one blade on a rigid hub;
+:mod:`windflutter.simulate.run`: what is and is not included),
 a second implementation beside the eigen-solvers, and the frequency and damping of its modes
 identified from the response (matrix pencil, with its residual and half-record spread).
 Progress goes to stderr; Ctrl-C keeps the record so far and identifies from it.
@@ -28,22 +29,32 @@ FLAGS = (
                               doc="highest frequency retained (sets the time step: 30 steps per period)"),
          default=8.0, metavar="HZ"),
     Flag("--circulation", spec=Spec("choice", choices=("jones", "rfa"), doc="lag states of C(k)"), default="jones"),
+    Flag("--damping", spec=Spec("choice", choices=("none", "file"),
+                                doc="structural damping of blades and tower: none, or the turbine files' "
+                                    "(--part turbine)"),
+         default="none"),
+    Flag("--part", spec=Spec("choice", choices=("turbine", "blade"),
+                             doc="the whole turbine (blades, tower, drivetrain) or one blade on a rigid hub"),
+         default="turbine"),
 )
 
 
 def add_parser(sub: argparse._SubParsersAction) -> None:
-    p = sub.add_parser("simulate", help="nonlinear time-domain run of a blade on a rigid hub; identified damping",
-                       description="A nonlinear time-domain run of one blade on a rigid hub at constant rotor "
-                                   "speed (co-rotational beam, strip aerodynamics with lag states, frozen BEM "
-                                   "induction), a second implementation beside the eigen-solvers; the frequency "
-                                   "and damping of its modes up to --f-max identified from the response. "
-                                   "Progress on stderr; Ctrl-C keeps the record so far.")
+    p = sub.add_parser("simulate", help="nonlinear time-domain run of the turbine; identified damping",
+                       description="A nonlinear time-domain run of the whole turbine (co-rotational beam blades "
+                                   "on the hub, tower and nacelle, drivetrain; strip aerodynamics with lag states, "
+                                   "frozen BEM induction) -- or of one blade on a rigid hub (--part blade) -- a "
+                                   "second implementation beside the eigen-solvers; the frequency and damping of "
+                                   "its modes up to --f-max identified from the response (ground-fixed: the hub "
+                                   "and the blades in multi-blade coordinates). Progress on stderr; Ctrl-C keeps "
+                                   "the record so far.")
     p.add_argument("turbine", help="turbine file or bundled name (e.g. nrel5mw)")
     add_flags(p, FLAGS)
     p.add_argument("--confirm-onset", action="store_true",
-                   help="method p's first flutter onset of the rotor on a clamped hub (no structural damping) at "
-                        "--wind-speed, simulated at 0.97x and 1.03x its rotor speed: decay/growth beside the "
-                        "eigenvalue's (--rpm not used)")
+                   help="method p's first flutter onset (no structural damping; --part turbine: the whole "
+                        "turbine, --part blade: the rotor on a clamped hub against one blade) at --wind-speed, "
+                        "simulated at 0.97x and 1.03x its rotor speed: decay/growth beside the eigenvalue's "
+                        "(--rpm not used)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--output", metavar="FILE.csv", help="write the recorded response (time, node displacements)")
     p.add_argument("--plot", metavar="FILE.png", help="with --confirm-onset: the tip response at each rotor speed")
@@ -74,23 +85,27 @@ def run(args: argparse.Namespace) -> int:
         raise InputError("--rpm", None, "a rotor speed (RPM)")
     turbine = load_turbine(args.turbine)
     res = simulate(turbine, v["rpm"], v["wind_speed"], duration=v["duration"], pitch_deg=v["pitch"],
-                   n_span=v["n_span"], f_max_hz=v["f_max"], circulation=v["circulation"],
-                   progress=None if args.json else _progress(args.quiet))
+                   n_span=v["n_span"], f_max_hz=v["f_max"], circulation=v["circulation"], part=v["part"],
+                   damping=v["damping"], progress=None if args.json else _progress(args.quiet))
     tr = res.trajectory
     if args.output:
-        _write_csv(args.output, res)
+        _write_csv(args.output, res, v["part"])
     modes = [{"frequency_hz": m.frequency_hz, "damping_ratio": m.zeta, "share": m.share,
               "sigma_spread": m.sigma_spread} for m in res.modes if m.frequency_hz <= v["f_max"]]
     if args.json:
-        print(json.dumps({"included": INCLUDED, "rpm": v["rpm"], "wind_speed": v["wind_speed"],
+        print(json.dumps({"included": INCLUDED[v["part"]], "part": v["part"], "rpm": v["rpm"],
+                          "wind_speed": v["wind_speed"],
                           "simulated_s": float(tr.t[-1]), "interrupted": tr.interrupted,
                           "residual": res.identification.residual, "modes": modes}))
         return 0
-    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {INCLUDED}")
+    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {INCLUDED[v['part']]}")
     print(f"simulated {tr.t[-1]:.2f} s in {tr.wall_time:.0f} s, step {tr.info['dt'] * 1e3:.2f} ms"
           + (" (INTERRUPTED: identified from the partial record)" if tr.interrupted else ""))
     print(f"identification residual {res.identification.residual:.2e} (matrix pencil; spread = growth-rate "
           "difference between the record's halves)")
+    if res.identification.residual > 0.05:
+        print("the fit leaves more than 5 % of the response: the modes are not resolved -- simulate longer "
+              "(--duration; close pairs such as the tower's fore-aft and side-side need about 60 s)")
     print(f"{'freq (Hz)':>10}  {'damping %':>9}  {'share':>7}  {'spread 1/s':>10}")
     for m in modes:
         if m["share"] >= 1e-3:
@@ -112,19 +127,23 @@ def _confirm(args, v) -> int:
         check_png(args.plot)
     turbine = load_turbine(args.turbine)
     res = confirm_onset(turbine, v["wind_speed"], n_span=v["n_span"], duration=v["duration"], f_max_hz=v["f_max"],
+                        part="turbine" if v["part"] == "turbine" else "rotor", damping=v["damping"],
                         progress=None if args.json else _progress(args.quiet))
     if args.plot:
         from windflutter.post.simulate_plot import plot_onset_check  # noqa: PLC0415
 
         plot_onset_check(res, args.plot)
     if args.json:
-        print(json.dumps({"wind_speed": res.wind_speed, "onset_rpm": res.onset_rpm, "mode": res.mode,
+        print(json.dumps({"part": res.part, "wind_speed": res.wind_speed, "onset_rpm": res.onset_rpm, "mode": res.mode,
                           "confirmed": res.confirmed,
                           "checks": [c.summary() for c in res.checks]}))
         return 0
-    print(f"{turbine.name}, {res.wind_speed:g} m/s, rotor on a clamped hub, no structural damping: method p's first "
+    what = "the whole turbine" if res.part == "turbine" else "rotor on a clamped hub"
+    damp = "no structural damping" if v["damping"] == "none" else "the files' structural damping"
+    print(f"{turbine.name}, {res.wind_speed:g} m/s, {what}, {damp}: method p's first "
           f"instability {res.mode} at {res.onset_rpm:.2f} RPM (pitch {res.pitch_deg:.2f} deg)")
-    print(f"{'x onset':>7}  {'RPM':>7}  {'f rot (Hz)':>10}  {'sigma eig':>10}  {'sigma sim':>10}  {'spread':>8}  "
+    fcol = "f (Hz)" if res.part == "turbine" else "f rot (Hz)"
+    print(f"{'x onset':>7}  {'RPM':>7}  {fcol:>10}  {'sigma eig':>10}  {'sigma sim':>10}  {'spread':>8}  "
           f"{'zeta eig %':>10}  {'zeta sim %':>10}")
     for c in res.checks:
         print(f"{c.factor:>7.3f}  {c.rpm:>7.3f}  {c.frequency_sim_hz:>10.4f}  {c.sigma_eig:>10.4f}  {c.sigma_sim:>10.4f}  "
@@ -135,12 +154,16 @@ def _confirm(args, v) -> int:
     return 0
 
 
-def _write_csv(path: str, res) -> None:
+def _write_csv(path: str, res, part: str) -> None:
     from windflutter.errors import InputError  # noqa: PLC0415
 
     import numpy as np  # noqa: PLC0415
 
-    names = [f"node{n}_{c}" for n in res.nodes for c in ("ux", "uy", "uz", "rx", "ry", "rz")]
+    dofs = ("ux", "uy", "uz", "rx", "ry", "rz")
+    names = [f"node{n}_{c}" for n in res.nodes for c in dofs]
+    if part == "turbine":  # the hub (ground axes), then each blade's nodes in its own frame
+        n_blades = (res.trajectory.y.shape[1] - 6) // len(names)
+        names = [f"hub_{c}" for c in dofs] + [f"blade{b + 1}_{x}" for b in range(n_blades) for x in names]
     data = np.column_stack([res.trajectory.t, res.trajectory.y])
     try:
         np.savetxt(path, data, delimiter=",", header="t," + ",".join(names), comments="")

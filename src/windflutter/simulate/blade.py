@@ -24,7 +24,7 @@ from windflutter.simulate.inertia import SpinningMass
 from windflutter.simulate.integrator import Trajectory, algorithmic_damping, integrate, step_for_frequency
 from windflutter.units import RPM
 
-__all__ = ["BladeRun", "blade_in_vacuum", "blade_in_wind", "corrected_modes", "blade_model"]
+__all__ = ["BladeRun", "blade_in_vacuum", "blade_in_wind", "corrected_modes", "blade_model", "wind_setup"]
 
 
 @dataclass
@@ -136,7 +136,7 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
         raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s)")
     if not (np.isfinite(rpm) and rpm > 0):
         raise InputError("rpm", rpm, "a positive rotor speed (rev/min)")
-    setup = _wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
+    setup = wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
     fe, struct, sections, apex, axis, st = setup
     from windflutter.aero.unsteady import circulation as make_circulation  # noqa: PLC0415
     from windflutter.structure.assembly import assemble  # noqa: PLC0415
@@ -164,7 +164,7 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
                     modes=corrected_modes(ident, dt, rho_inf))
 
 
-def _wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density):
+def wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density):
     """The blade model at the pitch and its co-rotational steady state (BEM induction)."""
     from windflutter.aero_types import RotorGeometry  # noqa: PLC0415
     from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415

@@ -36,11 +36,19 @@ from windflutter.linalg_tools import skew
 from windflutter.structure.beam import beam_frames
 from windflutter.structure.fem import FEModel
 
-__all__ = ["SpinningMass"]
+__all__ = ["SpinningMass", "cross"]
 
 _EPS = np.zeros((3, 3, 3))
 _EPS[0, 1, 2] = _EPS[1, 2, 0] = _EPS[2, 0, 1] = 1.0
 _EPS[0, 2, 1] = _EPS[2, 1, 0] = _EPS[1, 0, 2] = -1.0
+
+
+def cross(a, b) -> np.ndarray:
+    """``np.cross`` of (..., 3) arrays (broadcast), without its axis handling (the time domain
+    calls it tens of thousands of times)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    return np.stack([a[..., 1] * b[..., 2] - a[..., 2] * b[..., 1], a[..., 2] * b[..., 0] - a[..., 0] * b[..., 2],
+                     a[..., 0] * b[..., 1] - a[..., 1] * b[..., 0]], axis=-1)
 
 
 class SpinningMass:
@@ -104,23 +112,38 @@ class SpinningMass:
         return float(self.Mlin.sum())
 
     def loads(self, x: np.ndarray, R: np.ndarray, xdot: np.ndarray | None = None,
-              omega: np.ndarray | None = None) -> np.ndarray:
+              omega: np.ndarray | None = None, frame_spin: np.ndarray | None = None,
+              frame_alpha: np.ndarray | None = None) -> np.ndarray:
         """(n_nodes, 6) inertial loads (N, N m; global axes) at positions ``x`` (n, 3), rotations
         ``R`` (n, 3, 3) (reference -> current), velocities ``xdot`` and angular velocities
-        ``omega`` (n, 3) relative to the spinning frame (None: at rest)."""
+        ``omega`` (n, 3) relative to the spinning frame (None: at rest).
+
+        ``frame_spin`` (3,): the frame's angular velocity now, in place of the constant
+        ``omega axis`` (a frame carried by a moving hub); ``frame_alpha`` (3,): an angular
+        acceleration of the frame whose Euler loads ``-alpha x r dm`` are added (with ``J alpha``
+        on the rotational inertia)."""
         X = np.asarray(x, float) - self.apex
         mc = np.einsum("nij,nj->ni", R, self.mc0)
         Q = R @ self.Q0 @ np.swapaxes(R, 1, 2)
         P, Om = self.P, self.Omega
+        if frame_spin is not None:
+            Om = np.asarray(frame_spin, float)
+            S = skew(Om)
+            P = S.T @ S
         F = (self.Mlin @ X) @ P.T + mc @ P.T
         acc = X @ P.T  # P x per node (the body's reference point)
-        Mo = np.cross(mc, acc) + np.einsum("ijk,kl,njl->ni", _EPS, P, Q)
+        Mo = cross(mc, acc) + np.einsum("ijk,kl,njl->ni", _EPS, P, Q)
+        if frame_alpha is not None:
+            al = np.asarray(frame_alpha, float)
+            F -= cross(al, self.Mlin @ X + mc)
+            Mo -= cross(mc, cross(al, X))
+            Mo -= np.trace(Q, axis1=1, axis2=2)[:, None] * al - Q @ al
         if xdot is not None:
             V = self.Mlin @ np.asarray(xdot, float)
             w = np.zeros_like(X) if omega is None else np.asarray(omega, float)
-            F -= 2.0 * np.cross(Om, V + np.cross(w, mc))
-            Mo -= 2.0 * np.cross(mc, np.cross(Om, xdot))
-            Mo += 2.0 * np.cross(w, Q @ Om)
+            F -= 2.0 * cross(Om, V + cross(w, mc))
+            Mo -= 2.0 * cross(mc, cross(Om, xdot))
+            Mo += 2.0 * cross(w, Q @ Om)
         out = np.zeros((X.shape[0], 6))
         out[self.spin, :3] = F[self.spin]
         out[self.spin, 3:] = Mo[self.spin]

@@ -6,7 +6,9 @@ The system (SI, any consistent units)::
     M q'' + f(t, q, q', z) = 0        n second-order coordinates q (structure)
     z' = g(t, q, q', z)               m first-order states z (aerodynamic lags)
 
-``M`` constant.  One step from ``t_n`` to ``t_{n+1} = t_n + h`` (Chung & Hulbert, J. Appl. Mech.
+``M`` constant, or ``M(t)`` when the model has ``mass_at(t)`` (a hub turning with the rotor);
+the inertial term of a step is then interpolated as the products, ``(1 - am) M(t_{n+1})
+a_{n+1} + am M(t_n) a_n``.  One step from ``t_n`` to ``t_{n+1} = t_n + h`` (Chung & Hulbert, J. Appl. Mech.
 60:371, 1993; the first-order states as in Jansen, Whiting & Hulbert, CMAME 190:305, 2000, with
 the same weights, which keeps second order and unconditional stability for ``rho_inf <= 1``)::
 
@@ -46,7 +48,7 @@ __all__ = ["Dynamics", "AlphaScheme", "Trajectory", "integrate", "fd_jacobian", 
 class Dynamics(Protocol):
     """What :func:`integrate` needs of a model."""
 
-    mass: np.ndarray  #: (n, n) constant mass matrix
+    mass: np.ndarray  #: (n, n) constant mass matrix (or, with ``mass_at(t)``, the one at t = 0)
 
     def forces(self, t: float, q: np.ndarray, v: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """``(f (n,), g (m,))`` of the module docstring."""
@@ -158,11 +160,21 @@ class _Stepper:
     def __init__(self, model, scheme: AlphaScheme, h: float, fd_step: float):
         self.model, self.s, self.h, self.fd_step = model, scheme, h, fd_step
         self.M = np.atleast_2d(np.asarray(model.mass, float))
+        self.mass_at = getattr(model, "mass_at", None)
         self.lu = None
+
+    def inertia(self, t, a):
+        """``M(t) a``: the model's own product when its mass depends on time."""
+        if self.mass_at is None:
+            return self.M @ a
+        prod = getattr(self.model, "inertia", None)
+        return prod(t, a) if prod is not None else self.mass_at(t) @ a
 
     def build(self, t, q, v, z):
         jac = getattr(self.model, "jacobian", None)
         Jq, Jv, Jz = jac(t, q, v, z) if jac is not None else fd_jacobian(self.model, t, q, v, z, self.fd_step)
+        if self.mass_at is not None:
+            self.M = np.atleast_2d(np.asarray(self.mass_at(t), float))
         s, h = self.s, self.h
         n, m = q.size, z.size
         ca, cz = s.beta * h * h, s.gamma * h  # dq/da, dv/da (= dz/dzdot)
@@ -205,8 +217,15 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
     q, v, z = (np.array(x, float).reshape(-1) for x in (q0, v0, z0))
     n, m = q.size, z.size
     stepper = _Stepper(model, s, dt, fd_step)
+    stepper.built = 0.0
+    #: a mass that turns with time: the iteration matrix renewed at the model's interval (s)
+    renew = float(getattr(model, "renew_interval", np.inf))
+    #: ``model.iteration_solver(t, scheme, h) -> solve(r)``: the model's own solution of the
+    #: iteration matrix (structured: a turning hub coupled to identical blades)
+    custom, solve = getattr(model, "iteration_solver", None), None
     f, g = model.forces(0.0, q, v, z)
-    a = -np.linalg.solve(stepper.M, f)
+    a = -np.linalg.solve(stepper.M if stepper.mass_at is None else stepper.mass_at(0.0), f)
+    Ma = stepper.inertia(0.0, a)
     zd = np.asarray(g, float).copy()
     n_steps = int(round(duration / dt))
     ys = [np.asarray(model.outputs(0.0, q, v, z), float)]
@@ -228,11 +247,18 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
                 q1, v1, z1 = qp + ca * a1, vp + cz * a1, zp + cz * zd1
                 qa, va, za = (1 - s.af) * q1 + s.af * q, (1 - s.af) * v1 + s.af * v, (1 - s.af) * z1 + s.af * z
                 fa, ga = model.forces(ta, qa, va, za)
-                r = np.concatenate([stepper.M @ ((1 - s.am) * a1 + s.am * a) + fa,
+                Ma1 = stepper.inertia(t + h, a1)
+                r = np.concatenate([(1 - s.am) * Ma1 + s.am * Ma + fa,
                                     (1 - s.am) * zd1 + s.am * zd - ga])
-                if stepper.lu is None or (it > 6 and it % 6 == 1):
-                    stepper.build(ta, qa, va, za)
-                dx = -stepper.solve(r)
+                if custom is not None:  # the model solves its own iteration matrix
+                    if solve is None or (it > 6 and it % 6 == 1) or (it == 1 and t - stepper.built >= renew):
+                        solve, stepper.built = custom(ta, s, h), t
+                    dx = -solve(r)
+                else:
+                    if stepper.lu is None or (it > 6 and it % 6 == 1) or (it == 1 and t - stepper.built >= renew):
+                        stepper.build(ta, qa, va, za)
+                        stepper.built = t
+                    dx = -stepper.solve(r)
                 a1 += dx[:n]
                 zd1 += dx[n:]
                 dq = ca * float(np.abs(dx[:n]).max(initial=0.0))
@@ -243,7 +269,7 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
                 raise ModelError(f"the time step at t = {t:.4g} s did not converge in {max_iterations} Newton "
                                  "iterations: reduce the time step or the kick")
             q, v, z = qp + ca * a1, vp + cz * a1, zp + cz * zd1
-            a, zd = a1, zd1
+            a, zd, Ma = a1, zd1, stepper.inertia(t + h, a1)
             qscale = max(qscale, float(np.abs(q).max(initial=0.0)))
             zscale = max(zscale, float(np.abs(z).max(initial=0.0)))
             ts.append(t + h)

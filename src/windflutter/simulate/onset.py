@@ -1,14 +1,20 @@
 """Confirm (or refute) an onset of method p by simulating in time just below and just above it.
 
-What is compared, like for like: the ROTOR ON A CLAMPED HUB (``model.part: rotor``) without
-structural damping, at one wind speed, pitch from the operating curve.  Method p finds its first
-instability (rotor speed, mode); the simulation (one blade on a rigid hub,
-:func:`windflutter.simulate.blade.blade_in_wind`) runs at ``factors`` x that rotor speed, and the
-growth rate of the identified mode nearest the unstable mode's rotating-frame frequency is put
-beside the eigenvalue's.  On a clamped hub a blade mode's BW and FW eigenvalues are its
-rotating-frame eigenvalue shifted by ``-+ i Omega``: same growth rate, frequency ``f_ground -+
-Omega / 2 pi``.  The whole turbine's onsets (support, drivetrain, whirl coupling through the
-tower) are NOT what this confirms.
+What is compared, like for like, at one wind speed, pitch from the operating curve, without
+structural damping or (the whole turbine) with the files' blade and tower damping in both
+(``damping``), and (``part``):
+
+* ``turbine`` (the default): the WHOLE TURBINE -- method p's operating-point model (blades,
+  support, drivetrain) against its time-domain counterpart (:mod:`windflutter.simulate.turbine`);
+  the eigenvalue and the identified mode are both ground-fixed (multi-blade coordinates), the
+  identified mode the one nearest the eigenvalue's frequency;
+* ``rotor``: the ROTOR ON A CLAMPED HUB (``model.part: rotor``) against one blade on a rigid hub
+  (:func:`windflutter.simulate.blade.blade_in_wind`): on a clamped hub a blade mode's BW and FW
+  eigenvalues are its rotating-frame eigenvalue shifted by ``-+ i Omega`` (same growth rate,
+  frequency ``f_ground -+ Omega / 2 pi``), so the rotating-frame eigenvalue is compared.
+
+Method p finds its first instability (rotor speed, mode); the simulation runs at ``factors`` x
+that rotor speed and the growth rate of the identified mode is put beside the eigenvalue's.
 """
 
 from __future__ import annotations
@@ -25,7 +31,8 @@ __all__ = ["OnsetCheck", "SpeedCheck", "confirm_onset"]
 
 @dataclass(frozen=True)
 class SpeedCheck:
-    """One rotor speed: the eigenvalue's growth rate and damping ratio (rotating frame) and the
+    """One rotor speed: the eigenvalue's growth rate and damping ratio (ground-fixed for the
+    turbine, rotating frame for the rotor on a clamped hub) and the
     simulation's, with its confidence (half-record spread of the growth rate, fit residual)."""
 
     factor: float
@@ -62,6 +69,8 @@ class OnsetCheck:
     mode: str
     pitch_deg: float
     checks: tuple
+    #: what was compared: ``turbine`` or ``rotor`` (module docstring)
+    part: str = "rotor"
 
     @property
     def confirmed(self) -> bool:
@@ -69,12 +78,12 @@ class OnsetCheck:
         return all(c.agrees for c in self.checks)
 
 
-def _config(wind_speed, n_span):
+def _config(wind_speed, n_span, part="rotor", damping="none"):
     from windflutter.config import load_config  # noqa: PLC0415
 
     return load_config(None, {"wind_speeds": [float(wind_speed)], "method": ["p"], "aero": ["viscous"],
-                              "model": {"type": "beam", "part": "rotor", "n_aero_sections": int(n_span)},
-                              "damping": {"model": "none"}}, overrides_source="confirm_onset")
+                              "model": {"type": "beam", "part": part, "n_aero_sections": int(n_span)},
+                              "damping": {"model": damping}}, overrides_source="confirm_onset")
 
 
 def _rotating_frame(mode, omega):
@@ -86,35 +95,56 @@ def _rotating_frame(mode, omega):
 
 
 def confirm_onset(turbine, wind_speed: float, factors=(0.97, 1.03), n_span: int = 30, duration: float = 20.0,
-                  f_max_hz: float = 8.0, progress=None) -> OnsetCheck:
-    """Method p's first instability of the rotor on a clamped hub at ``wind_speed`` (m/s) and the
-    time-domain check at ``factors`` x its rotor speed (module docstring)."""
+                  f_max_hz: float = 8.0, part: str = "turbine", damping: str = "none", progress=None) -> OnsetCheck:
+    """Method p's first instability at ``wind_speed`` (m/s) and the time-domain check at
+    ``factors`` x its rotor speed (module docstring; ``part``: ``turbine`` or ``rotor``;
+    ``damping``: ``none`` or, for the turbine, ``file``: the files' blade and tower damping in
+    both)."""
     from windflutter.stability.build import operational_options, stability_analysis  # noqa: PLC0415
-    from windflutter.simulate.blade import blade_in_wind  # noqa: PLC0415
-    from windflutter.system.modes import point_modes  # noqa: PLC0415
     from windflutter.system.operational import OperationalModel  # noqa: PLC0415
 
-    cfg = _config(wind_speed, n_span)
+    if part not in ("turbine", "rotor"):
+        raise InputError("part", part, "turbine (the whole turbine) or rotor (one blade on a clamped hub)")
+    if damping not in ("none", "file") or (damping == "file" and part != "turbine"):
+        raise InputError("damping", damping, "none, or file with part turbine")
+    cfg = _config(wind_speed, n_span, part, damping)
     point = stability_analysis(turbine, cfg, "viscous", "p").analyse_operating_point(float(wind_speed))
     if point.flutter_rpm is None or not np.isfinite(point.flutter_rpm) or point.first_instability != "flutter":
-        raise InputError("onset", point.first_instability, f"a flutter onset of the rotor at {wind_speed:g} m/s "
-                         "(method p, clamped hub) to confirm")
+        raise InputError("onset", point.first_instability, f"a flutter onset at {wind_speed:g} m/s "
+                         f"(method p, model.part {part}) to confirm")
     om = OperationalModel(turbine, operational_options(cfg, "viscous"))
-    checks = []
-    for f in factors:
-        rpm = float(f) * float(point.flutter_rpm)
-        ps = om.at(float(wind_speed), rpm=rpm, pitch=np.radians(point.pitch_deg))
-        modes = [m for m in point_modes(ps, max_hz=f_max_hz) if m.name == point.flutter_mode]
-        if not modes:
-            raise InputError("flutter_mode", point.flutter_mode, f"the mode found again at {rpm:.3f} RPM")
+    checks = tuple(speed_check(turbine, om, point, float(wind_speed), float(f), part, n_span, duration, f_max_hz,
+                               progress, damping) for f in factors)
+    return OnsetCheck(wind_speed=float(wind_speed), onset_rpm=float(point.flutter_rpm), mode=str(point.flutter_mode),
+                      pitch_deg=float(point.pitch_deg), checks=checks, part=part)
+
+
+def speed_check(turbine, om, point, wind_speed, factor, part, n_span, duration, f_max_hz, progress=None,
+                damping="none") -> SpeedCheck:
+    """The eigenvalue of ``point.flutter_mode`` at ``factor`` x the onset and the simulation's."""
+    from windflutter.simulate.blade import blade_in_wind  # noqa: PLC0415
+    from windflutter.simulate.turbine_run import simulate_turbine  # noqa: PLC0415
+    from windflutter.system.modes import point_modes  # noqa: PLC0415
+
+    rpm = factor * float(point.flutter_rpm)
+    ps = om.at(wind_speed, rpm=rpm, pitch=np.radians(point.pitch_deg))
+    modes = [m for m in point_modes(ps, max_hz=f_max_hz) if m.name == point.flutter_mode]
+    if not modes:
+        raise InputError("flutter_mode", point.flutter_mode, f"the mode found again at {rpm:.3f} RPM")
+    if part == "rotor":
         s_e, z_e, f_e = _rotating_frame(modes[0], rpm * RPM)
         run = blade_in_wind(turbine, wind_speed, rpm, duration=duration, pitch_deg=point.pitch_deg, n_span=n_span,
                             f_max_hz=f_max_hz, progress=progress)
-        m = min(run.modes, key=lambda x: abs(x.frequency_hz - f_e))
-        checks.append(SpeedCheck(factor=float(f), rpm=rpm, sigma_eig=s_e, zeta_eig=z_e, frequency_eig_hz=f_e,
-                                 sigma_sim=m.sigma, zeta_sim=m.zeta, frequency_sim_hz=m.frequency_hz,
-                                 sigma_spread=m.sigma_spread, residual=run.identification.residual,
-                                 interrupted=run.trajectory.interrupted, t=run.trajectory.t,
-                                 tip=run.trajectory.y[:, -6:-3]))
-    return OnsetCheck(wind_speed=float(wind_speed), onset_rpm=float(point.flutter_rpm), mode=str(point.flutter_mode),
-                      pitch_deg=float(point.pitch_deg), checks=tuple(checks))
+        tip = run.trajectory.y[:, -6:-3]
+    else:
+        lam = complex(modes[0].eigenvalue)
+        s_e, z_e, f_e = lam.real, -lam.real / abs(lam), abs(lam.imag) / (2 * np.pi)
+        run = simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=point.pitch_deg, n_span=n_span,
+                               f_max_hz=f_max_hz, damping=damping, progress=progress)
+        nr = 6 * len(run.nodes)
+        tip = run.trajectory.y[:, 6 + nr - 6: 6 + nr - 3]  # blade 1's tip, its own frame
+    m = min(run.modes, key=lambda x: abs(x.frequency_hz - f_e))
+    return SpeedCheck(factor=float(factor), rpm=rpm, sigma_eig=s_e, zeta_eig=z_e, frequency_eig_hz=f_e,
+                      sigma_sim=m.sigma, zeta_sim=m.zeta, frequency_sim_hz=m.frequency_hz, sigma_spread=m.sigma_spread,
+                      residual=run.identification.residual, interrupted=run.trajectory.interrupted,
+                      t=run.trajectory.t, tip=tip)

@@ -29,6 +29,8 @@ import numpy as np
 
 from windflutter.aero.strip import apparent_mass, mean_coefficients
 from windflutter.aero.unsteady import Circulation
+from windflutter.errors import InputError
+from windflutter.simulate.inertia import cross
 from windflutter.simulate.strips import StripGeometry, strip_forces
 from windflutter.steady.exact import deformed_motion_map
 from windflutter.steady.geometry import rotation_matrices, rotation_vectors
@@ -38,6 +40,39 @@ __all__ = ["BladeAero"]
 
 def _unit(v):
     return v / np.linalg.norm(v, axis=-1, keepdims=True)
+
+
+class PolarTable:
+    """The strips' polar tables interpolated all at once: the same linear interpolation with end
+    values outside the table as :func:`windflutter.aero.strip.mean_coefficients` (one
+    ``np.interp`` per strip and coefficient there), vectorized over the strips."""
+
+    def __init__(self, sections):
+        idx = np.asarray(sections.airfoil, dtype=np.int64)
+        polars = [sections.polars[int(k)] for k in idx]
+        grids = [np.asarray(p.alpha, float) for p in polars]
+        if any(np.any(np.diff(g) <= 0) for g in grids):
+            raise InputError("polar.alpha", "not increasing", "strictly increasing polar angles")
+        sizes = np.array([len(g) for g in grids])
+        self.start = np.concatenate([[0], np.cumsum(sizes)[:-1]])
+        self.stop = self.start + sizes - 1
+        self.grid = np.concatenate(grids)
+        self.values = np.stack([np.concatenate([np.asarray(getattr(p, c), float) for p in polars])
+                                for c in ("cl", "cd", "cm")])
+        self.first, self.last = self.grid[self.start], self.grid[self.stop]
+        # each strip's grid shifted past the previous one's: one sorted key for searchsorted
+        self.shift = np.repeat(np.arange(len(grids)) * (2.0 * np.ptp(self.grid) + 1.0), sizes)
+        self.key = self.grid + self.shift
+        self.offset = self.shift[self.start]
+
+    def __call__(self, alpha):
+        a = np.clip(np.asarray(alpha, float), self.first, self.last)
+        i = np.searchsorted(self.key, a + self.offset, side="right") - 1
+        i = np.clip(i, self.start, self.stop - 1)
+        x0, x1 = self.grid[i], self.grid[i + 1]
+        w = (a - x0) / (x1 - x0)
+        v = self.values[:, i] * (1.0 - w) + self.values[:, i + 1] * w
+        return v[0], v[1], v[2]
 
 
 class BladeAero:
@@ -56,6 +91,7 @@ class BladeAero:
                  circ: Circulation, apparent: float = 1.0):
         self.fe, self.sections, self.circ = fe, sections, circ
         ns = sections.n_sections
+        self._table = PolarTable(sections) if sections.polars else None
         self.ns, self.n_lag = ns, circ.n_lag
         self.width = np.asarray(sections.width, float)
         b = 0.5 * np.asarray(sections.chord, float)
@@ -112,7 +148,7 @@ class BladeAero:
 
     def air(self, x):
         """(ns, 3) air velocity at strip points ``x`` in the spinning frame (m/s)."""
-        return self.wind - np.cross(self.Omega, x - self.apex)
+        return self.wind - cross(self.Omega, x - self.apex)
 
     def steady_lags(self, config):
         """(ns * n_lag,) lag states settled at the configuration at rest (``z_j = alpha34``)."""
@@ -143,7 +179,9 @@ class BladeAero:
         return loads, zdot, origin, aE
 
     def _coefficients(self, alpha):
-        return mean_coefficients(self.sections, alpha)
+        if self._table is None:
+            return mean_coefficients(self.sections, alpha)
+        return self._table(alpha)
 
     def __call__(self, t, config, xdot, omega, z):
         """``(f (n_dof,), zdot)``: nodal aerodynamic loads and lag-state rates (the callback of

@@ -1,12 +1,22 @@
 """The simulation entry point behind ``windflutter simulate`` (and its Python API).
 
-What is simulated: ONE blade of the turbine on a rigid hub spinning at a constant rotor speed
-(co-rotational beam blade in the spinning frame, clamped at the root), in vacuum or in the wind
-along the shaft with the strip aerodynamics (Jones' or the Roger fit's lag states) and the BEM
-induction of the steady state frozen.  Not included (yet): the other blades, the hub, the
-drivetrain and the tower (so no whirling BW/FW modes and no tower motion), gravity, dynamic
-inflow, dynamic stall, structural damping.  The blade's modes are the rotating-frame ones: on a
-rigid hub the eigen-solver's BW/FW pair of a blade mode sits at ``f -+ Omega / 2 pi``.
+What is simulated (``part``):
+
+* ``turbine`` (the default): the WHOLE TURBINE -- the N co-rotational beam blades, each in its own
+  frame turning with the rotor and carried by the hub, on the support (tower beams, nacelle mass,
+  hub node: linear, about its static deflection under the mean rotor loads) and the drivetrain
+  (rotor azimuth, shaft spring and damper, generator inertia; the generator torque held at the
+  steady aerodynamic torque), in vacuum or in the wind along the shaft
+  (:mod:`windflutter.simulate.turbine`): method p's operating-point model, integrated in time;
+* ``blade``: ONE blade on a rigid hub at constant rotor speed (no BW/FW whirl, no tower motion;
+  the blade's modes are the rotating-frame ones: on a rigid hub the eigen-solver's BW/FW pair of
+  a blade mode sits at ``f -+ Omega / 2 pi``).
+
+Both: co-rotational beams (the blades' own motion kept whole; the hub's small motion to first
+order in the blades' kinematics), strip aerodynamics with lag states (Jones' or the Roger fit's)
+and the BEM induction of the steady state frozen.  Structural damping: none, or (the turbine)
+the files' blade and tower damping as method p defines it.  Not included: gravity, dynamic
+inflow, dynamic stall, a controller.
 """
 
 from __future__ import annotations
@@ -14,20 +24,26 @@ from __future__ import annotations
 import numpy as np
 
 from windflutter.errors import InputError
-from windflutter.simulate.blade import BladeRun, blade_in_vacuum, blade_in_wind
+from windflutter.simulate.blade import blade_in_vacuum, blade_in_wind
 
 __all__ = ["simulate", "INCLUDED"]
 
-#: one line on what the simulation holds (printed by the CLI)
-INCLUDED = ("one blade on a rigid hub at constant rotor speed (co-rotational beam, spinning frame); "
-            "strip aerodynamics with lag states and frozen BEM induction; no tower, drivetrain, other "
-            "blades, gravity, dynamic inflow or structural damping")
+#: one line on what each simulation holds (printed by the CLI)
+INCLUDED = {
+    "turbine": ("the whole turbine: co-rotational beam blades in frames turning with the hub, the tower and "
+                "nacelle (linear beams) and the drivetrain (shaft spring, generator inertia, constant generator "
+                "torque); strip aerodynamics with lag states and frozen BEM induction; no gravity, dynamic "
+                "inflow or structural damping"),
+    "blade": ("one blade on a rigid hub at constant rotor speed (co-rotational beam, spinning frame); "
+              "strip aerodynamics with lag states and frozen BEM induction; no tower, drivetrain, other "
+              "blades, gravity, dynamic inflow or structural damping"),
+}
 
 
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 20.0, pitch_deg: float | None = None,
              n_span: int = 30, f_max_hz: float = 8.0, points_per_period: float = 30.0, rho_inf: float = 0.9,
-             amplitude: float = 1e-3, circulation: str = "jones", air_density: float = 1.225,
-             progress=None) -> BladeRun:
+             amplitude: float | None = None, circulation: str = "jones", air_density: float = 1.225,
+             part: str = "turbine", damping: str = "none", progress=None):
     """Free response of a turbine's blade (module docstring) kicked by impulses, and the
     frequency and damping of its modes identified from it.
 
@@ -38,17 +54,24 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
     duration : simulated time (s).  pitch_deg : blade pitch (deg); default the operating curve's.
     n_span : blade elements.  f_max_hz : highest frequency retained: the step gives
         ``points_per_period`` steps in its period.  rho_inf : generalized-alpha spectral radius.
-    amplitude : largest initial velocity of the kick (m/s, rad/s).  circulation : ``jones`` | ``rfa``.
-    progress : ``progress(step, n_steps, t)``.
+    amplitude : size of the kick (m): the turbine's blade 1 deflection (default 1e-2), the blade's
+        largest initial velocity (m/s, rad/s; default 1e-3).  circulation : ``jones`` | ``rfa``.
+    part : ``turbine`` | ``blade`` (module docstring).  damping : ``none`` | ``file`` (the turbine
+        files' blade and tower damping, ``part="turbine"``).  progress : ``progress(step, n_steps, t)``.
 
     Returns
     -------
+    :class:`~windflutter.simulate.turbine_run.TurbineRun` or
     :class:`~windflutter.simulate.blade.BladeRun`; Ctrl-C keeps what was integrated
     (``trajectory.interrupted``) and identifies from it.
     """
     for name, v, lo in (("rpm", rpm, 0.0), ("wind_speed", wind_speed, 0.0)):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v < lo:
             raise InputError(name, v, "a non-negative number")
+    if part not in INCLUDED:
+        raise InputError("part", part, "turbine or blade")
+    if amplitude is None:
+        amplitude = 1e-2 if part == "turbine" else 1e-3
     for name, v in (("duration", duration), ("f_max_hz", f_max_hz), ("amplitude", amplitude)):
         if isinstance(v, bool) or not isinstance(v, (int, float)) or not np.isfinite(v) or v <= 0:
             raise InputError(name, v, "a positive number")
@@ -56,12 +79,21 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         raise InputError("n_span", n_span, "an integer in [2, 200] (blade elements)")
     if circulation not in ("jones", "rfa"):
         raise InputError("circulation", circulation, "jones or rfa")
+    if damping not in ("none", "file") or (damping == "file" and part != "turbine"):
+        raise InputError("damping", damping, "none, or file with part turbine")
+    if wind_speed > 0.0 and rpm == 0.0:
+        raise InputError("rpm", rpm, "a positive rotor speed in the wind")
+    if part == "turbine":
+        from windflutter.simulate.turbine_run import simulate_turbine  # noqa: PLC0415
+
+        return simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
+                                f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,
+                                amplitude=amplitude, circulation=circulation, air_density=air_density,
+                                damping=damping, progress=progress)
     if wind_speed == 0.0:
         return blade_in_vacuum(turbine, rpm, duration=duration, n_span=int(n_span), f_max_hz=f_max_hz,
                                points_per_period=points_per_period, rho_inf=rho_inf, amplitude=amplitude,
                                progress=progress)
-    if rpm == 0.0:
-        raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     return blade_in_wind(turbine, wind_speed, rpm, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
                          f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,
                          amplitude=amplitude, circulation=circulation, air_density=air_density, progress=progress)
