@@ -156,7 +156,7 @@ class ModelConfig:
                                       lower=4, upper=MAX_BLADE_ELEMENTS, nullable=True)
     element_length: float | None = opt(None, "float", "shell models, when n_aero_sections is null: target length "
                                        "of the blade's skin elements along the span (the elements around a "
-                                       "section follow, at least 40); null: the blade length / 80, the default "
+                                       "section follow, at least 40); null: the blade length / 100, the default "
                                        "chosen by the mesh convergence study (docs/mesh.md)", lower=0.0,
                                        lower_open=True, upper=100.0, nullable=True, unit="m")
     reference_surface: str = opt("midsurface", "choice", "shell models: the skin's reference surface -- "

@@ -33,7 +33,7 @@ CHORD_BOUNDS = (8, 400)
 class MeshSettings:
     """How to turn a :class:`~windflutter.model.turbine.Turbine` into an FE model.
 
-    The shell blade's default mesh follows from its size: the blade length / 80 along the span, 40
+    The shell blade's default mesh follows from its size: the blade length / 100 along the span, 40
     around (:func:`resolve_counts`, chosen by the convergence study of docs/mesh.md).  The seed's
     mesh, ``MeshSettings(**SEED_MESH)``, gives a whole NREL 5 MW shell model of the seed's size
     (Castillo Capponi 2010, table 4.6: 4650 CQUAD4, 4455 nodes, 26136 DOF): 3 blades x (40 x 30 skin

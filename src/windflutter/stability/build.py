@@ -29,7 +29,7 @@ def mesh_settings(config) -> dict:
     """Mesh-setting overrides from ``model.part``, ``model.mesh_density``, ``model.n_aero_sections`` and,
     for shells, ``model.element_length``, ``model.reference_surface`` and ``model.tip_closure``: blade
     elements (= strips) along the span ``n_aero_sections * density``; shells without ``n_aero_sections``
-    take theirs from the element length / density (null: the blade length / 80 at density 1,
+    take theirs from the element length / density (null: the blade length / 100 at density 1,
     :func:`windflutter.mesh.settings.resolve_counts`); for shells at density != 1 also the elements
     around a section (default 40, kept even) and along / around the tower."""
     m = config.model

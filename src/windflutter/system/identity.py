@@ -384,6 +384,18 @@ def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 
     return out
 
 
+def rigid_rotation(ids: list[Identity], S: np.ndarray, frequencies_hz: np.ndarray, got: np.ndarray) -> dict:
+    """``{mode index: identity index}``: the mode below :data:`RIGID_HZ` to which the assignment gave
+    the drivetrain's rigid rotation (its share is non-zero only below :data:`RIGID_HZ`).  It is the
+    rigid rotation whatever its share: a heavily damped rotor-speed root (-79 % on the IEA 22 MW
+    shell at 8 m/s) moves the blades' flap more than the rotor turns, and its name must still say
+    rigid body so that it is never an instability."""
+    kr = next((k for k, x in enumerate(ids) if x.family == "rigid"), None)
+    if kr is None:
+        return {}
+    return {i: kr for i in range(S.shape[0]) if got[i] == kr and frequencies_hz[i] < RIGID_HZ and S[i, kr] > 0}
+
+
 def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False,
                 continued: bool = False) -> None:
     """Give mode record ``rec`` the identity ``ids[k]`` (its shares ``shares`` over ``ids``), in place:
