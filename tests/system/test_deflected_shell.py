@@ -189,11 +189,14 @@ def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
 def test_iea22mw_shell_second_edge_fw_damping_follows_the_beam():
     """The issue's case: the IEA 22 MW shell's 2nd edge FW at 8-13 m/s.  Linearized about the
     undeformed blade it lost its damping (1.0, 0.1, -0.6 % at 8, 9, 10 m/s); about the deflected
-    shape it is within 0.5 point of the beam model's (measured 0.35 point at most: 1.9-2.3 % against
-    1.7-2.1 %), and no mode below 2 Hz but the drivetrain's free rotation has negative damping."""
+    shape it is within issue 33's band of the beam model's (1 point or 35 %), and no mode below 2 Hz
+    but the drivetrain's free rotation has negative damping.  Measured: on the seed's 30-element
+    outer-surface mesh 1.9-2.3 % against the beam's 1.7-2.1 %; on the converged default mesh 2.02 / 2.75 / 2.22 %
+    against 1.71 / 2.04 / 1.94 % at 8 / 10 / 13 m/s (+0.3 to +0.7 point, 13-34 %)."""
     from windflutter.model import load_turbine
     from windflutter.system.modes import point_modes
 
+    got = {}
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t = load_turbine("iea22mw")
@@ -205,4 +208,8 @@ def test_iea22mw_shell_second_edge_fw_damping_follows_the_beam():
                 assert all(x.damping_ratio > 0 for x in modes if not x.rigid and x.family != "drivetrain"), (m, V)
                 fw = [x for x in modes if x.family == "edge" and x.order == 2 and x.whirl == "FW"]
                 z[m] = fw[0].damping_ratio
-            assert abs(z["shell"] - z["beam"]) < 0.005, (V, z)
+            got[V] = z
+    print(got)
+    for V, z in got.items():
+        d = abs(z["shell"] - z["beam"])
+        assert d <= 0.01 or d <= 0.35 * z["beam"], (V, got)
