@@ -31,7 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
-from windflutter.system.multiblade import axis_rotation, coleman_matrix
+from windflutter.system.multiblade import blade_frame, coleman_matrix
 
 
 @dataclass
@@ -155,13 +155,7 @@ class BladeVectors:
 def _jacobians(L: np.ndarray, nF: int, m: int, N: int, b: int, omega: float, axis) -> tuple:
     """Blade ``b``'s ``y_b = J q`` of the periodic coordinates at azimuth 0 and its time derivatives
     (:func:`windflutter.system.multiblade.periodic_system`'s)."""
-    R = axis_rotation(axis, 2.0 * np.pi * b / N)
-    Q = np.zeros((6, 6))
-    Q[:3, :3] = Q[3:, 3:] = R.T
-    n = np.asarray(axis, float)
-    S = np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
-    S6 = np.zeros((6, 6))
-    S6[:3, :3] = S6[3:, 3:] = S
+    Q, S6 = blade_frame(axis, 2.0 * np.pi * b / N)
     nq = nF + N * m
     J, J1, J2 = np.zeros((6 + m, nq)), np.zeros((6 + m, nq)), np.zeros((6 + m, nq))
     QL = Q @ L

@@ -101,6 +101,27 @@ def _axes(axis, e2) -> np.ndarray:
     return np.stack([e1, v, np.cross(e1, v)])
 
 
+def _loaded_segment(fe: FEModel, root, tip, refs, axis, e2):
+    """The segment prepared for its unit loads: ``(E, refs, length, X, x_load, fe2)`` -- its axes, the
+    measuring rings' reference points, their distance along the axis, the nodes, the loaded node's
+    distance from the first reference point and the model with the root clamped and the tip ring tied
+    to a load node on the reference axis (node ``fe.n_nodes``)."""
+    E = _axes(axis, e2)
+    refs = [np.asarray(r, float) for r in refs]
+    length = float((refs[1] - refs[0]) @ E[0])
+    if not length > 0:
+        raise InputError("refs", refs, "two reference points along the axis, root side first")
+    X = np.asarray(fe.nodes, float)
+    tip = np.asarray(tip, dtype=np.int64)
+    dref = (refs[1] - refs[0]) / np.linalg.norm(refs[1] - refs[0])
+    x_load = float((X[tip].mean(axis=0) - refs[0]) @ dref)
+    c = refs[0] + x_load * dref  # the loads act on the reference axis
+    spc = {int(n): (0, 1, 2, 3, 4, 5) for n in np.asarray(root, dtype=np.int64)}
+    fe2 = replace(fe, nodes=np.vstack([X, c]), spc={**fe.spc, **spc},
+                  rigid_links=list(fe.rigid_links) + [RigidLink(independent=fe.n_nodes, dependent=tip)])
+    return E, refs, length, X, x_load, fe2
+
+
 def segment_stiffness(fe: FEModel, root: np.ndarray, tip: np.ndarray, rings: tuple[np.ndarray, np.ndarray],
                       refs: tuple[np.ndarray, np.ndarray], axis, e2=None) -> SegmentStiffness:
     """Section stiffness of the shell segment ``fe`` (module docstring).
@@ -113,19 +134,8 @@ def segment_stiffness(fe: FEModel, root: np.ndarray, tip: np.ndarray, rings: tup
     refs : their reference-axis points (m).
     axis : the segment axis (root to tip); ``e2`` the first section axis (default: a global axis).
     """
-    E = _axes(axis, e2)
-    refs = [np.asarray(r, float) for r in refs]
-    length = float((refs[1] - refs[0]) @ E[0])
-    if not length > 0:
-        raise InputError("refs", refs, "two reference points along the axis, root side first")
-    X = np.asarray(fe.nodes, float)
-    tip = np.asarray(tip, dtype=np.int64)
-    dref = (refs[1] - refs[0]) / np.linalg.norm(refs[1] - refs[0])
-    c = refs[0] + ((X[tip].mean(axis=0) - refs[0]) @ dref) * dref  # the loads act on the reference axis
+    E, refs, length, X, x_load, fe2 = _loaded_segment(fe, root, tip, refs, axis, e2)
     load_node = fe.n_nodes
-    spc = {int(n): (0, 1, 2, 3, 4, 5) for n in np.asarray(root, dtype=np.int64)}
-    fe2 = replace(fe, nodes=np.vstack([X, c]), spc={**fe.spc, **spc},
-                  rigid_links=list(fe.rigid_links) + [RigidLink(independent=load_node, dependent=tip)])
     st = assemble(fe2)
     F = np.zeros((fe2.n_dof, 4))
     F[6 * load_node: 6 * load_node + 3, 0] = E[0]  # axial force
@@ -231,20 +241,8 @@ def section_properties(fe: FEModel, root: np.ndarray, tip: np.ndarray, rings: tu
                        refs: tuple[np.ndarray, np.ndarray], axis, e2=None) -> SectionProperties:
     """The full beam section of the shell segment ``fe`` (module docstring; arguments as
     :func:`segment_stiffness`)."""
-    E = _axes(axis, e2)
-    refs = [np.asarray(r, float) for r in refs]
-    length = float((refs[1] - refs[0]) @ E[0])
-    if not length > 0:
-        raise InputError("refs", refs, "two reference points along the axis, root side first")
-    X = np.asarray(fe.nodes, float)
-    tip = np.asarray(tip, dtype=np.int64)
-    dref = (refs[1] - refs[0]) / np.linalg.norm(refs[1] - refs[0])
-    x_load = float((X[tip].mean(axis=0) - refs[0]) @ dref)
-    c = refs[0] + x_load * dref  # the loads act on the reference axis
+    E, refs, length, X, x_load, fe2 = _loaded_segment(fe, root, tip, refs, axis, e2)
     load_node = fe.n_nodes
-    spc = {int(n): (0, 1, 2, 3, 4, 5) for n in np.asarray(root, dtype=np.int64)}
-    fe2 = replace(fe, nodes=np.vstack([X, c]), spc={**fe.spc, **spc},
-                  rigid_links=list(fe.rigid_links) + [RigidLink(independent=load_node, dependent=tip)])
     S, asym = _section_compliance(fe2, load_node, E, X, rings, refs, length, x_load)
     # tension centre: N at (y, z) gives M2 = z N, M3 = -y N and no curvature
     A = np.array([[-S[4, 5], S[4, 4]], [-S[5, 5], S[5, 4]]])

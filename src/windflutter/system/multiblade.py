@@ -133,17 +133,25 @@ class PeriodicSystem:
     Bv: np.ndarray
 
 
-def _blade_jacobians(fixed: FixedFrame, n_eta: int, n_blades: int, b: int, psi: float, omega: float, axis):
-    """``(J, J', J'')`` (6 + m, nq) of blade ``b``: ``y_b = J q``."""
-    nF = fixed.size
-    nq = nF + n_blades * n_eta
-    R = axis_rotation(axis, psi + 2.0 * np.pi * b / n_blades)
+def blade_frame(axis, angle: float) -> tuple[np.ndarray, np.ndarray]:
+    """``(Q, S6)`` (6, 6) of a blade turned by ``angle`` (rad) about the shaft ``axis``: ``Q`` takes a
+    hub motion (translation, rotation) into the blade's frame, ``S6`` is the cross product with the
+    axis on both halves (the frame's rate of turn per unit rotor speed)."""
+    R = axis_rotation(axis, angle)
     Q = np.zeros((6, 6))
     Q[:3, :3] = Q[3:, 3:] = R.T
     n = np.asarray(axis, float)
     S = np.array([[0.0, -n[2], n[1]], [n[2], 0.0, -n[0]], [-n[1], n[0], 0.0]])
     S6 = np.zeros((6, 6))
     S6[:3, :3] = S6[3:, 3:] = S
+    return Q, S6
+
+
+def _blade_jacobians(fixed: FixedFrame, n_eta: int, n_blades: int, b: int, psi: float, omega: float, axis):
+    """``(J, J', J'')`` (6 + m, nq) of blade ``b``: ``y_b = J q``."""
+    nF = fixed.size
+    nq = nF + n_blades * n_eta
+    Q, S6 = blade_frame(axis, psi + 2.0 * np.pi * b / n_blades)
     J = np.zeros((6 + n_eta, nq))
     J1 = np.zeros_like(J)
     J2 = np.zeros_like(J)
