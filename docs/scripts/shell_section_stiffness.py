@@ -17,37 +17,11 @@ import warnings
 import numpy as np
 
 from windflutter.mesh.settings import MeshSettings
+from windflutter.mesh.shell_beam import shell_segment as segment
+from windflutter.mesh.shell_beam import station_planes as stations
 from windflutter.mesh.turbine import build_model
 from windflutter.model import load_turbine
 from windflutter.structure.equivalent_beam import segment_stiffness
-from windflutter.structure.fem import FEModel
-
-
-def stations(fe, sec):
-    """(points (ns+1, 3), station index of every node, node on its station plane)."""
-    p = np.asarray(sec.origin, float)
-    t = np.asarray(sec.e_span, float)
-    t /= np.linalg.norm(t, axis=1, keepdims=True)
-    w = np.asarray(sec.width, float)
-    P0 = np.vstack([p - 0.5 * w[:, None] * t, p[-1] + 0.5 * w[-1] * t[-1]])
-    T = np.vstack([t, t[-1:]])
-    X = np.asarray(fe.nodes, float)
-    D = np.einsum("nsi,si->ns", X[:, None, :] - P0[None], T)
-    st = np.argmin(np.abs(D), axis=1)
-    return P0, st, np.abs(D[np.arange(len(X)), st]) < 0.2 * w.min()
-
-
-def segment(fe, st, on, k0, k1):
-    """The sub-model of the elements between stations k0 and k1, and its ring of station k."""
-    conn = np.asarray(fe.shell_conn)
-    keep = np.all((st[conn] >= k0) & (st[conn] <= k1) & on[conn], axis=1)
-    used = np.unique(conn[keep])
-    mp = -np.ones(fe.n_nodes, int)
-    mp[used] = np.arange(len(used))
-    seg = FEModel(nodes=np.asarray(fe.nodes)[used], shell_conn=mp[conn[keep]],
-                  shell_prop=np.asarray(fe.shell_prop)[keep], shell_matdir=np.asarray(fe.shell_matdir)[keep],
-                  shell_properties=fe.shell_properties)
-    return seg, (lambda k: mp[np.flatnonzero(on & (st == k) & (mp >= 0))])
 
 
 def main(argv=None):

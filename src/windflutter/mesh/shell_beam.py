@@ -53,7 +53,7 @@ class ShellBeamTable:
     asymmetry: np.ndarray
 
 
-def _station_planes(fe, sec):
+def station_planes(fe, sec):
     """(points (ns+1, 3) on the reference axis, station index of every node, node on a station plane)."""
     p = np.asarray(sec.origin, float)
     t = np.asarray(sec.e_span, float)
@@ -67,7 +67,7 @@ def _station_planes(fe, sec):
     return P0, st, np.abs(D[np.arange(len(X)), st]) < 0.2 * w.min()
 
 
-def _segment(fe, st, on, k0: int, k1: int):
+def shell_segment(fe, st, on, k0: int, k1: int):
     """The shell sub-model between stations k0 and k1, and a function: station -> its ring's nodes."""
     conn = np.asarray(fe.shell_conn)
     keep = np.all((st[conn] >= k0) & (st[conn] <= k1) & on[conn], axis=1)
@@ -93,7 +93,7 @@ def shell_beam_table(turbine, n_stations: int = 20, settings: MeshSettings | Non
     if st0.model != "shell" or st0.part != "blade":
         raise InputError("settings", (st0.model, st0.part), "a shell model of the blade (part blade)")
     fe, sec = build_model(turbine, st0)
-    P0, st, on = _station_planes(fe, sec)
+    P0, st, on = station_planes(fe, sec)
     ns = len(P0) - 1
     row = np.linalg.norm(np.diff(P0, axis=0), axis=1)
     chord = np.r_[sec.chord, sec.chord[-1]]
@@ -106,7 +106,7 @@ def shell_beam_table(turbine, n_stations: int = 20, settings: MeshSettings | Non
         ka, kb = max(1, j - half), min(ns - 1, j + half)
         k0, k1 = max(0, ka - gap), min(ns, kb + gap)
         clipped = (ka - gap < 0) or (kb + gap > ns)
-        seg, ring = _segment(fe, st, on, k0, k1)
+        seg, ring = shell_segment(fe, st, on, k0, k1)
         e1 = P0[kb] - P0[ka]
         e1 /= np.linalg.norm(e1)
         e2 = np.cross(ec[j], e1)  # flapwise, towards the suction side (e_chord x e_span)
