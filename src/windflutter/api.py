@@ -61,7 +61,7 @@ SHELL_ONLY = ("n_chord", "tower_model", "tip_closure", "element_length", "refere
 MESH_OPTIONS: dict[str, Spec] = {
     "part": Spec("choice", choices=MESH_PARTS, doc="which part: turbine, blade (root clamped), tower "
                  "(rotor-nacelle lumped) or rotor (blades and hub, the hub clamped: no drivetrain in a modal analysis)"),
-    "model": Spec("choice", choices=MESH_MODELS, doc=f"beam (Timoshenko beams, the default of every command) "
+    "model": Spec("choice", choices=MESH_MODELS, doc="beam (Timoshenko beams, the default of every command) "
                   "or shell (composite shells)"),
     "pitch": Spec("float", lower=-180.0, upper=180.0, unit="deg", doc="blade pitch"),
     "azimuth": Spec("float", lower=-360.0, upper=360.0, unit="deg", doc="rotor azimuth of blade 0 (0 = up)"),
