@@ -5,9 +5,18 @@ from __future__ import annotations
 
 import numpy as np
 
-from windflutter.system.identity import RIGID_HZ, Identity, assign, rigid_rotation
+from windflutter.system.identity import Identity, assign, name_record
+from windflutter.system.modes import ModeRecord
 
 IDS = [Identity("flap", 1, "collective"), Identity("rigid", 0), Identity("edge", 1, "BW")]
+
+
+def _named(S: np.ndarray, heavy: bool = True) -> list[ModeRecord]:
+    got = assign(S)
+    recs = [ModeRecord(eigenvalue=complex(-1.0, 1.0), family="other", whirl="none") for _ in S]
+    for i, rec in enumerate(recs):
+        name_record(rec, IDS, S[i], int(got[i]), heavy=heavy)
+    return recs
 
 
 def test_a_heavily_damped_rotor_speed_root_is_the_rigid_rotation():
@@ -18,14 +27,12 @@ def test_a_heavily_damped_rotor_speed_root_is_the_rigid_rotation():
     S = np.array([[0.6, 0.3, 0.1],    # the rotor-speed root
                   [0.9, 0.0, 0.1],    # the 1st flap collective
                   [0.0, 0.0, 1.0]])
-    f = np.array([0.004, 0.6, 0.45])
-    got = assign(S)
-    assert rigid_rotation(IDS, S, f, got) == {0: 1}
+    root = _named(S)[0]
+    assert root.rigid and root.family == "rigid" and root.share == 0.3
 
 
-def test_no_rigid_rotation_above_its_frequency_or_without_its_share():
-    S = np.array([[0.6, 0.3, 0.1], [0.9, 0.0, 0.1], [0.0, 0.0, 1.0]])
-    assert rigid_rotation(IDS, S, np.array([RIGID_HZ * 1.1, 0.6, 0.45]), assign(S)) == {}
-    S0 = S.copy()
-    S0[0] = [0.6, 0.0, 0.4]  # no rigid rotation in it
-    assert rigid_rotation(IDS, S0, np.array([0.004, 0.6, 0.45]), assign(S0)) == {}
+def test_no_rigid_rotation_without_its_share():
+    """A mode without any rigid rotation in it (participations give it none above RIGID_HZ) is not
+    the rigid rotation, even where the assignment leaves it that identity."""
+    S = np.array([[0.6, 0.0, 0.4], [0.9, 0.0, 0.1], [0.0, 0.0, 1.0]])
+    assert not any(r.rigid for r in _named(S))

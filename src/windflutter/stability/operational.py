@@ -166,20 +166,23 @@ class OperationalStability:
         sweep point, whose identities these continue (:func:`~windflutter.system.modes.point_modes`)."""
         ps, entry = self._point(wind_speed, rpm, pitch)
         if entry[1] is None:
-            entry[1] = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous) if not m.rigid]
+            entry[1] = self._named(ps, pitch, previous)
         return ps, entry[1]
+
+    def _named(self, ps, pitch: float, previous=None) -> list:
+        """The named modes of ``ps`` but the rigid rotation, continuing ``previous``'s names."""
+        return [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous) if not m.rigid]
 
     def _continued(self, wind_speed: float, pitch: float, before: tuple, rpm: float):
         """``(PointSystem, modes)`` at ``rpm``, continuing the names of the sweep point ``before``
         (``(rpm, modes)``); where a named mode's frequency jumps across the step
         (:func:`~windflutter.system.campbell.ambiguous`) the step is refined once, as along the
         Campbell: the names are carried through its middle (not a sweep point)."""
-        ps, modes = self._modes(wind_speed, rpm, pitch, previous=before[1])
+        ps, entry = self._point(wind_speed, rpm, pitch)
+        modes = self._modes(wind_speed, rpm, pitch, previous=before[1])[1]
         if ambiguous(before[1], modes):
-            mid_ps = self.model.at(wind_speed, rpm=0.5 * (before[0] + rpm), pitch=pitch)
-            mid = [m for m in point_modes(mid_ps, max_hz=self.max_hz(pitch), previous=before[1]) if not m.rigid]
-            modes = [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=mid) if not m.rigid]
-            self._point(wind_speed, rpm, pitch)[1][1] = modes
+            mid = self._named(self.model.at(wind_speed, rpm=0.5 * (before[0] + rpm), pitch=pitch), pitch, before[1])
+            modes = entry[1] = self._named(ps, pitch, mid)
         return ps, modes
 
     def _point(self, wind_speed: float, rpm: float, pitch: float):

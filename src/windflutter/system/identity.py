@@ -384,28 +384,20 @@ def assign(S: np.ndarray, continuity: np.ndarray | None = None, weight: float = 
     return out
 
 
-def rigid_rotation(ids: list[Identity], S: np.ndarray, frequencies_hz: np.ndarray, got: np.ndarray) -> dict:
-    """``{mode index: identity index}``: the mode below :data:`RIGID_HZ` to which the assignment gave
-    the drivetrain's rigid rotation (its share is non-zero only below :data:`RIGID_HZ`).  It is the
-    rigid rotation whatever its share: a heavily damped rotor-speed root (-79 % on the IEA 22 MW
-    shell at 8 m/s) moves the blades' flap more than the rotor turns, and its name must still say
-    rigid body so that it is never an instability."""
-    kr = next((k for k, x in enumerate(ids) if x.family == "rigid"), None)
-    if kr is None:
-        return {}
-    return {i: kr for i in range(S.shape[0]) if got[i] == kr and frequencies_hz[i] < RIGID_HZ and S[i, kr] > 0}
-
-
 def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: bool = False,
                 continued: bool = False) -> None:
     """Give mode record ``rec`` the identity ``ids[k]`` (its shares ``shares`` over ``ids``), in place:
     family, order, whirl, name, the dominant and second participations, mixed and rigid flags;
     ``continued``: the mode continues the previous point's carrier of ``ids[k]`` (kept whatever its
-    share, :data:`CONTINUED_MAC`)."""
+    share, :data:`CONTINUED_MAC`).  The drivetrain's rigid rotation (its share non-zero only below
+    :data:`RIGID_HZ`, :func:`participations`) is kept whatever its share too: a heavily damped
+    rotor-speed root (-79 % on the IEA 22 MW shell at 8 m/s) moves the blades' flap more than the
+    rotor turns, and its name must still say rigid body so that it is never an instability."""
     order = np.argsort(shares)[::-1]
     first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
-    floor = 0.0 if continued else max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
+    kept = continued or (k >= 0 and ids[k].family == "rigid" and shares[k] > 0)
+    floor = 0.0 if kept else max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
     if k < 0 or shares[k] < floor:  # no identity of its own: named by its participations
         rec.identity, rec.family, rec.order, rec.whirl = None, "mixed", 0, "none"
         rec.rigid, rec.share, rec.mixed = False, 0.0, True

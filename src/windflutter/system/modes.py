@@ -265,7 +265,7 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
     """Name ``modes`` (their structural coordinates the columns of ``Q``) by their participation in
     the structural identities of ``ps.reference``, in place; returns ``modes``."""
     from windflutter.system.identity import (CONTINUED_MAC, HEAVY_DAMPING, assign, name_record, participations,
-                                             point_own_modes, rigid_rotation)
+                                             point_own_modes)
 
     if not modes:
         return modes
@@ -289,10 +289,9 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
             cont = np.zeros_like(S)
             cont[:, cols] = mac_matrix(A, B)
     got = assign(S, cont)
-    rigid = rigid_rotation(ids, S, freqs, got)
     for i, rec in enumerate(modes):
-        k = rigid_k if (rigid_k := rigid.get(i)) is not None else int(got[i])
-        continued = i in rigid or (cont is not None and k >= 0 and cont[i, k] >= CONTINUED_MAC)
+        k = int(got[i])
+        continued = cont is not None and k >= 0 and cont[i, k] >= CONTINUED_MAC
         name_record(rec, ids, S[i], k, heavy=bool(zetas[i] > HEAVY_DAMPING), continued=continued)
         rec.own_modes = own.names if own is not None else None
     return modes
