@@ -146,28 +146,49 @@ PHASE_COMPONENTS = {"twr_x": "tower_ss", "twr_y": "tower_fa", "twr_yaw": "tower_
                     **{f"{w}_{d}": f"{w}_{d}" for d in ("edge", "flap", "tors") for w in ("sym", "bw", "fw")}}
 
 
-def phase_pairs(points, max_hz=2.2, max_zeta=0.5, df=0.08, min_cos=0.9):
-    """Our modes paired one to one with HAWCStab2's (below ``max_hz``, ``max_zeta``) by the cosine of
-    their vectors of component magnitudes (at least ``min_cos``) within ``df`` in natural frequency.
-    Yields (wind, HAWCStab2's components: complex array, ours: complex array, our mode)."""
+def magnitude_pairs(ref: list[dict], ours: list, df, min_cos: float, max_dzeta: float | None = None):
+    """HAWCStab2's modes ``ref`` (rows of modes.csv) paired one to one with ``ours`` (maximum total
+    similarity) by the cosine of their vectors of component magnitudes (PHASE_COMPONENTS; at least
+    ``min_cos``), the natural frequency within ``df`` (a number, or one per row of ``ref``) and, if
+    given, the damping ratio within ``max_dzeta``.  Returns (our mode or None per row, natural
+    frequencies Hz, damping ratios)."""
     from scipy.optimize import linear_sum_assignment
 
+    keys = list(PHASE_COMPONENTS)
+    z = np.array([float(r["damping_pct"]) / 100.0 for r in ref])
+    fn = np.array([float(r["frequency_hz"]) for r in ref]) / np.sqrt(1 - z**2)
+    if not ref or not ours:
+        return [None] * len(ref), fn, z
+    a = np.array([[float(r[k]) for k in keys] for r in ref])
+    b = np.array([[abs(m.multiblade_components()[PHASE_COMPONENTS[k]]) for k in keys] for m in ours])
+    cos = (a / np.linalg.norm(a, axis=1, keepdims=True)) @ (b / np.linalg.norm(b, axis=1, keepdims=True)).T
+    f = np.array([m.frequency_hz for m in ours])
+    ok = (np.abs(f[None, :] / fn[:, None] - 1) <= np.reshape(df, (-1, 1))) & (cos >= min_cos)
+    if max_dzeta is not None:
+        ok &= np.abs(np.array([m.damping_ratio for m in ours])[None, :] - z[:, None]) <= max_dzeta
+    got: list = [None] * len(ref)
+    for i, j in zip(*linear_sum_assignment(-np.where(ok, cos, -1.0))):
+        if ok[i, j]:
+            got[i] = ours[j]
+    return got, fn, z
+
+
+def phase_pairs(points, max_hz=2.2, max_zeta=0.5, df=0.08, min_cos=0.9):
+    """Our modes paired one to one with HAWCStab2's (below ``max_hz``, ``max_zeta``) by the cosine of
+    their vectors of component magnitudes (at least ``min_cos``) within ``df`` in natural frequency
+    (:func:`magnitude_pairs`).  Yields (wind, HAWCStab2's components: complex array, ours: complex
+    array, our mode)."""
     keys = list(PHASE_COMPONENTS)
     for v, modes in points.items():
         ref = [r for r in amplitude_rows(v) if 0.05 < float(r["frequency_hz"]) < max_hz
                and float(r["damping_pct"]) < 100 * max_zeta]
         ours = [m for m in modes if m.tip is not None and m.frequency_hz < 1.2 * max_hz]
-        H = np.array([[float(r[k]) * np.exp(1j * np.radians(float(r[k + "_ph"]))) for k in keys] for r in ref])
-        W = np.array([[m.multiblade_components()[PHASE_COMPONENTS[k]] for k in keys] for m in ours])
-        a, b = np.abs(H), np.abs(W)
-        cos = (a / np.linalg.norm(a, axis=1, keepdims=True)) @ (b / np.linalg.norm(b, axis=1, keepdims=True)).T
-        z = np.array([float(r["damping_pct"]) / 100.0 for r in ref])
-        fn = np.array([float(r["frequency_hz"]) for r in ref]) / np.sqrt(1 - z**2)
-        f = np.array([m.frequency_hz for m in ours])
-        ok = (np.abs(f[None, :] / fn[:, None] - 1) <= df) & (cos >= min_cos)
-        for i, j in zip(*linear_sum_assignment(-np.where(ok, cos, -1.0))):
-            if ok[i, j]:
-                yield v, H[i], W[j], ours[j]
+        got, _, _ = magnitude_pairs(ref, ours, df, min_cos)
+        for r, m in zip(ref, got):
+            if m is not None:
+                h = np.array([float(r[k]) * np.exp(1j * np.radians(float(r[k + "_ph"]))) for k in keys])
+                w = np.array([m.multiblade_components()[PHASE_COMPONENTS[k]] for k in keys])
+                yield v, h, w, m
 
 
 def phase_misfit(h, w, conjugate, flip, azimuth, min_share=0.05):

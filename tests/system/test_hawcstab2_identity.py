@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from hawcstab2_reference import PHASE_COMPONENTS, WINDS, amplitude_rows, operating_point
+from hawcstab2_reference import WINDS, amplitude_rows, magnitude_pairs, operating_point
 
 #: the 1st torsion and the 3rd tower fore-aft share 3.6-4.0 Hz at 20-25 m/s, where neither the
 #: pairing by tip amplitudes nor HAWCStab2's labels tell them apart: the names are checked to 3.5 Hz there
@@ -57,23 +57,11 @@ def sweep():
 
 def _pairs(modes, wind):
     """(HAWCStab2 mode number, its label, natural frequency Hz, our mode or None) at ``wind``."""
-    from scipy.optimize import linear_sum_assignment
-
-    keys = list(PHASE_COMPONENTS)
     ref = [r for r in amplitude_rows(wind) if 0.3 < float(r["frequency_hz"]) < 4.0 and abs(float(r["damping_pct"])) < 99]
     ours = [m for m in modes if m.tip is not None and m.frequency_hz < 5.0]
-    H = np.array([[float(r[k]) for k in keys] for r in ref])
-    W = np.array([[abs(m.multiblade_components()[PHASE_COMPONENTS[k]]) for k in keys] for m in ours])
-    cos = (H / np.linalg.norm(H, axis=1, keepdims=True)) @ (W / np.linalg.norm(W, axis=1, keepdims=True)).T
     z = np.array([float(r["damping_pct"]) / 100 for r in ref])
-    fn = np.array([float(r["frequency_hz"]) for r in ref]) / np.sqrt(1 - z**2)
-    f = np.array([m.frequency_hz for m in ours])
-    zz = np.array([m.damping_ratio for m in ours])
-    df = np.where(z > 0.3, 0.15, 0.08)[:, None]
-    ok = (np.abs(f[None, :] / fn[:, None] - 1) <= df) & (cos >= 0.9) & (np.abs(zz[None, :] - z[:, None]) <= 0.10)
-    rows, cols = linear_sum_assignment(-np.where(ok, cos, -1.0))
-    got = {int(i): ours[j] for i, j in zip(rows, cols) if ok[i, j]}
-    return [(int(r["mode"]), r["blade_label"], fn[i], got.get(i)) for i, r in enumerate(ref)]
+    got, fn, _ = magnitude_pairs(ref, ours, np.where(z > 0.3, 0.15, 0.08), 0.9, max_dzeta=0.10)
+    return [(int(r["mode"]), r["blade_label"], fn[i], got[i]) for i, r in enumerate(ref)]
 
 
 def _identity(name: str) -> str:
