@@ -27,7 +27,7 @@ from windflutter.solve.linsolve import blas_limit
 from windflutter.system.campbell import campbell, default_wind_speeds
 from windflutter.system.operational import OperationalModel
 from windflutter.config import config_from_dict
-from windflutter.stability.build import operational_options
+from windflutter.methods import operational_options
 
 
 def timed(turbine, winds, options, max_hz):

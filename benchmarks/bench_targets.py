@@ -67,7 +67,7 @@ def case_build(model: str) -> dict:
 
 
 def case_solve(reduction: str) -> dict:
-    import windflutter.stability.turbine as tmod
+    import windflutter.frozen.turbine as tmod
     from windflutter.solve import qep
 
     tb = _turbine()
@@ -108,7 +108,7 @@ MAP12 = [3.0, 5.0, 7.0, 9.0, 11.0, 12.0, 13.0, 15.0, 17.0, 19.0, 21.0, 25.0]
 
 
 def case_map(workers: int, winds=None, aero=("potential", "viscous"), former: bool = False) -> dict:
-    import windflutter.stability.search as search
+    import windflutter.frozen.search as search
     from windflutter.config import load_config
     from windflutter.workflow import run
 

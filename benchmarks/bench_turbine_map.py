@@ -31,7 +31,7 @@ class MapPoint:
         self._ts = None
 
     def __call__(self, wind):
-        import windflutter.stability.turbine as tmod
+        import windflutter.frozen.turbine as tmod
         from windflutter.solve.aero_reduction import MTAAeroelasticModel
 
         if self._ts is None:

@@ -38,8 +38,8 @@ def load():
 
 
 def case(n_modes, wind, rpm, mta=False):
-    import windflutter.stability.turbine as tmod
-    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+    import windflutter.frozen.turbine as tmod
+    from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
     if mta:  # runs in a forked child: the swap does not leak into other cases
         from windflutter.solve.aero_reduction import MTAAeroelasticModel

@@ -40,13 +40,13 @@ def cli_json(capsys, argv: list[str]) -> dict:
 
 def test_import_is_light_and_lazy():
     # `import windflutter` must stay fast: no NumPy, no API module until an API name is used;
-    # windflutter.stability is both the package and callable, also after its sub-modules are imported
+    # windflutter.stability is the API function only (no package of that name since issue 29)
     code = ("import sys, json, windflutter; a = ['numpy' in sys.modules, 'windflutter.api' in sys.modules]; "
-            "f = windflutter.modes; import windflutter.stability.build; "
+            "f = windflutter.modes; import windflutter.methods; "
             "print(json.dumps(a + ['windflutter.api' in sys.modules, callable(windflutter.stability), "
-            "hasattr(windflutter.stability, 'build'), sorted(set(windflutter.__all__) - set(dir(windflutter)))]))")
+            "windflutter.stability.__module__, sorted(set(windflutter.__all__) - set(dir(windflutter)))]))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True).stdout
-    assert json.loads(out) == [False, False, True, True, True, []]
+    assert json.loads(out) == [False, False, True, True, 'windflutter.api', []]
 
 
 def test_modes_api_equals_cli_and_defaults_to_beam(cached, capsys):
@@ -106,7 +106,7 @@ class _Recorder:
 
 
 def test_stability_api_builds_the_cli_solver(cached, monkeypatch, capsys):
-    import windflutter.stability.build as build
+    import windflutter.methods as build
 
     monkeypatch.setattr(build, "stability_analysis", _Recorder)
     _Recorder.configs = []
@@ -137,14 +137,14 @@ def test_stability_api_equals_cli_real_solve(cached, capsys):
 def _no_work(monkeypatch):
     """Every entry into real work fails the test: the API must refuse bad input before."""
     import windflutter.mesh.analysis
-    import windflutter.stability.build
+    import windflutter.methods
     import windflutter.system.operational
     import windflutter.workflow
 
     def stop(*a, **k):
         raise AssertionError("work started before the input was checked")
 
-    for mod, attr in ((windflutter.mesh.analysis, "turbine_modes"), (windflutter.stability.build, "stability_analysis"),
+    for mod, attr in ((windflutter.mesh.analysis, "turbine_modes"), (windflutter.methods, "stability_analysis"),
                       (windflutter.system.operational, "OperationalModel"), (windflutter.workflow, "run")):
         monkeypatch.setattr(mod, attr, stop)
 
@@ -244,9 +244,9 @@ def test_the_methods_registry_builds_each_methods_solver():
     ``if method == "p"`` branches in the API, the command line and the run."""
     from windflutter.api import analysis_config
     from windflutter.errors import InputError
-    from windflutter.stability.build import METHODS, case_options, method
+    from windflutter.methods import METHODS, case_options, method
     from windflutter.system.operational import OperationalOptions
-    from windflutter.stability.turbine import TurbineOptions
+    from windflutter.frozen.turbine import TurbineOptions
 
     assert set(METHODS) == {"p", "pk", "thesis"}
     cfg = analysis_config()

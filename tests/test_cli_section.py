@@ -128,7 +128,7 @@ def test_simple_command_plot(tmp_path, capsys, monkeypatch):
     # numbers are checked in test_simple_model.py and by test_simple_command_json)
     import numpy as np
 
-    from windflutter.stability import simple_model
+    from windflutter.frozen import simple_model
 
     full = simple_model.run_simple_model
     monkeypatch.setattr(simple_model, "run_simple_model",

@@ -37,7 +37,8 @@ LAYERS: tuple[tuple[str, ...], ...] = (
     ("solve",),
     ("steady",),
     ("system",),
-    ("stability",),
+    ("section", "overspeed", "frozen"),
+    ("methods",),
     ("simulate", "sensitivity"),
     ("post",),
     ("analysers", "operating"),
@@ -290,16 +291,16 @@ LOCAL_IMPORTS: dict[str, tuple[frozenset[str], str]] = {
                f"{_LATE_BINDING}; simulate: {_OTHER_ISSUE}"),
     "system/operational.py": (frozenset({"windflutter.mesh.turbine", "windflutter.system.identity"}),
                               f"build_model: {_LATE_BINDING}; identity: {_LEAD}"),
-    "analysers.py": (frozenset({"windflutter.stability.turbine"}), "the seed's methods (stability.turbine), a fenced "
+    "analysers.py": (frozenset({"windflutter.frozen.turbine"}), "the seed's methods (frozen.turbine), a fenced "
                      "plug-in loaded only when a pk or thesis case runs"),
-    "stability/build.py": (frozenset({"windflutter.stability.turbine"}), "the seed's methods, a fenced plug-in "
-                           "loaded only when a pk or thesis case is built"),
+    "methods.py": (frozenset({"windflutter.frozen.turbine"}), "the seed's methods, a fenced plug-in "
+                   "loaded only when a pk or thesis case is built"),
     "mesh/": (frozenset({"*"}), _OTHER_ISSUE),
     "simulate/": (frozenset({"*"}), _OTHER_ISSUE),
     "system/deflected_shell.py": (frozenset({"*"}), _OTHER_ISSUE),
-    "stability/operational.py": (frozenset({"*"}), _LEAD),
-    "stability/tracking.py": (frozenset({"*"}), _LEAD),
-    "stability/turbine.py": (frozenset({"*"}), _LEAD),
+    "overspeed.py": (frozenset({"*"}), _LEAD),
+    "frozen/tracking.py": (frozenset({"*"}), _LEAD),
+    "frozen/turbine.py": (frozenset({"*"}), _LEAD),
     "system/campbell.py": (frozenset({"*"}), _LEAD),
     "system/identity.py": (frozenset({"*"}), _LEAD),
     "system/modes.py": (frozenset({"*"}), _LEAD),
@@ -387,3 +388,29 @@ def test_the_local_import_check_can_fail(tmp_path):
                                        "def f():\n    from .store import a\n    from windflutter.post import plots\n"
                                        "    import scipy\n    from windflutter import units\n")
     assert unlisted_local_imports(pkg) == {"post/x.py": ["windflutter.post.store", "windflutter.units"]}
+
+
+# ------------------------------------------------------------------ the seed's methods, fenced
+#: the only modules that may import the seed's frozen-azimuth methods (windflutter.frozen): the
+#: methods registry that builds a pk / thesis case, the analyser adapter that runs one, and the
+#: commands of the Goland wing and the thesis's simple model (issue 29: the core never imports them)
+FENCE_GATES = ("windflutter.methods", "windflutter.analysers", "windflutter.cli.")
+
+
+def fence_breaches(graph=None) -> list[str]:
+    """Modules outside ``windflutter.frozen`` and :data:`FENCE_GATES` that import it."""
+    graph = _graph() if graph is None else graph
+    return sorted(f"{m} (line {line}) imports {t}" for m, ts in graph.items() for t, line in ts
+                  if (t == "windflutter.frozen" or t.startswith("windflutter.frozen."))
+                  and not m.startswith("windflutter.frozen") and not m.startswith(FENCE_GATES))
+
+
+def test_the_core_does_not_import_the_seed_methods():
+    assert fence_breaches() == []
+
+
+def test_the_fence_check_can_fail():
+    graph = {"windflutter.overspeed": [("windflutter.frozen.search", 4)],
+             "windflutter.methods": [("windflutter.frozen.turbine", 9)],
+             "windflutter.frozen.turbine": [("windflutter.frozen.search", 3)]}
+    assert fence_breaches(graph) == ["windflutter.overspeed (line 4) imports windflutter.frozen.search"]

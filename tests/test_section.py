@@ -7,7 +7,7 @@ import pytest
 
 from windflutter.aero.theodorsen import jones, jones_rfa, theodorsen
 from windflutter.errors import InputError
-from windflutter.stability.section import (
+from windflutter.section import (
     TypicalSection,
     aero_matrices,
     divergence_speed,

@@ -6,8 +6,8 @@ from importlib import resources
 import numpy as np
 import pytest
 
-from windflutter.stability.section import divergence_speed, pk_eigen, natural_frequencies
-from windflutter.stability.simple_model import (
+from windflutter.section import divergence_speed, pk_eigen, natural_frequencies
+from windflutter.frozen.simple_model import (
     RPM,
     first_unstable,
     inflow,

@@ -58,7 +58,7 @@ API_PROBE = textwrap.dedent("""
     def blas():
         return [d["num_threads"] for d in threadpoolctl.threadpool_info() if d["user_api"] == "blas"]
     preloaded = blas()
-    from windflutter.stability.section import TypicalSection, pk_method
+    from windflutter.section import TypicalSection, pk_method
     import scipy.linalg
     res = pk_method(TypicalSection.from_nondimensional(semi_chord=1.0, elastic_axis=-0.2, mass_ratio=20.0,
                     x_alpha=0.1, r_alpha_squared=0.24, omega_h=0.4, omega_alpha=1.0))

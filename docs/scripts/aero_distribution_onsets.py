@@ -17,7 +17,7 @@ import argparse
 import time
 
 from windflutter.model import load_turbine
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
 
 def onset(turbine: str, distribution: str, n_chord: int, n_span: int, wind: float = 10.0) -> dict:

@@ -13,7 +13,7 @@ import time
 
 from windflutter.config import config_from_dict
 from windflutter.model import load_turbine
-from windflutter.stability.build import stability_analysis
+from windflutter.methods import stability_analysis
 
 SEED = {"solver": {"induction": False, "mean_loads": False, "deflection": False}, "damping": {"model": "none"},
         "model": {"drivetrain": "locked"}}

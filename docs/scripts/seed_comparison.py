@@ -57,7 +57,7 @@ def _tolerate_lost_start_vectors():
     zeros (their label is meaningless and is replaced by "lost" in the table)."""
     import numpy as np
 
-    import windflutter.stability.turbine as tmod
+    import windflutter.frozen.turbine as tmod
 
     inner = tmod.pk_search
     if getattr(inner, "_tolerant", False):
@@ -79,7 +79,7 @@ def _tolerate_lost_start_vectors():
 def run_case(name: str, out_csv: Path) -> None:
     """Analyse every variant and wind speed of one turbine, appending rows to ``out_csv``."""
     from windflutter.model.windio import load_turbine
-    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+    from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
     _tolerate_lost_start_vectors()
 
@@ -215,7 +215,7 @@ def candidates(outdir: Path, wind: float = 10.0) -> list[dict]:
     import windflutter.aero.strip as strip
     from windflutter.aero.polars import fit_polar
     from windflutter.model.windio import load_turbine
-    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+    from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
     turbine = load_turbine("nrel5mw")
     base_sm = strip.section_matrices
@@ -302,7 +302,7 @@ def damping_check(outdir: Path, name: str = "iea15mw", wind: float = 10.0) -> li
     import numpy as np
 
     from windflutter.model.windio import load_turbine
-    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+    from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
     _tolerate_lost_start_vectors()
     turbine = load_turbine(name)
@@ -365,8 +365,8 @@ def divergence_full(outdir: Path, names) -> list[dict]:
     from scipy.optimize import brentq
 
     from windflutter.model.windio import load_turbine
-    from windflutter.stability.search import static_min_eig
-    from windflutter.stability.turbine import RPM, TurbineOptions, TurbineStability
+    from windflutter.frozen.search import static_min_eig
+    from windflutter.frozen.turbine import RPM, TurbineOptions, TurbineStability
 
     rows = []
     for name in names:

@@ -1,7 +1,7 @@
 """windflutter: frequency-domain aeroelastic stability (flutter, divergence) of wind turbines.
 
 The package folders mirror the analysis pipeline:
-model -> mesh -> structure -> rotor -> aero -> solve -> stability -> post
+model -> mesh -> structure -> rotor -> aero -> solve -> steady -> system -> overspeed -> post
 (the import layers are in ``docs/architecture.md``).
 
 Importing windflutter applies its BLAS-thread policy to the process (one thread unless the
@@ -18,12 +18,7 @@ light) ::
     windflutter.stability(turbine, [11.0])                # flutter / divergence onset per wind speed
     windflutter.run(turbine, "analysis.yaml")             # the whole analysis -> out/nrel5mw/
     windflutter.analysis_config(aero="potential")         # a validated analysis config
-
-``windflutter.stability`` is also the package :mod:`windflutter.stability` (the solvers): calling
-it runs :func:`windflutter.api.stability`.
 """
-
-import types as _types
 
 from windflutter.version import __version__  # noqa: E402
 
@@ -33,7 +28,7 @@ _threads.apply_policy()
 
 #: the API functions re-exported here (from :mod:`windflutter.api`)
 # (simulate is windflutter.api's only: the sub-package windflutter.simulate holds that name)
-_API = ("load_turbine", "modes", "campbell", "run", "analysis_config", "confirm_onset")
+_API = ("load_turbine", "modes", "campbell", "stability", "run", "analysis_config", "confirm_onset")
 
 
 def __getattr__(name: str):
@@ -48,20 +43,4 @@ def __dir__():
     return sorted(set(globals()) | set(_API))
 
 
-class _CallablePackage(_types.ModuleType):
-    """The package :mod:`windflutter.stability`, callable as :func:`windflutter.api.stability`."""
-
-    def __call__(self, turbine, wind_speeds, **options):
-        """Flutter and divergence onset per wind speed: :func:`windflutter.api.stability`."""
-        from windflutter.api import stability  # noqa: PLC0415
-
-        return stability(turbine, wind_speeds, **options)
-
-
-# the package's __init__ is empty: importing it costs nothing, and it becomes callable before any
-# sub-module import can bind ``windflutter.stability`` to the plain package
-from windflutter import stability as _stability  # noqa: E402
-
-_stability.__class__ = _CallablePackage
-
-__all__ = ["__version__", "stability", *_API]
+__all__ = ["__version__", *_API]

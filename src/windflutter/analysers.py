@@ -2,7 +2,7 @@
 
 An analyser is a callable ``analyse(point: OperatingPoint, progress=None) -> PointResult``
 (:class:`Analyser`).  :func:`make_analyser` gives the built-in one, :class:`TurbinePointAnalyser`
-(one solver per ``(aero, method)`` case from :func:`windflutter.stability.build.stability_analysis`,
+(one solver per ``(aero, method)`` case from :func:`windflutter.methods.stability_analysis`,
 built once and reused across wind speeds), or a plug-in of :mod:`windflutter.backends`.
 :func:`operating_campbell` is the run's operating-point Campbell, on the model the analyser built.
 """
@@ -23,7 +23,7 @@ from windflutter.errors import InputError, InputWarning, ModelError, ValidityWar
 from windflutter.operating import operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult
-from windflutter.stability.build import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts, with_span_count
+from windflutter.methods import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts, with_span_count
 from windflutter.units import RPM
 
 # --------------------------------------------------------------------------------------------
@@ -52,10 +52,10 @@ def make_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
 
 
 def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
-    """The built-in turbine stability solver (:mod:`windflutter.stability.turbine`) behind the
+    """The built-in turbine stability solver (:mod:`windflutter.frozen.turbine`) behind the
     per-point interface, with the flutter mode shape and aero-work diagnostic added."""
     try:
-        from windflutter.stability import turbine as _st  # noqa: PLC0415
+        from windflutter.frozen import turbine as _st  # noqa: PLC0415
     except ImportError as exc:
         raise ModelError(f"the built-in turbine stability solver is not available ({exc}); use "
                          "a plug-in solver.backend (windflutter.backends) for your own analyser") from None
@@ -65,13 +65,13 @@ def _builtin_analyser(turbine: Any, config: AnalysisConfig) -> Analyser:
 
 
 def mesh_settings(config: AnalysisConfig) -> dict[str, Any]:
-    """Mesh-setting overrides of ``config`` (:func:`windflutter.stability.build.mesh_settings`)."""
+    """Mesh-setting overrides of ``config`` (:func:`windflutter.methods.mesh_settings`)."""
     return _mesh(config)
 
 
 def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any = None):
     """The seed's solver options of one ``(aero, method)`` case (methods pk, thesis), with the mesh
-    (:func:`windflutter.stability.build.turbine_options`; ``module`` only for tests that substitute
+    (:func:`windflutter.methods.turbine_options`; ``module`` only for tests that substitute
     the solver module)."""
     if module is None:
         return _opts(config, aero, method)
@@ -80,7 +80,7 @@ def turbine_options(config: AnalysisConfig, aero: str, method: str, module: Any 
 
 
 class TurbinePointAnalyser:
-    """Adapter: the solver of each (aero, method) case (:func:`windflutter.stability.build.
+    """Adapter: the solver of each (aero, method) case (:func:`windflutter.methods.
     stability_analysis`) -> ``analyse(point)``; one solver per case, so models are built once per
     blade pitch and reused across wind speeds.
     """

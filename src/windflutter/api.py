@@ -41,11 +41,11 @@ from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
 from windflutter.model.turbine import Turbine
 from windflutter import operating
 from windflutter.schema import Spec
-from windflutter.stability import build  # module access: tests patch build.stability_analysis
+from windflutter import methods as build  # module access: tests patch build.stability_analysis
 from windflutter.operating import campbell_model
 from windflutter.sensitivity import onset as onset_
 from windflutter.sensitivity.results import as_dataset, sensitivities
-from windflutter.stability.build import operational_options
+from windflutter.methods import operational_options
 from windflutter.system.campbell import default_wind_speeds
 from windflutter.system.operational import missing_curve_error
 
@@ -263,7 +263,7 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
 
     Returns
     -------
-    list of windflutter.stability.turbine.PointSummary
+    list of windflutter.results.PointSummary
         per wind speed: ``flutter_rpm``, ``flutter_frequency_hz``, ``flutter_mode``,
         ``divergence_rpm``, ``pitch_deg``, the sweep; ``.as_dict()`` is the CLI's ``--json`` point.
     """

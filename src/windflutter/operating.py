@@ -14,7 +14,7 @@ from __future__ import annotations
 from typing import Any
 
 from windflutter.config import AnalysisConfig
-from windflutter.stability.build import operational_options
+from windflutter.methods import operational_options
 from windflutter.system.campbell import campbell
 from windflutter.system.operational import OperationalModel, missing_curve_error
 

@@ -16,7 +16,7 @@ import numpy as np
 
 from windflutter.units import RPM
 
-__all__ = ["OperatingPoint", "PointResult"]
+__all__ = ["OperatingPoint", "PointResult", "Onset", "PointSummary"]
 
 
 @dataclass(frozen=True)
@@ -108,3 +108,75 @@ class PointResult:
     status: str = "ok"
     reason: str = ""
     elapsed: float = float("nan")
+
+
+# ---------------------------------------------------------------- the searches' result types
+@dataclass
+class Onset:
+    """First unstable point along the parameter.
+
+    Attributes
+    ----------
+    flutter : parameter at flutter onset (None if none found in range).
+    flutter_frequency : circular frequency at onset (rad/s).
+    flutter_mode : index of the tracked mode (pk) / label.
+    flutter_vector : mode shape at onset (working basis).
+    divergence : parameter at divergence onset or None.
+    history : per-grid-point data (params, eigenvalues of tracked modes (n_p, n_modes)).
+    """
+
+    flutter: float | None = None
+    flutter_frequency: float | None = None
+    flutter_mode: int | None = None
+    flutter_vector: np.ndarray | None = None
+    divergence: float | None = None
+    params: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    eigenvalues: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), complex))
+    method: str = "pk"
+    vectors0: list | None = None
+    reason: str = ""
+
+
+@dataclass
+class PointSummary:
+    """Result at one wind speed (user units).
+
+    flutter_rpm, flutter_frequency_hz, flutter_mode, divergence_rpm: None when not found in
+    range.  pitch_deg: blade pitch used.  sweep_rpm, frequency_hz, damping_ratio, mode_labels:
+    the tracked modes over the grid (Campbell; ``frequency_hz`` the damped frequency ``|Im lambda| /
+    2 pi`` for every method, as ``results.nc``'s ``frequency`` declares it).  onset: raw search result.
+    """
+
+    wind_speed: float
+    pitch_deg: float
+    flutter_rpm: float | None
+    flutter_frequency_hz: float | None
+    flutter_mode: str | None
+    divergence_rpm: float | None
+    sweep_rpm: np.ndarray
+    frequency_hz: np.ndarray
+    damping_ratio: np.ndarray
+    mode_labels: list[str]
+    onset: Onset
+
+    @property
+    def first_instability(self) -> str | None:
+        """``"flutter"``, ``"divergence"`` or None: which onset comes first in rotor speed.
+
+        A flutter crossing above the divergence speed is still reported (like a V-g plot shows
+        it), but the turbine's stability limit is the divergence: the linearization about the
+        undeformed state no longer describes an equilibrium beyond it.
+        """
+        fl, dv = self.flutter_rpm, self.divergence_rpm
+        if fl is None and dv is None:
+            return None
+        if dv is None or (fl is not None and fl <= dv):
+            return "flutter"
+        return "divergence"
+
+    def as_dict(self) -> dict:
+        f = (lambda v: None if v is None else float(v))
+        return {"wind_speed": float(self.wind_speed), "flutter_rpm": f(self.flutter_rpm),
+                "flutter_frequency_hz": f(self.flutter_frequency_hz), "flutter_mode": self.flutter_mode,
+                "divergence_rpm": f(self.divergence_rpm), "first_instability": self.first_instability,
+                "pitch_deg": float(self.pitch_deg), "note": (getattr(self.onset, "reason", "") or None)}

@@ -42,7 +42,7 @@ SECTION_BASIS[4, 1] = 1.0
 def section_state_matrix(sec, U: float, options, basis=SECTION_BASIS):
     """First-order state matrix of a TypicalSection (its M, K; h down) with the state-space
     strip operator at speed U."""
-    from windflutter.stability.section import structural_matrices
+    from windflutter.section import structural_matrices
 
     M, K = structural_matrices(sec)
     strip = one_strip(sec.semi_chord, sec.elastic_axis)

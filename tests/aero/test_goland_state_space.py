@@ -11,8 +11,8 @@ from windflutter.aero.operators import StateSpaceAero
 from windflutter.aero.strip import StripAero
 from windflutter.aero.theodorsen import jones, theodorsen, theodorsen_rfa
 from windflutter.aero.unsteady import UnsteadyOptions
-from windflutter.stability.search import pk_search
-from windflutter.stability.wing import WingConfig, wing_model
+from windflutter.frozen.search import pk_search
+from windflutter.frozen.wing import WingConfig, wing_model
 
 # Goland (1945) as in tests/solver/test_wing.py (Bisplinghoff, Ashley & Halfman sec. 9.3 data)
 GOLAND = dict(span=6.096, chord=1.8288, elastic_axis=0.33, mass_axis=0.43, bending_stiffness=9.77e6,

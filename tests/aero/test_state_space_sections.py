@@ -15,7 +15,7 @@ from windflutter.aero.sections import AeroSections
 from windflutter.aero.strip import AeroOptions, StripAero
 from windflutter.aero.theodorsen import jones, jones_rfa, theodorsen, theodorsen_rfa
 from windflutter.aero.unsteady import Circulation, UnsteadyOptions
-from windflutter.stability.section import TypicalSection, p_method, pk_method
+from windflutter.section import TypicalSection, p_method, pk_method
 
 # the two sections of tests/test_section.py (docs/typical_section.md): Lee, Price & Wong (1999),
 # published U* = 6.2851 with Jones' C(k); Hodges & Pierce (2011) sec. 5.5

@@ -37,9 +37,9 @@ HEAVY = [
     ("windflutter.model", "load_turbine"), ("windflutter.model.windio", "load_turbine"),
     ("windflutter.workflow", "make_analyser"), ("windflutter.workflow", "_run"),
     ("windflutter.mesh.turbine", "build_model"), ("windflutter.mesh.analysis", "turbine_modes"),
-    ("windflutter.stability.wing", "analyse_wing"), ("windflutter.stability.section", "analyse"),
-    ("windflutter.stability.simple_model", "run_simple_model"),
-    ("windflutter.stability.turbine", "TurbineStability"),
+    ("windflutter.frozen.wing", "analyse_wing"), ("windflutter.section", "analyse"),
+    ("windflutter.frozen.simple_model", "run_simple_model"),
+    ("windflutter.frozen.turbine", "TurbineStability"),
 ]
 
 

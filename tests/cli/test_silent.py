@@ -164,7 +164,7 @@ def test_stability_options_are_the_run_options():
     from windflutter.cli.stability import options_from_args
     from windflutter.config import config_from_dict
     from windflutter.mesh.settings import MeshSettings
-    from windflutter.stability.turbine import TurbineOptions
+    from windflutter.frozen.turbine import TurbineOptions
     from windflutter.workflow import turbine_options
 
     args = build_parser().parse_args(["stability", "nrel5mw", "--basis-modes", "24", "--physics", "thesis",
@@ -179,7 +179,7 @@ def test_stability_options_are_the_run_options():
     assert (opts.basis_modes, opts.geometric_stiffness, opts.mesh["n_span"], opts.mesh["part"]) == (24, False, 12,
                                                                                                     "rotor")
     # the defaults are the run's: method p on the whole turbine (OperationalOptions of the config)
-    from windflutter.stability.build import operational_options
+    from windflutter.methods import operational_options
 
     cfg_d, d = options_from_args(build_parser().parse_args(["stability", "nrel5mw"]))
     assert cfg_d == config_from_dict({"wind_speeds": [10], "rotor_speed": {"min_rpm": 2, "max_rpm": 40, "n_points": 20}})
@@ -200,7 +200,7 @@ def test_structure_auto_and_its_limits(solver, model, want):
     # refused naming the config field (no silent fall-back), when the config is read
     from windflutter.config import config_from_dict
     from windflutter.errors import InputError
-    from windflutter.stability.build import operational_options
+    from windflutter.methods import operational_options
 
     if want is None:  # refused by the config's rules, before any solver is built
         with pytest.raises(InputError, match="solver.structure"):
@@ -215,7 +215,7 @@ def test_rpm_step_gives_the_grid_of_before(lo, hi, step):
     # `--rpm MIN MAX STEP` becomes rotor_speed.n_points; the sweep is the grid the stability
     # command used before (TurbineOptions.grid: the step shortened to divide the range evenly)
     from windflutter.config import config_from_dict, n_points_for_step
-    from windflutter.stability.turbine import TurbineOptions
+    from windflutter.frozen.turbine import TurbineOptions
 
     cfg = config_from_dict({"rotor_speed": {"min_rpm": lo, "max_rpm": hi, "n_points": n_points_for_step(lo, hi, step),
                                             "tolerance_rpm": 0.01}})

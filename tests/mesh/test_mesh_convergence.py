@@ -126,7 +126,7 @@ def test_config_element_length_and_reference_surface():
     beams 30; element_length with a beam model is refused; the reference surface reaches the mesh."""
     from windflutter.config import load_config
     from windflutter.errors import InputError
-    from windflutter.stability.build import mesh_settings
+    from windflutter.methods import mesh_settings
 
     assert mesh_settings(load_config(None))["n_span"] == 30
     m = mesh_settings(load_config(None, {"model": {"type": "shell"}}))

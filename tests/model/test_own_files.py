@@ -86,7 +86,7 @@ def test_wind_speed_outside_the_operating_curve_warns():
 
     from windflutter.errors import ValidityWarning
     from windflutter.model.turbine import OperatingCurve
-    from windflutter.stability.turbine import TurbineStability
+    from windflutter.frozen.turbine import TurbineStability
 
     oc = OperatingCurve(wind_speed=np.array([3.0, 11.4, 25.0]), rotor_speed=np.array([0.72, 1.27, 1.27]),
                         pitch=np.radians([0.0, 0.0, 23.0]), source="test table")

@@ -112,7 +112,7 @@ def test_structural_deck_without_aerodynamics(turbine):
     t.require("turbine")
     with pytest.raises(InputError, match="airfoil polars"):
         t.require("turbine", aerodynamics=True)
-    from windflutter.stability.turbine import TurbineStability
+    from windflutter.frozen.turbine import TurbineStability
 
     with pytest.raises(InputError, match="airfoil polars"):
         TurbineStability(t)

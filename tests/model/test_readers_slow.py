@@ -27,7 +27,7 @@ import dataclasses
 import numpy as np
 import pytest
 
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
 
 def _onset(turbine):

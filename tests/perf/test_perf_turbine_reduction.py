@@ -30,7 +30,7 @@ def turbine():
 
 
 def _stability(turbine, n_modes, mta, rpm=(20.0, 34.0, 2.0), wind=10.0):
-    import windflutter.stability.turbine as tmod
+    import windflutter.frozen.turbine as tmod
     from windflutter.solve.aero_reduction import MTAAeroelasticModel
 
     # reduction "modal": the plain basis; the MTA vectors are added below by hand when asked

@@ -15,8 +15,8 @@ from windflutter.aero.theodorsen import jones_rfa, theodorsen_rfa
 from windflutter.errors import InputError
 from windflutter.simulate.identify import dominant
 from windflutter.simulate.section import simulate_section
-from windflutter.stability.section.model import TypicalSection
-from windflutter.stability.section.pmethod import p_method, rfa_state_matrix
+from windflutter.section.model import TypicalSection
+from windflutter.section.pmethod import p_method, rfa_state_matrix
 
 # Hodges & Pierce (2011) sec. 5.5 example section (as tests/test_section.py)
 HP = dict(semi_chord=1.0, elastic_axis=-0.2, mass_ratio=20.0, x_alpha=0.1, r_alpha_squared=6 / 25,

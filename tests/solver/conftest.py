@@ -2,7 +2,7 @@
 
 import pytest
 
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
 #: The rotor-alone reference case: NREL 5 MW rotor (hub clamped), beam model with 8 elements and
 #: strips per blade, 10 m/s, potential flow, rotor speeds 16-32 RPM in steps of 2. The same

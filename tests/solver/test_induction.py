@@ -22,7 +22,7 @@ from windflutter.aero.strip import OperatingPoint, StripAero, section_flow
 from windflutter.errors import InputError
 from windflutter.model.bundled import DATA_DIR
 from windflutter.solve.aeroelastic import AeroelasticModel
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
 RPM = math.pi / 30
 

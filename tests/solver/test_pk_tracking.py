@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from windflutter.solve.qep import qep_pencil, solve_qep_dense
-from windflutter.stability.search import (PencilSystem, _clusters, _relabel, _similarity, _subspace_mac, newton_mode, pk_mode,
+from windflutter.frozen.search import (PencilSystem, _clusters, _relabel, _similarity, _subspace_mac, newton_mode, pk_mode,
                                           pk_search)
 
 
@@ -120,7 +120,7 @@ def test_static_distance_lu_path_equals_the_spectrum():
     # LU (sign of det) and Arnoldi (min |mu|); below, from the whole spectrum.  Same value (to
     # the 1e-8 of ARPACK's convergence) on both sides of a zero crossing: K = K0 - p diag(e_0)
     # becomes singular at p = K0[0, 0] - (coupling) for this diagonally dominant K0.
-    import windflutter.stability.search as search
+    import windflutter.frozen.search as search
 
     rng = np.random.default_rng(2)
     n = 320
@@ -149,7 +149,7 @@ def test_newton_pencil_equals_the_matrices():
     # OperatingSystem.newton_pencil forms T(lam) and T'(lam) x of a projected model from the
     # rank-one circulatory factors; it must equal lam^2 Mt + lam Dt + Kt of matrices() (1e-12)
     from windflutter.model import load_turbine
-    from windflutter.stability.turbine import TurbineOptions, TurbineStability
+    from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
     ts = TurbineStability(load_turbine("nrel5mw"), TurbineOptions(mesh={"n_span": 6, "part": "rotor"}, basis_modes=8))
     _, _, am = ts.model(0.0)

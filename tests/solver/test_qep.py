@@ -61,7 +61,7 @@ def test_no_wind_no_rotation_gives_structural_modes():
     # rho = 1e-9 kg/m^3 and U = 1e-3 m/s leave perturbations of O(1e-10).
     import scipy.linalg as sla
 
-    from windflutter.stability.wing import WingConfig, wing_model
+    from windflutter.frozen.wing import WingConfig, wing_model
 
     cfg = WingConfig(span=6.096, chord=1.8288, elastic_axis=0.33, mass_axis=0.43, bending_stiffness=9.77e6,
                      torsion_stiffness=0.987e6, mass=35.71, inertia=8.64, n_elements=8, n_modes=6,

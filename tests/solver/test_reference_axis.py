@@ -26,7 +26,7 @@ import scipy.linalg as sla
 from reference_axis import moved_reference, straight_blade
 
 from windflutter.model import load_turbine
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 from windflutter.units import RPM
 
 
@@ -69,7 +69,7 @@ def test_method_p_deflected_blade_does_not_depend_on_the_reference_axis(blades):
     Measured 23.95 / 23.90 / 24.02 1/s^2 (elastic axis / half chord / quarter chord); 1.5 % as
     above.  (``structure="undeformed"``, the axial initial stress only, gives 23.54 / 21.75 / 25.78:
     not reference-axis independent, docs/verification.md section 11 item 17.)"""
-    from windflutter.stability.operational import blade_static_margin
+    from windflutter.overspeed import blade_static_margin
     from windflutter.system.operational import OperationalModel, OperationalOptions
 
     margin = {}

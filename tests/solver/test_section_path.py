@@ -1,5 +1,5 @@
 """A single section on springs through the full FE/strip-aero/p-k path equals the independent
-typical-section solver (windflutter.stability.section, written separately from strip.py)."""
+typical-section solver (windflutter.section, written separately from strip.py)."""
 
 import numpy as np
 import pytest
@@ -8,8 +8,8 @@ import scipy.sparse as sp
 from windflutter.aero.sections import AeroSections, Polar
 from windflutter.aero.strip import AeroOptions
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
-from windflutter.stability.search import pk_search
-from windflutter.stability.section import TypicalSection, analyse
+from windflutter.frozen.search import pk_search
+from windflutter.section import TypicalSection, analyse
 
 # Hodges & Pierce (2011) ch. 5 example section: a = -1/5, x_alpha = 0.1, mu = 20, r^2 = 6/25,
 # omega_h / omega_alpha = 2/5

@@ -179,7 +179,7 @@ def test_projected_weighting_and_errors(wing):
 
 
 def wing_flutter(n_span, distribution, rigid_rings=True, n_chord=12, options=None, t=0.003):
-    from windflutter.stability.search import pk_search
+    from windflutter.frozen.search import pk_search
     from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
     from windflutter.structure.assembly import assemble
 

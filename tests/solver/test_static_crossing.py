@@ -1,7 +1,7 @@
 """A crossing of the imaginary axis at (near) zero frequency is divergence, never flutter at 0 Hz.
 
 Both the seed's 8-k search and the p-k search classify a root whose reduced frequency at 75 % span
-is below :data:`~windflutter.stability.pk_roots.STATIC_K` (0.001, the seed's quasi-steady k) as
+is below :data:`~windflutter.frozen.pk_roots.STATIC_K` (0.001, the seed's quasi-steady k) as
 static.  Reference: a one-DOF pencil whose two roots are prescribed analytically,
 ``lambda_1 = (p - p*) + i eps`` (the static root) and ``lambda_2 = -5 + 10 i`` (a damped
 oscillation), so the onset ``p*`` is known exactly.
@@ -12,8 +12,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from windflutter.stability.pk_roots import STATIC_K, PencilSystem, static_frequency
-from windflutter.stability.search import pk_search, thesis_search
+from windflutter.frozen.pk_roots import STATIC_K, PencilSystem, static_frequency
+from windflutter.frozen.search import pk_search, thesis_search
 
 P_STAR = 3.3  # parameter where the static root crosses (between grid points 3 and 4)
 REF = (50.0, 2.0)  # (U, b) at 75 % span: the static frequency is STATIC_K * 50 / 2 = 0.025 rad/s

@@ -7,7 +7,7 @@ import pytest
 import scipy.linalg as sla
 
 from windflutter.cli import main
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
 RPM = np.pi / 30
 

@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from windflutter.errors import InputError
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 
 
 def test_bad_combinations_name_the_field():
@@ -60,8 +60,8 @@ def test_config_reaches_the_turbine_options():
     # every solver / rotor-speed setting of a run config arrives in TurbineOptions
     # (through build.with_span_count: a beam config's null model.n_aero_sections means 30 elements)
     from windflutter.config import config_from_dict
-    from windflutter.stability.build import with_span_count
-    from windflutter.stability.turbine import options_from_config as _from_config
+    from windflutter.methods import with_span_count
+    from windflutter.frozen.turbine import options_from_config as _from_config
 
     def options_from_config(c, aero, method):
         return _from_config(with_span_count(c), aero, method)

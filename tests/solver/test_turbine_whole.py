@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 
 import windflutter.mesh.turbine as mesh_turbine
-from windflutter.stability.search import pk_search
-from windflutter.stability.turbine import TurbineOptions, TurbineStability
+from windflutter.frozen.search import pk_search
+from windflutter.frozen.turbine import TurbineOptions, TurbineStability
 from windflutter.structure.fem import BeamSection
 
 

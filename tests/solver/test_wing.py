@@ -7,7 +7,7 @@ import pytest
 import scipy.linalg as sla
 
 from windflutter.errors import InputError
-from windflutter.stability.wing import WingConfig, analyse_wing, wing_model
+from windflutter.frozen.wing import WingConfig, analyse_wing, wing_model
 
 GOLAND = dict(span=6.096, chord=1.8288, elastic_axis=0.33, mass_axis=0.43, bending_stiffness=9.77e6,
               torsion_stiffness=0.987e6, mass=35.71, inertia=8.64, air_density=1.225)

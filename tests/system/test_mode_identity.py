@@ -111,7 +111,7 @@ def test_iea22mw_shell_no_false_alarm_from_rigid_or_local_buckling_modes():
     rigid rotation at 3-12 m/s (-6 to -25 %), the tip-panel buckling at 11 m/s (-99.95 %); the
     verdict's list of instabilities is empty."""
     from windflutter.mesh.settings import SEED_MESH
-    from windflutter.stability.operational import blade_structural_margin
+    from windflutter.overspeed import blade_structural_margin
     from windflutter.system.modes import point_modes
     from windflutter.system.operational import OperationalOptions
 

@@ -1,6 +1,6 @@
 """Step refinement of the names along a sweep (issue 32, item 2): where a named mode's natural frequency
 jumps across a step, the names are carried through the step's middle -- along the wind speeds (the
-Campbell, system/campbell.py) and along the rotor speed (the overspeed sweep, stability/operational.py).
+Campbell, system/campbell.py) and along the rotor speed (the overspeed sweep, overspeed.py).
 The physics of the names is tested in test_mode_identity.py and test_hawcstab2_identity.py; here the
 rule that triggers a refinement and the wiring of both sweeps, with stand-in modes."""
 
@@ -72,7 +72,7 @@ def test_campbell_refines_an_ambiguous_wind_step_through_its_middle(monkeypatch)
 
 def test_overspeed_sweep_refines_an_ambiguous_rotor_speed_step_through_its_middle(monkeypatch):
     """Along the rotor speed: the same for the overspeed sweep's step 12 -> 14 RPM."""
-    from windflutter.stability import operational
+    from windflutter import overspeed as operational
 
     calls = []
     monkeypatch.setattr(operational, "point_modes", _recording_point_modes(calls, 13.0))

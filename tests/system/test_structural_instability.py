@@ -15,7 +15,7 @@ import numpy as np
 import pytest
 
 import windflutter
-import windflutter.stability.operational as op
+import windflutter.overspeed as op
 from windflutter.units import RPM
 
 

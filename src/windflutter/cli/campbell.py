@@ -59,7 +59,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def _config(args: argparse.Namespace):
     from windflutter.config import load_config  # noqa: PLC0415
-    from windflutter.stability.build import operational_options  # noqa: PLC0415
+    from windflutter.methods import operational_options  # noqa: PLC0415
 
     try:
         config = load_config(None, config_overrides(args, FLAGS))

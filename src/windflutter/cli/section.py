@@ -68,7 +68,7 @@ def _fmt(x: float | None, unit: str, digits: int = 6) -> str:
 
 
 def run(args: argparse.Namespace) -> int:
-    from windflutter.stability.section import analyse, section_from_config
+    from windflutter.section import analyse, section_from_config
 
     cfg = load_yaml(args.config)
     sec = section_from_config(cfg, source=args.config)

@@ -26,7 +26,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
-    from windflutter.stability.simple_model import load_simple_models, run_simple_model
+    from windflutter.frozen.simple_model import load_simple_models, run_simple_model
 
     if args.plot is not None:
         from windflutter.files import check_output_file  # noqa: PLC0415

@@ -41,9 +41,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def options_from_args(args: argparse.Namespace):
     """``(AnalysisConfig, options)`` of the command line (errors name the flag): the options of the
-    solver :func:`windflutter.stability.build.stability_analysis` builds for the case."""
+    solver :func:`windflutter.methods.stability_analysis` builds for the case."""
     from windflutter.config import load_config  # noqa: PLC0415
-    from windflutter.stability.build import case_options  # noqa: PLC0415
+    from windflutter.methods import case_options  # noqa: PLC0415
 
     try:
         config = load_config(None, config_overrides(args, FLAGS))
@@ -57,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.cli.warn import curve_rpm, operating_rotor_speed
     from windflutter.files import check_output_file, prepare_output_file
     from windflutter.model.windio import load_turbine
-    from windflutter.stability.build import stability_analysis
+    from windflutter.methods import stability_analysis
 
     config, opts = options_from_args(args)
     if args.plot is not None:  # before the analysis

@@ -42,7 +42,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
 
 def _vocabulary(data, source: str):
     """The wing file's ``basis_modes`` (the name of the analysis config, preferred) or its older
-    ``n_modes`` for :class:`~windflutter.stability.wing.WingConfig`'s ``n_modes``."""
+    ``n_modes`` for :class:`~windflutter.frozen.wing.WingConfig`'s ``n_modes``."""
     if isinstance(data, dict) and "basis_modes" in data:
         if "n_modes" in data:
             raise InputError("n_modes", data["n_modes"], "basis_modes or n_modes (the same setting), not both",
@@ -52,7 +52,7 @@ def _vocabulary(data, source: str):
 
 
 def check_bounds(cfg, source: str, names: dict[str, str] | None = None) -> None:
-    """Every field of a :class:`~windflutter.stability.wing.WingConfig` in its physical range and
+    """Every field of a :class:`~windflutter.frozen.wing.WingConfig` in its physical range and
     the speed grid at most :data:`~windflutter.config.MAX_GRID_POINTS` long, before any work
     (``names``: the file's name of a field where it differs)."""
     for name, spec in BOUNDS.items():
@@ -65,7 +65,7 @@ def check_bounds(cfg, source: str, names: dict[str, str] | None = None) -> None:
 
 def run(args: argparse.Namespace) -> int:
     from windflutter.files import load_yaml
-    from windflutter.stability.wing import WingConfig, analyse_wing
+    from windflutter.frozen.wing import WingConfig, analyse_wing
 
     data = load_yaml(args.config, "config", what="wing YAML file")
     names = {"n_modes": "basis_modes"} if isinstance(data, dict) and "basis_modes" in data else {}

@@ -1,4 +1,4 @@
-"""Stability map and Campbell diagram from :class:`~windflutter.stability.turbine.PointSummary`."""
+"""Stability map and Campbell diagram from :class:`~windflutter.results.PointSummary`."""
 
 from __future__ import annotations
 

@@ -47,7 +47,7 @@ def damping_curve(curves, m: int) -> np.ndarray:
 
 
 def vg_figure(result, title: str | None = None):
-    """V-g (top) and V-f (bottom) curves of a :class:`~windflutter.stability.section.SectionResult`
+    """V-g (top) and V-f (bottom) curves of a :class:`~windflutter.section.SectionResult`
     (a pyplot figure; the caller closes it).  Frequencies in Hz; damping by :func:`damping_curve`;
     the flutter and divergence speeds marked."""
     c = result.curves
@@ -94,7 +94,7 @@ def plot_vg(result, path: str | Path, title: str | None = None) -> Path:
 def plot_simple_model(results: Sequence, path: str | Path, extra: Sequence | None = None) -> Path:
     """First unstable rotor speed vs wind speed, one panel per turbine.
 
-    ``results`` are :class:`~windflutter.stability.simple_model.SimpleModelResult`; ``extra``
+    ``results`` are :class:`~windflutter.frozen.simple_model.SimpleModelResult`; ``extra``
     optional second results per turbine (e.g. frozen-k beside p-k), drawn dashed.  The range
     reported by the thesis (fig. 4.7) is shaded.
     """

@@ -100,7 +100,7 @@ def confirm_onset(turbine, wind_speed: float, factors=(0.97, 1.03), n_span: int 
     ``factors`` x its rotor speed (module docstring; ``part``: ``turbine`` or ``rotor``;
     ``damping``: ``none`` or, for the turbine, ``file``: the files' blade and tower damping in
     both)."""
-    from windflutter.stability.build import operational_options, stability_analysis  # noqa: PLC0415
+    from windflutter.methods import operational_options, stability_analysis  # noqa: PLC0415
     from windflutter.system.operational import OperationalModel  # noqa: PLC0415
 
     if part not in ("turbine", "rotor"):

@@ -1,5 +1,5 @@
 """The 2-DOF typical section in the time domain: the structure of
-:class:`~windflutter.stability.section.model.TypicalSection` under the nonlinear strip force law
+:class:`~windflutter.section.model.TypicalSection` under the nonlinear strip force law
 (:mod:`windflutter.simulate.strips`) with its lag states, integrated by generalized-alpha.
 
 Coordinates ``q = (h, alpha)``: plunge of the elastic axis UP (m) and pitch nose-up (rad); the
@@ -20,7 +20,7 @@ from windflutter.errors import InputError
 from windflutter.simulate.identify import Identification, identify
 from windflutter.simulate.integrator import Trajectory, integrate, step_for_frequency
 from windflutter.simulate.strips import StripGeometry, flat_plate, strip_forces
-from windflutter.stability.section.model import TypicalSection
+from windflutter.section.model import TypicalSection
 
 __all__ = ["SectionDynamics", "SectionRun", "simulate_section"]
 

@@ -12,7 +12,7 @@ import numpy as np
 from scipy import linalg
 
 from windflutter.aero.theodorsen import theodorsen
-from windflutter.stability.section.model import TWO_PI, TypicalSection
+from windflutter.section.model import TWO_PI, TypicalSection
 
 #: a circulation function: reduced frequencies (array) -> C(k) (complex array), vectorised,
 #: e.g. :func:`~windflutter.aero.theodorsen.theodorsen` or ``jones``

@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from typing import Any
 
 from windflutter.errors import InputError
-from windflutter.stability.section.model import TWO_PI, TypicalSection, is_number
+from windflutter.section.model import TWO_PI, TypicalSection, is_number
 
 _COMMON_KEYS = {"semi_chord", "elastic_axis", "air_density", "lift_slope"}
 _DIM_KEYS = ("mass", "static_moment", "inertia", "plunge_stiffness", "pitch_stiffness")

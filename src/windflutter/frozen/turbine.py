@@ -4,7 +4,7 @@ For a wind speed ``V`` the blade pitch comes from the turbine's operating curve;
 (beam or shell, built by :func:`windflutter.mesh.turbine.build_model` at that pitch) is coupled
 with the rotating-frame terms (G, Kr and -- full physics -- the centrifugal prestress Ksigma) and
 the Theodorsen strips; the rotor speed is then increased over ``min_rpm .. max_rpm`` and the
-first flutter and divergence onsets are located (:mod:`windflutter.stability.search`).
+first flutter and divergence onsets are located (:mod:`windflutter.frozen.search`).
 
 Public API
 ----------
@@ -30,9 +30,10 @@ from windflutter.linalg_tools import mac_matrix
 from windflutter.mesh.turbine import build_model as build_blade  # the blade alone (never a test's edited model)
 from windflutter.rotor.rotating import rotor_terms
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
-from windflutter.stability.search import Onset, pk_search, structural_eig, thesis_search
-from windflutter.stability.tracking import has_torsion, mode_names
+from windflutter.frozen.search import pk_search, structural_eig, thesis_search
+from windflutter.frozen.tracking import has_torsion, mode_names
 from windflutter.system.identity import MIXED_SHARE
+from windflutter.results import PointSummary
 from windflutter.units import RPM
 
 
@@ -153,51 +154,6 @@ class TurbineOptions:
         """Rotor-speed grid (RPM)."""
         n = max(int(math.ceil((self.max_rpm - self.min_rpm) / self.rpm_step - 1e-9)), 1)
         return np.linspace(self.min_rpm, self.max_rpm, n + 1)
-
-
-@dataclass
-class PointSummary:
-    """Result at one wind speed (user units).
-
-    flutter_rpm, flutter_frequency_hz, flutter_mode, divergence_rpm: None when not found in
-    range.  pitch_deg: blade pitch used.  sweep_rpm, frequency_hz, damping_ratio, mode_labels:
-    the tracked modes over the grid (Campbell; ``frequency_hz`` the damped frequency ``|Im lambda| /
-    2 pi`` for every method, as ``results.nc``'s ``frequency`` declares it).  onset: raw search result.
-    """
-
-    wind_speed: float
-    pitch_deg: float
-    flutter_rpm: float | None
-    flutter_frequency_hz: float | None
-    flutter_mode: str | None
-    divergence_rpm: float | None
-    sweep_rpm: np.ndarray
-    frequency_hz: np.ndarray
-    damping_ratio: np.ndarray
-    mode_labels: list[str]
-    onset: Onset
-
-    @property
-    def first_instability(self) -> str | None:
-        """``"flutter"``, ``"divergence"`` or None: which onset comes first in rotor speed.
-
-        A flutter crossing above the divergence speed is still reported (like a V-g plot shows
-        it), but the turbine's stability limit is the divergence: the linearization about the
-        undeformed state no longer describes an equilibrium beyond it.
-        """
-        fl, dv = self.flutter_rpm, self.divergence_rpm
-        if fl is None and dv is None:
-            return None
-        if dv is None or (fl is not None and fl <= dv):
-            return "flutter"
-        return "divergence"
-
-    def as_dict(self) -> dict:
-        f = (lambda v: None if v is None else float(v))
-        return {"wind_speed": float(self.wind_speed), "flutter_rpm": f(self.flutter_rpm),
-                "flutter_frequency_hz": f(self.flutter_frequency_hz), "flutter_mode": self.flutter_mode,
-                "divergence_rpm": f(self.divergence_rpm), "first_instability": self.first_instability,
-                "pitch_deg": float(self.pitch_deg), "note": (getattr(self.onset, "reason", "") or None)}
 
 
 class TurbineStability:
@@ -343,7 +299,7 @@ class TurbineStability:
 
     @staticmethod
     def _names(on, system_at, fe, M, sections, named, reference=None):
-        """Names of the tracked modes and of the flutter mode (:mod:`~windflutter.stability.tracking`).
+        """Names of the tracked modes and of the flutter mode (:mod:`~windflutter.frozen.tracking`).
 
         A tracked mode is named as the structural mode (``Ks(Omega), M`` at the first rotor speed,
         no aerodynamics) it is closest to by MAC: the aerodynamic coupling there can already make
@@ -409,7 +365,7 @@ def structural_shapes(system):
 
 def structural_names(system, fe, M, sections, reference=None, shapes=None):
     """``(f (Hz), V, names)``: the modes of ``Ks(Omega), M`` of ``system`` (working basis) and their
-    names (:func:`~windflutter.stability.tracking.mode_names`, by the blade's identities
+    names (:func:`~windflutter.frozen.tracking.mode_names`, by the blade's identities
     ``reference`` when given); ``shapes``: :func:`structural_shapes` of ``system``, if known."""
     w2, V, X = shapes if shapes is not None else structural_shapes(system)
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * math.pi)
@@ -422,7 +378,7 @@ def auto_tracked(system, fe, M, sections, factor: float = 1.25, named=None) -> i
     Classical flutter of a blade couples a flap mode with a torsion mode; a whole turbine has
     tower, drivetrain and three of each blade mode below the first torsion, so a fixed count is
     fragile.  The modes of ``Ks(Omega) , M`` at the first rotor speed of the sweep are labelled
-    (:func:`~windflutter.stability.tracking.mode_names`); without a torsion-dominated mode all
+    (:func:`~windflutter.frozen.tracking.mode_names`); without a torsion-dominated mode all
     modes of the basis are tracked.  ``named``: :func:`structural_names` of ``system``, if known.
     """
     f, _, names = named if named is not None else structural_names(system, fe, M, sections)

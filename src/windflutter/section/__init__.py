@@ -43,19 +43,19 @@ from __future__ import annotations
 import numpy as np
 
 from windflutter.errors import InputError
-from windflutter.stability.section.input import section_from_config
-from windflutter.stability.section.kmethod import k_method
-from windflutter.stability.section.matrices import (
+from windflutter.section.input import section_from_config
+from windflutter.section.kmethod import k_method
+from windflutter.section.matrices import (
     aero_matrices,
     divergence_speed,
     divergence_speed_numerical,
     natural_frequencies,
     structural_matrices,
 )
-from windflutter.stability.section.model import TWO_PI, TypicalSection
-from windflutter.stability.section.pk import locate_pk_onset, pk_eigen, pk_method
-from windflutter.stability.section.pmethod import p_method, rfa_state_matrix
-from windflutter.stability.section.results import SectionResult, StabilityCurves
+from windflutter.section.model import TWO_PI, TypicalSection
+from windflutter.section.pk import locate_pk_onset, pk_eigen, pk_method
+from windflutter.section.pmethod import p_method, rfa_state_matrix
+from windflutter.section.results import SectionResult, StabilityCurves
 
 __all__ = [
     "TypicalSection",

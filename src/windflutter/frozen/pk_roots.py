@@ -11,7 +11,6 @@ frozen-frequency p-k iteration), the static divergence distance.
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass, field
 from typing import Callable, Protocol
 import numpy as np
 import scipy.linalg as sla
@@ -41,32 +40,6 @@ def static_frequency(system, static_k: float = STATIC_K) -> float:
         return 0.0
     U, b = system.reference(0.75)
     return float(static_k * U / b) if b > 0 else 0.0
-
-
-@dataclass
-class Onset:
-    """First unstable point along the parameter.
-
-    Attributes
-    ----------
-    flutter : parameter at flutter onset (None if none found in range).
-    flutter_frequency : circular frequency at onset (rad/s).
-    flutter_mode : index of the tracked mode (pk) / label.
-    flutter_vector : mode shape at onset (working basis).
-    divergence : parameter at divergence onset or None.
-    history : per-grid-point data (params, eigenvalues of tracked modes (n_p, n_modes)).
-    """
-
-    flutter: float | None = None
-    flutter_frequency: float | None = None
-    flutter_mode: int | None = None
-    flutter_vector: np.ndarray | None = None
-    divergence: float | None = None
-    params: np.ndarray = field(default_factory=lambda: np.zeros(0))
-    eigenvalues: np.ndarray = field(default_factory=lambda: np.zeros((0, 0), complex))
-    method: str = "pk"
-    vectors0: list | None = None
-    reason: str = ""
 
 
 class FrequencyDomainSystem(Protocol):

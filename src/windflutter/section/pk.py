@@ -1,7 +1,7 @@
 """p-k method of the typical section: per-mode k iteration, tracking along a path, onset.
 
 The path parameter ``x`` is the airspeed for a plain section and the rotor speed for the
-seed's rotor simple model (:mod:`windflutter.stability.simple_model`); ``sec_at(x)`` gives the
+seed's rotor simple model (:mod:`windflutter.frozen.simple_model`); ``sec_at(x)`` gives the
 section and its airspeed there.
 """
 
@@ -14,14 +14,14 @@ from scipy import optimize
 
 from windflutter.aero.theodorsen import theodorsen
 from windflutter.errors import ConvergenceError
-from windflutter.stability.section.matrices import (
+from windflutter.section.matrices import (
     CirculationFunction,
     c_scalar,
     companion_parts,
     natural_frequencies,
 )
-from windflutter.stability.section.model import TypicalSection
-from windflutter.stability.section.results import (
+from windflutter.section.model import TypicalSection
+from windflutter.section.results import (
     SectionResult,
     StabilityCurves,
     check_speeds,
@@ -239,7 +239,7 @@ class _OnsetSearch:
 def pk_method(sec: TypicalSection, speeds: np.ndarray | None = None, *,
               c_func: CirculationFunction = theodorsen) -> SectionResult:
     """p-k flutter analysis of a typical section on ``speeds`` (m/s; default
-    :func:`~windflutter.stability.section.results.default_speeds`)."""
+    :func:`~windflutter.section.results.default_speeds`)."""
     speeds = default_speeds(sec) if speeds is None else check_speeds(speeds)
     lam0 = 1j * natural_frequencies(sec)
     res = locate_pk_onset(lambda U: (sec, U), speeds, lam0, c_func=c_func)

@@ -17,7 +17,8 @@ from windflutter.aero.sections import AeroSections, Polar
 from windflutter.aero.strip import AeroOptions
 from windflutter.errors import InputError
 from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
-from windflutter.stability.search import Onset, pk_search, thesis_search
+from windflutter.frozen.search import pk_search, thesis_search
+from windflutter.results import Onset
 from windflutter.structure.assembly import assemble
 from windflutter.structure.fem import BeamSection, FEModel
 

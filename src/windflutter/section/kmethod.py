@@ -14,14 +14,14 @@ import numpy as np
 from scipy import optimize
 
 from windflutter.aero.theodorsen import theodorsen
-from windflutter.stability.section.matrices import (
+from windflutter.section.matrices import (
     CirculationFunction,
     aero_matrices,
     c_scalar,
     structural_matrices,
 )
-from windflutter.stability.section.model import TypicalSection
-from windflutter.stability.section.results import (
+from windflutter.section.model import TypicalSection
+from windflutter.section.results import (
     SectionResult,
     StabilityCurves,
     extrapolate,

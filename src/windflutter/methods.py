@@ -3,14 +3,14 @@
 Every command that analyses a turbine (``run``, ``stability``, ``campbell``) builds its solver here,
 from the one options vocabulary of :mod:`windflutter.config`:
 
-* method ``p`` -> :class:`~windflutter.stability.operational.OperationalStability`: the whole turbine
+* method ``p`` -> :class:`~windflutter.overspeed.OperationalStability`: the whole turbine
   in multi-blade coordinates with the drivetrain, unsteady (state-space) strip aerodynamics with the
   mean-load terms and local polar slopes, linearized about the deflected steady state, with the
   turbine files' structural damping (:class:`~windflutter.system.operational.OperationalOptions`);
-* methods ``pk`` and ``thesis`` -> :class:`~windflutter.stability.turbine.TurbineStability`: the
+* methods ``pk`` and ``thesis`` -> :class:`~windflutter.frozen.turbine.TurbineStability`: the
   seed's model (frozen azimuth, rotor locked to the nacelle, Theodorsen strips in the frequency
-  domain, undeformed blades) with the config's options (:class:`~windflutter.stability.turbine.
-  TurbineOptions`, via :func:`~windflutter.stability.turbine.options_from_config`).
+  domain, undeformed blades) with the config's options (:class:`~windflutter.frozen.turbine.
+  TurbineOptions`, via :func:`~windflutter.frozen.turbine.options_from_config`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from collections.abc import Callable
 from windflutter.aero.unsteady import UnsteadyOptions
 from windflutter.config.declarations import BEAM_SPAN_ELEMENTS, SHELL_SPAN_ELEMENTS
 from windflutter.errors import InputError
-from windflutter.stability.operational import OperationalStability, SearchSettings
+from windflutter.overspeed import OperationalStability, SearchSettings
 from windflutter.system.operational import OperationalOptions
 
 
@@ -113,7 +113,7 @@ def search_settings(config):
 
 def turbine_options(config, aero: str, method: str):
     """The seed's solver options (methods pk, thesis) of one case, with the mesh."""
-    from windflutter.stability.turbine import options_from_config
+    from windflutter.frozen.turbine import options_from_config
 
     opts = options_from_config(with_span_count(config), aero, method)
     return dataclasses.replace(opts, mesh={**opts.mesh, **mesh_settings(config)})
@@ -140,7 +140,7 @@ def _p_solver(turbine, config, aero: str):
 
 def _seed_solver(method: str):
     def build(turbine, config, aero: str):
-        from windflutter.stability.turbine import TurbineStability
+        from windflutter.frozen.turbine import TurbineStability
 
         return TurbineStability(turbine, turbine_options(config, aero, method))
     return build

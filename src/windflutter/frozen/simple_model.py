@@ -30,7 +30,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.model.yamlio import load_yaml_text
-from windflutter.stability.section import (
+from windflutter.section import (
     TypicalSection,
     divergence_speed,
     locate_pk_onset,

@@ -9,12 +9,12 @@ from typing import Any
 import numpy as np
 
 from windflutter.errors import InputError
-from windflutter.stability.section.matrices import (
+from windflutter.section.matrices import (
     divergence_speed,
     divergence_speed_numerical,
     natural_frequencies,
 )
-from windflutter.stability.section.model import TWO_PI, TypicalSection
+from windflutter.section.model import TWO_PI, TypicalSection
 
 
 @dataclass

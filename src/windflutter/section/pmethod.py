@@ -12,14 +12,14 @@ from scipy import optimize
 
 from windflutter.aero.theodorsen import RogerRFA, theodorsen_rfa
 from windflutter.errors import InputError
-from windflutter.stability.section.matrices import (
+from windflutter.section.matrices import (
     aero_parts,
     companion_parts,
     natural_frequencies,
     structural_matrices,
 )
-from windflutter.stability.section.model import TypicalSection
-from windflutter.stability.section.results import (
+from windflutter.section.model import TypicalSection
+from windflutter.section.results import (
     SectionResult,
     StabilityCurves,
     check_speeds,

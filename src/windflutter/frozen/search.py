@@ -23,8 +23,9 @@ from scipy.optimize import brentq
 
 from windflutter.errors import InputError
 from windflutter.linalg_tools import mac, mac_matrix
-from windflutter.stability.pk_roots import (STATIC_DENSE_LIMIT, STATIC_K, THESIS_K,  # noqa: F401
-                                            FrequencyDomainSystem, Onset, PencilSystem, dense, excluded_roots,
+from windflutter.results import Onset
+from windflutter.frozen.pk_roots import (STATIC_DENSE_LIMIT, STATIC_K, THESIS_K,  # noqa: F401
+                                            FrequencyDomainSystem, PencilSystem, dense, excluded_roots,
                                             pencil, qep, solve_near_singular, newton_mode, pk_mode,
                                             static_frequency, static_min_eig, structural_eig)
 

@@ -6,7 +6,7 @@ in steady operation) to ``max_rpm``.  At each rotor speed the turbine is lineari
 steady state (:class:`~windflutter.system.operational.OperationalModel`) and the eigenvalues of
 the first-order system with aerodynamic states are its damped modes -- valid at any damping, so
 no frequency matching is needed (the p-method; the seed's p-k and 8-k searches remain as methods
-``pk`` and ``thesis`` on the seed's frozen-azimuth model, :mod:`windflutter.stability.turbine`).
+``pk`` and ``thesis`` on the seed's frozen-azimuth model, :mod:`windflutter.frozen.turbine`).
 
 * Modes are named by their structural identity (:mod:`windflutter.system.identity`), each sweep
   point continuing the previous one's (a step where a named mode's frequency jumps is refined once
@@ -31,8 +31,7 @@ from scipy.optimize import brentq
 
 from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
-from windflutter.stability.search import Onset
-from windflutter.stability.turbine import PointSummary
+from windflutter.results import Onset, PointSummary
 from windflutter.system.campbell import ambiguous
 from windflutter.system.modes import point_modes
 

@@ -1,1 +1,0 @@
-"""windflutter.stability"""
