@@ -202,7 +202,7 @@ def _instant(turbine, config):
     def analyse(point, progress=None):
         rpm = np.asarray(point.sweep_rpm, float)
         return PointResult(flutter_rpm=20.0, flutter_frequency_hz=1.0, flutter_mode="1st flap",
-                           divergence_rpm=float("nan"), sweep_rpm=rpm, frequency_hz=np.ones((rpm.size, 1)),
+                           divergence_rpm=float("nan"), sweep_rpm=rpm, damped_frequency_hz=np.ones((rpm.size, 1)),
                            damping_ratio=np.full((rpm.size, 1), 0.01), mode_labels=["1st flap"])
 
     return analyse

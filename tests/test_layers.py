@@ -278,7 +278,6 @@ _CLI_START_UP = "CLI start-up: a sub-command imports what it runs after its argu
 _LATE_BINDING = ("entries into real work, looked up when called (tests/cli's HeavyWork guard patches them "
                  "in their module, which only a late import sees)")
 _OTHER_ISSUE = "a file another open issue is changing (left as it is here)"
-_LEAD = "the mode-identity files being changed now (to follow)"
 #: function-local imports of the package's own modules that stay: importing file (relative to
 #: src/windflutter; a folder ends in '/') -> (the modules it may import locally, why).  Every other
 #: import of our own modules is at module level (issue 29); cli/ is exempt as a whole.
@@ -289,8 +288,7 @@ LOCAL_IMPORTS: dict[str, tuple[frozenset[str], str]] = {
     "api.py": (frozenset({"windflutter.model", "windflutter.mesh.analysis", "windflutter.workflow",
                           "windflutter.simulate.run", "windflutter.simulate.onset"}),
                f"{_LATE_BINDING}; simulate: {_OTHER_ISSUE}"),
-    "system/operational.py": (frozenset({"windflutter.mesh.turbine", "windflutter.system.identity"}),
-                              f"build_model: {_LATE_BINDING}; identity: {_LEAD}"),
+    "system/operational.py": (frozenset({"windflutter.mesh.turbine"}), f"build_model: {_LATE_BINDING}"),
     "analysers.py": (frozenset({"windflutter.frozen.turbine"}), "the seed's methods (frozen.turbine), a fenced "
                      "plug-in loaded only when a pk or thesis case runs"),
     "methods.py": (frozenset({"windflutter.frozen.turbine"}), "the seed's methods, a fenced plug-in "
@@ -298,12 +296,6 @@ LOCAL_IMPORTS: dict[str, tuple[frozenset[str], str]] = {
     "mesh/": (frozenset({"*"}), _OTHER_ISSUE),
     "simulate/": (frozenset({"*"}), _OTHER_ISSUE),
     "system/deflected_shell.py": (frozenset({"*"}), _OTHER_ISSUE),
-    "overspeed.py": (frozenset({"*"}), _LEAD),
-    "frozen/tracking.py": (frozenset({"*"}), _LEAD),
-    "frozen/turbine.py": (frozenset({"*"}), _LEAD),
-    "system/campbell.py": (frozenset({"*"}), _LEAD),
-    "system/identity.py": (frozenset({"*"}), _LEAD),
-    "system/modes.py": (frozenset({"*"}), _LEAD),
 }
 
 

@@ -317,7 +317,7 @@ def damping_check(outdir: Path, name: str = "iea15mw", wind: float = 10.0) -> li
         i, j = np.unravel_index(np.nanargmin(z), z.shape)
         rows.append(dict(zeta=zeta, flutter_rpm=p.flutter_rpm, flutter_hz=p.flutter_frequency_hz,
                          mode=p.flutter_mode, divergence_rpm=p.divergence_rpm, min_zeta=float(z[i, j]),
-                         at_rpm=float(p.sweep_rpm[i]), at_hz=float(p.frequency_hz[i, j])))
+                         at_rpm=float(p.sweep_rpm[i]), at_hz=float(p.damped_frequency_hz[i, j])))
         print(rows[-1], flush=True)
     lines = [f"| {name} {wind:g} m/s, structural damping | flutter (RPM) | f (Hz) | mode | divergence (RPM) | "
              "least damping ratio on the grid (at RPM, Hz) |", "|---|---|---|---|---|---|"]

@@ -141,7 +141,7 @@ class TurbinePointAnalyser:
             flutter_frequency_hz=nan if s.flutter_frequency_hz is None else float(s.flutter_frequency_hz),
             flutter_mode=s.flutter_mode or "",
             divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
-            sweep_rpm=np.asarray(s.sweep_rpm, float), frequency_hz=np.asarray(s.frequency_hz, float),
+            sweep_rpm=np.asarray(s.sweep_rpm, float), damped_frequency_hz=np.asarray(s.damped_frequency_hz, float),
             damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
             # the model size goes with each point (the reduced size may depend on its pitch), so
             # the run's attributes do not depend on which points this process computed

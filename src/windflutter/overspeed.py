@@ -32,8 +32,9 @@ from scipy.optimize import brentq
 from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.results import Onset, PointSummary
-from windflutter.system.campbell import ambiguous
+from windflutter.system.campbell import CampbellPoint, ambiguous, track_modes
 from windflutter.system.modes import point_modes
+from windflutter.system.operational import OperationalModel
 
 RPM = math.pi / 30.0
 #: operating points (models and modes) kept by OperationalStability: the bracket of a root search
@@ -132,7 +133,6 @@ class OperationalStability:
     """Method p on a turbine: :meth:`analyse_operating_point` per wind speed (models cached)."""
 
     def __init__(self, turbine, options=None, search: SearchSettings | None = None):
-        from windflutter.system.operational import OperationalModel
 
         self.turbine = turbine
         self.model = OperationalModel(turbine, options)
@@ -292,7 +292,6 @@ class OperationalStability:
 
     def _summary(self, V, pitch, sweep, flutter, on: Onset) -> PointSummary:
         """Campbell arrays over the sweep (modes followed by signature MAC) and the onsets."""
-        from windflutter.system.campbell import CampbellPoint, track_modes
 
         pts = [CampbellPoint(wind_speed=V, rotor_speed_rpm=r, pitch_deg=math.degrees(pitch), modes=m)
                for r, m in sweep]
@@ -312,5 +311,5 @@ class OperationalStability:
                             flutter_rpm=None if flutter is None else float(flutter[0]),
                             flutter_frequency_hz=None if flutter is None else flutter[1].frequency_hz,
                             flutter_mode=None if flutter is None else flutter_label(sweep, *flutter),
-                            divergence_rpm=on.divergence, sweep_rpm=rpm, frequency_hz=np.abs(lam.imag) / (2 * np.pi),
+                            divergence_rpm=on.divergence, sweep_rpm=rpm, damped_frequency_hz=np.abs(lam.imag) / (2 * np.pi),
                             damping_ratio=zeta, mode_labels=[t.name for t in tracks], onset=on)

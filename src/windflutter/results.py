@@ -75,7 +75,7 @@ class PointResult:
     flutter_mode : label of the flutter mode (e.g. ``"1st edge"``).
     divergence_rpm : lowest rotor speed with static divergence (RPM); NaN if none.
     sweep_rpm : (nr,) rotor speeds of the sweep (RPM).
-    frequency_hz, damping_ratio : (nr, nm) tracked modes over the sweep: the DAMPED frequency
+    damped_frequency_hz, damping_ratio : (nr, nm) tracked modes over the sweep: the DAMPED frequency
         ``|Im lambda| / 2 pi`` (Hz) and the damping ratio (-); stored in ``results.nc`` as
         ``damped_frequency`` beside the undamped ``frequency`` ``|lambda| / 2 pi``.
     mode_labels : (nm,) labels of the tracked modes.
@@ -97,7 +97,7 @@ class PointResult:
     flutter_mode: str = ""
     divergence_rpm: float = float("nan")
     sweep_rpm: np.ndarray | None = None
-    frequency_hz: np.ndarray | None = None
+    damped_frequency_hz: np.ndarray | None = None
     damping_ratio: np.ndarray | None = None
     mode_labels: list[str] | None = None
     station_radius: np.ndarray | None = None
@@ -142,8 +142,8 @@ class PointSummary:
     """Result at one wind speed (user units).
 
     flutter_rpm, flutter_frequency_hz, flutter_mode, divergence_rpm: None when not found in
-    range.  pitch_deg: blade pitch used.  sweep_rpm, frequency_hz, damping_ratio, mode_labels:
-    the tracked modes over the grid (Campbell; ``frequency_hz`` the damped frequency ``|Im lambda| /
+    range.  pitch_deg: blade pitch used.  sweep_rpm, damped_frequency_hz, damping_ratio, mode_labels:
+    the tracked modes over the grid (Campbell; ``damped_frequency_hz`` the damped frequency ``|Im lambda| /
     2 pi`` for every method, as ``results.nc``'s ``frequency`` declares it).  onset: raw search result.
     """
 
@@ -154,7 +154,7 @@ class PointSummary:
     flutter_mode: str | None
     divergence_rpm: float | None
     sweep_rpm: np.ndarray
-    frequency_hz: np.ndarray
+    damped_frequency_hz: np.ndarray
     damping_ratio: np.ndarray
     mode_labels: list[str]
     onset: Onset

@@ -113,7 +113,7 @@ def instant_factory(turbine, config):
         rpm = np.asarray(point.sweep_rpm, float)
         return PointResult(flutter_rpm=20.0 + 0.1 * point.wind_speed, flutter_frequency_hz=1.0,
                            flutter_mode="1st flap", divergence_rpm=float("nan"), sweep_rpm=rpm,
-                           frequency_hz=np.outer(1.0 + 0.01 * rpm, [1.0, 2.0]),
+                           damped_frequency_hz=np.outer(1.0 + 0.01 * rpm, [1.0, 2.0]),
                            damping_ratio=np.outer(0.05 - 0.001 * rpm * point.wind_speed / 10, [1.0, 0.5]),
                            mode_labels=["1st flap", "1st torsion"], info={"n_reduced_dof": 7})
 

@@ -69,7 +69,7 @@ def synthetic_run(flutter_rpm=(20.0, 19.0), labels=("flap-edge b1 r/R=1.00", "ed
         zeta = np.array([[0.3, 0.02], [0.3, 0.01], [0.3, 0.0], [0.3, -0.01]])
         res = PointResult(flutter_rpm=fr, flutter_frequency_hz=1.05, divergence_rpm=np.nan,
                           flutter_mode="edge b2 r/R=1.00 -> flap-edge b2 r/R=1.00", sweep_rpm=rpm,
-                          frequency_hz=freq, damping_ratio=zeta, mode_labels=list(labels))
+                          damped_frequency_hz=freq, damping_ratio=zeta, mode_labels=list(labels))
         pts[i] = store.point_dataset(OperatingPoint(i, v, "potential", "pk", 4.0, 24.0, 0.01, tuple(rpm)), res)
     return store.combine(pts, {"rated_rpm": RATED_RPM, "overspeed_rpm": 1.2 * RATED_RPM, "turbine": "synthetic",
                                "solver_geometric_stiffness": 1, "model_type": "beam", "model_part": "turbine",

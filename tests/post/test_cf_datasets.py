@@ -118,7 +118,7 @@ def test_run_store_eigenvalues_and_mode_identity_across_points():
     labels = ["1st flap", "1st edge", "1st torsion"]
     pts = {}
     for i, perm in enumerate(order):
-        res = PointResult(sweep_rpm=rpm, frequency_hz=f[:, perm], damping_ratio=z[:, perm],
+        res = PointResult(sweep_rpm=rpm, damped_frequency_hz=f[:, perm], damping_ratio=z[:, perm],
                           mode_labels=[labels[j] for j in perm], flutter_rpm=np.nan, divergence_rpm=np.nan)
         pts[i] = store.point_dataset(OperatingPoint(i, 8.0 + i, "potential", "pk", 5.0, 10.0, 0.1, tuple(rpm)), res)
     ds = store.combine(pts)

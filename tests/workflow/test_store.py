@@ -19,7 +19,7 @@ def _point(i, v=8.0):
 def _result(rng, ns=5):
     return PointResult(
         flutter_rpm=17.25, flutter_frequency_hz=1.75, flutter_mode="1st torsion", divergence_rpm=np.nan,
-        sweep_rpm=np.array([2.0, 16.0, 30.0]), frequency_hz=rng.random((3, 4)), damping_ratio=rng.random((3, 4)) - 0.5,
+        sweep_rpm=np.array([2.0, 16.0, 30.0]), damped_frequency_hz=rng.random((3, 4)), damping_ratio=rng.random((3, 4)) - 0.5,
         mode_labels=["1st flap", "1st edge", "2nd flap", "1st torsion"], station_radius=np.linspace(5, 60, ns),
         flutter_shape=rng.random((ns, 3)) + 1j * rng.random((ns, 3)), aero_work=rng.random((ns, 3)) - 0.5,
         info={"iterations": 7, "converged": True, "pitch_deg": 1.5})

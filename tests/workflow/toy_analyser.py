@@ -161,7 +161,7 @@ class ToyAnalyser:
         def min_damping(rpm):
             return min(-lam.real / abs(lam) for lam, _ in modes_at(relative_speed(V, rpm), cla))
 
-        res = PointResult(sweep_rpm=sweep, frequency_hz=freq, damping_ratio=zeta,
+        res = PointResult(sweep_rpm=sweep, damped_frequency_hz=freq, damping_ratio=zeta,
                           mode_labels=["plunge (flap)", "pitch (torsion)"])
         neg = np.where(zeta.min(axis=1) < 0)[0]
         if neg.size:

@@ -14,6 +14,8 @@ of its kind by one.
 from __future__ import annotations
 
 import numpy as np
+from windflutter.structure.labels import blade_motion_components, label_modes
+from windflutter.system.identity import frozen_blade_identities, identity_name
 
 __all__ = ["real_shapes", "mode_names", "has_torsion"]
 
@@ -42,14 +44,12 @@ def mode_names(fe, M, shapes: np.ndarray, frequencies: np.ndarray, sections, ref
         mode it is most of (``"2nd flap collective"``, ``"1st torsion asymmetric"``), not by its
         rank in frequency; tower modes keep :func:`~windflutter.structure.labels.label_modes`'s names.
     """
-    from windflutter.structure.labels import blade_motion_components, label_modes
 
     f = np.asarray(frequencies, float)
     order = np.argsort(f, kind="stable")
     X = real_shapes(shapes)[:, order]
     names = label_modes(fe, M, X, sections)
     if reference is not None and sections is not None and sections.n_sections:
-        from windflutter.system.identity import frozen_blade_identities, identity_name
 
         ids = frozen_blade_identities(sections, blade_motion_components(sections, X), reference)
         for j, ident in enumerate(ids):

@@ -23,17 +23,26 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
+from windflutter.aero.skin import skin_distribution
 from windflutter.aero.strip import AeroOptions
 from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, DAMPING_MODELS, REDUCTIONS, SEARCH_METHODS
 from windflutter.errors import InputError, check_choice
-from windflutter.linalg_tools import mac_matrix
-from windflutter.mesh.turbine import build_model as build_blade  # the blade alone (never a test's edited model)
-from windflutter.rotor.rotating import rotor_terms
-from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.frozen.search import pk_search, structural_eig, thesis_search
 from windflutter.frozen.tracking import has_torsion, mode_names
-from windflutter.system.identity import MIXED_SHARE
+from windflutter.linalg_tools import mac_matrix
+from windflutter.mesh import turbine as mesh_turbine
+from windflutter.mesh.settings import MeshSettings
+from windflutter.mesh.turbine import build_model as build_blade  # the blade alone (never a test's edited model)
 from windflutter.results import PointSummary
+from windflutter.rotor.rotating import rotor_terms
+from windflutter.solve.aero_reduction import MTAAeroelasticModel
+from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
+from windflutter.solve.skin_model import SkinAeroelasticModel
+from windflutter.structure.assembly import assemble
+from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
+from windflutter.system.damping import turbine_damping_matrix
+from windflutter.system.identity import MIXED_SHARE
+from windflutter.system.identity import blade_reference
 from windflutter.units import RPM
 
 
@@ -172,9 +181,6 @@ class TurbineStability:
         its standstill modes, named), from the blade alone meshed as this model's blades, cached:
         the names of method p, for the tracked modes of the frozen-azimuth searches."""
         if getattr(self, "_reference", None) is None:
-            from windflutter.mesh.settings import MeshSettings
-            from windflutter.structure.assembly import assemble
-            from windflutter.system.identity import blade_reference
 
             settings = MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": "rotor_blade",
                                        "pitch": 0.0})
@@ -195,15 +201,12 @@ class TurbineStability:
         key = round(float(pitch), 6)
         if key in self._models:
             return self._models[key]
-        from windflutter.mesh.settings import MeshSettings
-        from windflutter.mesh.turbine import build_model, rotor_geometry
-        from windflutter.structure.assembly import assemble
 
         o = self.options
         settings = MeshSettings(**{"model": o.model, **o.mesh, "pitch": float(pitch)})
-        fe, sections = build_model(self.turbine, settings)
+        fe, sections = mesh_turbine.build_model(self.turbine, settings)  # module access: tests patch it
         st = assemble(fe)
-        geom = rotor_geometry(self.turbine)
+        geom = mesh_turbine.rotor_geometry(self.turbine)
         terms = rotor_terms(fe, st, geom, prestress=bool(o.geometric_stiffness), rigid_sections=bool(o.rigid_sections))
         sm = StructuralMatrices.from_structural(st)
         sm.D = self._damping(st)
@@ -215,17 +218,14 @@ class TurbineStability:
             kw["induction"], kw["high_thrust"] = True, o.high_thrust
         skin = None
         if o.aero_distribution == "skin":
-            from windflutter.aero.skin import skin_distribution
 
             # the seed's skin quads as sub-strips (same strip aerodynamics, own motion rows)
             skin = skin_distribution(fe, sections)
             sections = kw["sections"] = skin.sections
         if o.reduction == "mta":
-            from windflutter.solve.aero_reduction import MTAAeroelasticModel
 
             am = MTAAeroelasticModel(**kw, mta_wind_speeds=tuple(o.mta_wind_speeds), mta_tol=o.correction_tol)
         elif skin is not None:
-            from windflutter.solve.skin_model import SkinAeroelasticModel
 
             am = SkinAeroelasticModel(**kw, parent=skin.parent)
         else:
@@ -238,12 +238,10 @@ class TurbineStability:
     def _damping(self, st):
         o = self.options
         if o.damping == "file":
-            from windflutter.system.damping import turbine_damping_matrix
 
             return turbine_damping_matrix(self.turbine, st)
         if o.damping in ("none", "modal") or o.damping_ratio == 0.0:
             return None  # modal damping is added in the modal basis (AeroelasticModel)
-        from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
 
         if o.damping == "stiffness":
             beta = o.damping_ratio / (math.pi * o.damping_reference_hz)
@@ -293,7 +291,7 @@ class TurbineStability:
             wind_speed=float(wind_speed), pitch_deg=float(np.degrees(pitch)),
             flutter_rpm=on.flutter, divergence_rpm=on.divergence,
             flutter_frequency_hz=None if on.flutter_frequency is None else on.flutter_frequency / (2 * math.pi),
-            flutter_mode=mode, sweep_rpm=on.params, frequency_hz=np.abs(lam.imag) / (2 * math.pi),
+            flutter_mode=mode, sweep_rpm=on.params, damped_frequency_hz=np.abs(lam.imag) / (2 * math.pi),
             damping_ratio=zeta, mode_labels=labels, onset=on)
 
 

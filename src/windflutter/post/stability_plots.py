@@ -30,7 +30,7 @@ def campbell(point):
     """Frequency (Hz) and damping ratio of the tracked modes vs rotor speed (RPM) at one wind speed."""
     fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 6), sharex=True)
     r = np.asarray(point.sweep_rpm)
-    f = np.asarray(point.frequency_hz)
+    f = np.asarray(point.damped_frequency_hz)
     z = np.asarray(point.damping_ratio)
     labels = point.mode_labels or [f"mode {i + 1}" for i in range(f.shape[1])]
     for i in range(f.shape[1]):

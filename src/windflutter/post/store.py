@@ -116,7 +116,7 @@ def point_dataset(point: OperatingPoint, result: PointResult, attrs: dict | None
     rpm = np.asarray(result.sweep_rpm if result.sweep_rpm is not None else [], float).ravel()
     nr = rpm.size
     if nr:
-        freq = np.asarray(result.frequency_hz, float).reshape(nr, -1)
+        freq = np.asarray(result.damped_frequency_hz, float).reshape(nr, -1)
         zeta = np.asarray(result.damping_ratio, float).reshape(nr, -1)
     else:
         freq = zeta = np.zeros((0, 0))

@@ -18,7 +18,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from windflutter.linalg_tools import mac_matrix
 from windflutter.system.modes import ModeRecord, point_modes
+from windflutter.system.operational import OperationalModel, missing_curve_error
 from windflutter.units import RPM
 
 
@@ -109,7 +111,6 @@ def track_modes(points: list[CampbellPoint], min_mac: float = 0.5) -> list[Track
     starting a new track."""
     from scipy.optimize import linear_sum_assignment
 
-    from windflutter.linalg_tools import mac_matrix
 
     n = len(points)
     tracks: list[Track] = []
@@ -170,7 +171,6 @@ def default_wind_speeds(turbine) -> np.ndarray:
     """The operating curve's wind speeds within 3-25 m/s (its own range if narrower)."""
     oc = turbine.operating_curve
     if oc is None:
-        from windflutter.system.operational import missing_curve_error
 
         raise missing_curve_error(turbine)
     v = np.asarray(oc.wind_speed, float)
@@ -192,7 +192,6 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
     progress : optional ``progress(fraction, text)``.
     model : an :class:`~windflutter.system.operational.OperationalModel` to reuse (its parts are cached).
     """
-    from windflutter.system.operational import OperationalModel
 
     om = model or OperationalModel(turbine, options)
     ws = default_wind_speeds(turbine) if wind_speeds is None else np.asarray(wind_speeds, float)

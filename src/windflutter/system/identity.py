@@ -39,8 +39,9 @@ import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from windflutter.linalg_tools import mac_matrix
-from windflutter.structure.modal import symmetric_eigs
+from windflutter.solve.reduction import structural_modes
 from windflutter.structure.labels import blade_motion_components, ordinal
+from windflutter.structure.modal import symmetric_eigs
 
 #: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
 #: mixed, with its two largest participations
@@ -157,7 +158,6 @@ def blade_reference(struct, sections) -> StructuralReference:
     """The blade part of the reference: its lowest :data:`REFERENCE_MODES` structural modes at
     standstill (``struct``: its assembled, root-clamped :class:`~windflutter.structure.assembly.
     Structural`), named and with their strip signatures."""
-    from windflutter.solve.reduction import structural_modes
 
     K, M = struct.Kr, struct.Mr
     basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), min(REFERENCE_MODES, K.shape[0] - 1))

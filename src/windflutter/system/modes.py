@@ -19,7 +19,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from windflutter.linalg_tools import mac_matrix
 from windflutter.structure.labels import blade_motion_components, frame_components
+from windflutter.system.identity import (CONTINUED_MAC, HEAVY_DAMPING, assign, name_record, participations,
+                                         point_own_modes)
 
 
 
@@ -264,8 +267,6 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
 def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[ModeRecord] | None = None):
     """Name ``modes`` (their structural coordinates the columns of ``Q``) by their participation in
     the structural identities of ``ps.reference``, in place; returns ``modes``."""
-    from windflutter.system.identity import (CONTINUED_MAC, HEAVY_DAMPING, assign, name_record, participations,
-                                             point_own_modes)
 
     if not modes:
         return modes
@@ -279,7 +280,6 @@ def identify_modes(ps, modes: list[ModeRecord], Q: np.ndarray, previous: list[Mo
     ids, S = participations(ps, Q, own, ref, freqs, zetas)
     cont = None
     if previous:
-        from windflutter.linalg_tools import mac_matrix
 
         by_id = {m.identity: m for m in previous if m.identity is not None and m.signature is not None}
         cols = [k for k, i in enumerate(ids) if i in by_id]

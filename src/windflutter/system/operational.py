@@ -36,11 +36,12 @@ from windflutter.steady.geometry import pitching_frames
 from windflutter.structure.assembly import assemble
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
-from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.blade_aero import blade_system, project_blade_aero, quasi_steady_blocks
+from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.damping import blade_damping_matrix, blade_mu, support_modal_damping, tower_ratios
 from windflutter.system.deflected import deflected_blade
 from windflutter.system.deflected_shell import deflected_shell_blade
+from windflutter.system.identity import structural_reference
 from windflutter.system.multiblade import FixedFrame, MultiBladeSystem, axis_rotation, multiblade_system
 from windflutter.system.operational_options import OperationalOptions, missing_curve_error  # noqa: F401  (re-exported)
 from windflutter.system.pitch import pitch_rotation, rotate_blade
@@ -159,7 +160,6 @@ class OperationalModel:
         """The structural identities of this model (:func:`windflutter.system.identity.
         structural_reference`: the blade's standstill modes, the support's own modes), cached."""
         if getattr(self, "_reference", None) is None:
-            from windflutter.system.identity import structural_reference
 
             self._reference = structural_reference(self.blade(0.0), self.support())
         return self._reference
