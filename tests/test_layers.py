@@ -272,7 +272,7 @@ def test_the_private_name_check_can_fail(tmp_path):
 #: from anywhere
 HEAVY_MODULES = frozenset({
     "windflutter.post.plots", "windflutter.post.report", "windflutter.post.campbell_plots",
-    "windflutter.post.vg_plots", "windflutter.post.stability_plots", "windflutter.post.simulate_plot",
+    "windflutter.post.vg_plots", "windflutter.post.simulate_plot",
 })
 _CLI_START_UP = "CLI start-up: a sub-command imports what it runs after its arguments are parsed"
 _LATE_BINDING = ("entries into real work, looked up when called (tests/cli's HeavyWork guard patches them "

@@ -22,7 +22,7 @@ from windflutter.config import AnalysisConfig
 from windflutter.errors import InputError, InputWarning, ModelError, ValidityWarning
 from windflutter.operating import operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
-from windflutter.results import OperatingPoint, PointResult
+from windflutter.results import OperatingPoint, PointResult, point_result
 from windflutter.methods import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts, with_span_count
 from windflutter.units import RPM
 
@@ -135,18 +135,10 @@ class TurbinePointAnalyser:
         size = self._model_size(ts, ts.pitch_at(point.wind_speed))
         if not self._size:
             self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
-        nan = float("nan")
-        res = PointResult(
-            flutter_rpm=nan if s.flutter_rpm is None else float(s.flutter_rpm),
-            flutter_frequency_hz=nan if s.flutter_frequency_hz is None else float(s.flutter_frequency_hz),
-            flutter_mode=s.flutter_mode or "",
-            divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
-            sweep_rpm=np.asarray(s.sweep_rpm, float), damped_frequency_hz=np.asarray(s.damped_frequency_hz, float),
-            damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
-            # the model size goes with each point (the reduced size may depend on its pitch), so
-            # the run's attributes do not depend on which points this process computed
-            info={"pitch_deg": float(s.pitch_deg), **size},
-            reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
+        # the model size goes with each point (the reduced size may depend on its pitch), so
+        # the run's attributes do not depend on which points this process computed
+        res = point_result(s, info=size,
+                           reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:

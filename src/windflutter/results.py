@@ -16,7 +16,7 @@ import numpy as np
 
 from windflutter.units import RPM
 
-__all__ = ["OperatingPoint", "PointResult", "Onset", "PointSummary"]
+__all__ = ["OperatingPoint", "PointResult", "Onset", "PointSummary", "point_result"]
 
 
 @dataclass(frozen=True)
@@ -180,3 +180,17 @@ class PointSummary:
                 "flutter_frequency_hz": f(self.flutter_frequency_hz), "flutter_mode": self.flutter_mode,
                 "divergence_rpm": f(self.divergence_rpm), "first_instability": self.first_instability,
                 "pitch_deg": float(self.pitch_deg), "note": (getattr(self.onset, "reason", "") or None)}
+
+
+def point_result(s: PointSummary, info: dict | None = None, reason: str = "") -> PointResult:
+    """A search's :class:`PointSummary` as the run's :class:`PointResult` (None -> NaN): what
+    ``run`` stores and ``windflutter stability --plot`` draws with the run's figures."""
+    nan = float("nan")
+    return PointResult(
+        flutter_rpm=nan if s.flutter_rpm is None else float(s.flutter_rpm),
+        flutter_frequency_hz=nan if s.flutter_frequency_hz is None else float(s.flutter_frequency_hz),
+        flutter_mode=s.flutter_mode or "",
+        divergence_rpm=nan if s.divergence_rpm is None else float(s.divergence_rpm),
+        sweep_rpm=np.asarray(s.sweep_rpm, float), damped_frequency_hz=np.asarray(s.damped_frequency_hz, float),
+        damping_ratio=np.asarray(s.damping_ratio, float), mode_labels=list(s.mode_labels),
+        info={"pitch_deg": float(s.pitch_deg), **(info or {})}, reason=reason)

@@ -66,10 +66,15 @@ def run(args: argparse.Namespace) -> int:
     operating_rotor_speed(curve_rpm(turbine))  # range warnings say: inside the operating range or overspeed
     ts = stability_analysis(turbine, config, config.aero[0], config.method[0])
     points = [ts.analyse_operating_point(v) for v in config.wind_speeds]
-    if args.plot:
-        from windflutter.post.stability_plots import campbell
+    if args.plot:  # the run's rotor-speed Campbell figure (post.plots.campbell) of the first wind speed
+        from windflutter.post.plots import campbell
+        from windflutter.post.store import point_dataset
+        from windflutter.results import OperatingPoint, point_result
 
-        campbell(points[0]).savefig(prepare_output_file(args.plot), dpi=config.output.dpi)
+        p0, r = points[0], config.rotor_speed
+        op = OperatingPoint(0, p0.wind_speed, config.aero[0], config.method[0], r.min_rpm, r.max_rpm, r.tolerance_rpm,
+                            tuple(float(x) for x in p0.sweep_rpm))
+        campbell(point_dataset(op, point_result(p0)), 0).savefig(prepare_output_file(args.plot), dpi=config.output.dpi)
     if args.json:
         print(json.dumps({"points": [p.as_dict() for p in points]}))
         return 0

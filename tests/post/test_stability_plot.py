@@ -1,0 +1,44 @@
+"""``windflutter stability --plot``: the first wind speed's search drawn by the run's rotor-speed
+Campbell figure (issue 29: one Campbell plotter for the sweep of a point), through the one
+conversion of a search's summary into the run's result (``results.point_result``)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from windflutter import methods
+from windflutter.cli import main
+from windflutter.model import windio
+from windflutter.results import Onset, PointSummary, point_result
+
+
+def summary(v: float = 10.0) -> PointSummary:
+    rpm = np.array([10.0, 12.0, 14.0])
+    f = np.array([[0.7, 1.1], [0.72, 1.08], [0.74, 1.05]])
+    z = np.array([[0.02, 0.01], [0.01, 0.0], [0.0, -0.01]])
+    return PointSummary(wind_speed=v, pitch_deg=1.5, flutter_rpm=12.0, flutter_frequency_hz=1.08,
+                        flutter_mode="1st edge BW", divergence_rpm=None, sweep_rpm=rpm, damped_frequency_hz=f,
+                        damping_ratio=z, mode_labels=["1st flap BW", "1st edge BW"], onset=Onset(method="p"))
+
+
+def test_point_result_carries_the_summary_and_none_becomes_nan():
+    s = summary()
+    r = point_result(s, info={"n_dof": 6}, reason="why")
+    assert r.flutter_rpm == 12.0 and np.isnan(r.divergence_rpm) and r.flutter_mode == "1st edge BW"
+    assert np.array_equal(r.damped_frequency_hz, s.damped_frequency_hz) and r.mode_labels == s.mode_labels
+    assert r.info == {"pitch_deg": 1.5, "n_dof": 6} and r.reason == "why"
+
+
+def test_stability_plot_draws_the_first_point(monkeypatch, tmp_path, capsys):
+    class Search:
+        def analyse_operating_point(self, v, rpm_grid=None):
+            return summary(v)
+
+    monkeypatch.setattr(windio, "load_turbine", lambda name: type("T", (), {"name": "toy", "operating": None})())
+    monkeypatch.setattr(methods, "stability_analysis", lambda *a, **k: Search())
+    monkeypatch.setattr("windflutter.cli.warn.curve_rpm", lambda t: None)
+    monkeypatch.setattr("windflutter.cli.warn.operating_rotor_speed", lambda rpm: None)
+    out = tmp_path / "campbell.png"
+    assert main(["stability", "nrel5mw", "--wind-speeds", "10", "12", "--plot", str(out), "--json"]) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10_000
+    assert '"flutter_rpm": 12.0' in capsys.readouterr().out
