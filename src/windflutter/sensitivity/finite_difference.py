@@ -11,7 +11,10 @@ derivative of :mod:`windflutter.sensitivity.point`.
   and inflow (:meth:`~windflutter.system.operational.OperationalModel.assemble_point`), or the
   nominal blade on the changed turbine's support;
 * :func:`full_reanalysis`: the turbine's data changed and the whole point recomputed, steady state
-  included (what the frozen derivatives leave out shows in the difference).
+  included (what the frozen derivatives leave out shows in the difference);
+* :func:`steady_reanalysis`: the same with the steady state iterated to a tighter tolerance and the
+  blade basis held at the nominal point's (the reference of the total derivatives,
+  :mod:`windflutter.sensitivity.steady`, which differentiate the reduced model).
 """
 
 from __future__ import annotations
@@ -27,6 +30,8 @@ from windflutter.system.blade import RotorBlade
 from windflutter.system.damping import blade_damping_matrix, blade_mu
 from windflutter.sensitivity.point import damping_sections
 from windflutter.system.operational import OperationalModel
+from windflutter.steady import SteadyOptions, steady_state
+from windflutter.system.deflected import deflected_blade
 
 
 def _by_name(modes) -> dict:
@@ -133,3 +138,32 @@ def total_derivatives(om, wind_speed: float, names, parameters, max_hz: float = 
         d = full_reanalysis(om, wind_speed, names, name, h, max_hz)
         out[name] = np.array([d[n] for n in names])
     return out
+
+
+def changed_model(om, name: str, s: float) -> OperationalModel:
+    """The operating-point model of the turbine with the parameter ``name`` changed by ``s`` (a blade
+    property over the whole blade: the turbine's beam data changed and the blade meshed again)."""
+    if name in GLOBAL_PARAMETERS:
+        return OperationalModel(*GLOBAL_PARAMETERS[name].change(om.turbine, om.options, s))
+    return OperationalModel(blade_data(om.turbine, name, s), om.options)
+
+
+def steady_reanalysis(om, ps, names, name: str, h: float, max_hz: float = 2.5, tol: float = 1e-9) -> dict:
+    """``{mode name: dlambda/dp}`` by re-analyses of the changed turbine (:func:`changed_model`) at the
+    point's wind speed, rotor speed and pitch: the steady state iterated from the start to ``tol``
+    (:func:`~windflutter.steady.steady_state`, co-rotational beam, BEM), the blade linearized about
+    it (:func:`~windflutter.system.deflected.deflected_blade`) on the nominal point's blade basis."""
+    out = []
+    for s in (h, -h):
+        mod = changed_model(om, name, s)
+        o = mod.options
+        rb = mod.blade(ps.pitch)
+        so = SteadyOptions(deflection=True, corotational=True, tol=tol, max_iterations=300,
+                           bem={"high_thrust": o.high_thrust})
+        st = steady_state(rb.fe, rb.struct, rb.sections, mod.rotor, ps.wind_speed, ps.omega, n_blades=mod.n_blades,
+                          air_density=o.air_density, options=so)
+        d = deflected_blade(rb, st, ps.omega, blade_mu(mod.turbine) if o.damping == "file" else None)
+        p = mod.assemble_point(d.blade, d.steady, d.ksigma, d.klink, ps.wind_speed, ps.omega, ps.pitch,
+                               tip_frame=ps.tip_frame, Phi=ps.Phi)
+        out.append(_by_name(point_modes(p, max_hz)))
+    return _difference(out[0], out[1], names, h)
