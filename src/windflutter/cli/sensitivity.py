@@ -32,8 +32,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     add_flags(p, FLAGS)
     p.add_argument("--modes", nargs="+", default=None, metavar="NAME",
                    help="modes to analyse by name, e.g. '1st edge BW' (quoted); default every mode")
-    p.add_argument("--total", action="store_true", help="also whole re-analyses with the steady state recomputed "
-                   "(whole blade and global parameters; two re-analyses per parameter and wind speed)")
+    p.add_argument("--total", action="store_true", help="also the derivatives with the steady state's own change "
+                   "included (its sensitivity: whole blade and global parameters; ~1 s per parameter and wind speed)")
     p.add_argument("--top", type=int, default=12, metavar="N", help="lines of the ranked table (default 12)")
     p.add_argument("--out", default=None, metavar="FILE", help="write the sensitivities as NetCDF (.nc)")
     p.add_argument("--plot", default=None, metavar="FILE", help="plot the spanwise sensitivity of the least "
@@ -73,7 +73,7 @@ def run(args: argparse.Namespace) -> int:
         print("  " + sentence(r))
     lines = total_table(ds, modes=args.modes)
     if lines:
-        print("whole re-analyses (steady state recomputed), largest first:")
+        print("with the steady state's own change (whole blade), largest first:")
         for line in lines[:args.top]:
             print("  " + line)
     return 0

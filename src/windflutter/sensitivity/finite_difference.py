@@ -127,19 +127,6 @@ def full_reanalysis(om, wind_speed: float, names, name: str, h: float, max_hz: f
     return _difference(out[0], out[1], names, h)
 
 
-def total_derivatives(om, wind_speed: float, names, parameters, max_hz: float = 2.5, steps=None) -> dict:
-    """``{parameter: (k,) dlambda/dp}`` of the modes ``names`` by :func:`full_reanalysis` (the steady
-    state recomputed): the blade properties over the whole blade and the global parameters; NaN for a
-    mode not found after a change.  ``steps``: ``{parameter: h}`` (default 1e-3; 1 mm for offsets)."""
-    out = {}
-    for name in parameters:
-        h = (steps or {}).get(name, 1e-2 if name in BLADE_PROPERTIES and BLADE_PROPERTIES[name].change is None
-                              else 1e-3)
-        d = full_reanalysis(om, wind_speed, names, name, h, max_hz)
-        out[name] = np.array([d[n] for n in names])
-    return out
-
-
 def changed_model(om, name: str, s: float) -> OperationalModel:
     """The operating-point model of the turbine with the parameter ``name`` changed by ``s`` (a blade
     property over the whole blade: the turbine's beam data changed and the blade meshed again)."""

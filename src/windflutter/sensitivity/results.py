@@ -19,7 +19,7 @@ from windflutter.sensitivity.point import (PAIR_LIMIT, UNIT_OFFSET, UNIT_RELATIV
                                            point_sensitivities)
 from windflutter.system.campbell import ambiguous
 from windflutter.system.modes import point_modes
-from windflutter.sensitivity.finite_difference import total_derivatives
+from windflutter.sensitivity.steady import point_totals
 
 #: the spanwise segments (r/R) the ranked table sums the stations over
 SEGMENTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -30,9 +30,9 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
     """:class:`PointSensitivity` of each wind speed (m/s) of the operating-point model ``om``: its
     modes up to ``max_hz`` (Hz), named and carried along the wind speeds as
     :func:`windflutter.system.campbell.campbell` does; ``modes`` (identity names) keeps only those.
-    ``total``: also the whole-blade and global parameters' derivatives by whole re-analyses (the
-    steady state recomputed; :func:`~windflutter.sensitivity.finite_difference.total_derivatives`,
-    two re-analyses per parameter) in ``PointSensitivity.total``."""
+    ``total``: also the whole-blade and global parameters' derivatives with the steady state's own
+    change included (:func:`~windflutter.sensitivity.steady.point_totals`) in
+    ``PointSensitivity.total``."""
 
     out, prev, models = [], None, {}
     ws = [float(v) for v in np.atleast_1d(wind_speeds)]
@@ -48,8 +48,7 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
         keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
         res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models)
         if total and keep:
-
-            res.total = total_derivatives(om, v, res.names, list(res.blade) + list(res.globals_), max_hz)
+            res.total = point_totals(om, ps, res)
         out.append(res)
     if modes is not None:
         seen = {n for r in out for n in r.names}
@@ -127,11 +126,11 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                              "blade's reduction basis"})
     if any(p.total for p in points):
         ds["dfrequency_total"] = (("mode", "wind_speed", "any_parameter"), df_t, {
-            "units": "Hz", "long_name": "d frequency / d parameter by whole re-analyses (steady state recomputed; "
-            "blade properties over the whole blade) " + per})
+            "units": "Hz", "long_name": "d frequency / d parameter with the steady state's own change included "
+            "(its sensitivity; blade properties over the whole blade; blade basis held) " + per})
         ds["ddamping_total"] = (("mode", "wind_speed", "any_parameter"), dz_t, {
-            "units": "1", "long_name": "d damping ratio / d parameter by whole re-analyses (steady state "
-            "recomputed; blade properties over the whole blade) " + per})
+            "units": "1", "long_name": "d damping ratio / d parameter with the steady state's own change "
+            "included (its sensitivity; blade properties over the whole blade; blade basis held) " + per})
     ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
     ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
     for k, v in (assumptions or {}).items():
@@ -182,9 +181,9 @@ def _chosen(ds, j: int, modes, least: int) -> list[str]:
 
 
 def total_table(ds, modes=None, least: int = 3) -> list[str]:
-    """Sentences of the whole re-analyses (``ddamping_total``, when the dataset has them): the unit
-    change of each parameter (blade properties over the whole blade) with the steady state
-    recomputed, beside the derivative with it held; largest first."""
+    """Sentences of the total derivatives (``ddamping_total``, when the dataset has them): the unit
+    change of each parameter (blade properties over the whole blade) with the steady state's own
+    change included, beside the derivative with it held; largest first."""
     if "ddamping_total" not in ds:
         return []
     rows = []

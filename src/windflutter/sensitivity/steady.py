@@ -25,6 +25,12 @@ of the multi-blade matrices is contracted with the mode's left and right vectors
 (:func:`~windflutter.sensitivity.eigen.mbc_derivative`).  That is a directional finite difference
 of the assembly, not a re-analysis: no steady-state iteration and no eigen-solve.
 
+The support's damping is the files' tower modal ratios set on the tower modes with the rotor's
+rigid-body mass lumped at the hub (:meth:`~windflutter.system.operational.OperationalModel.
+with_rotor_mass`): a change of the blade's mass (``mass``, ``mass_offset``) changes it too, and the
+total derivative includes that (the per-element derivatives with the steady state held keep the
+nominal support).
+
 Parameters that leave the blade's steady state as it is -- the structural damping, and the support
 (tower, nacelle, drivetrain: the blade's steady state is that of a blade clamped at the hub) --
 have a total derivative equal to the one with the steady state held.
@@ -42,7 +48,7 @@ import scipy.sparse.linalg as spla
 from windflutter.aero.induction import sections_induction
 from windflutter.aero.strip import OperatingPoint
 from windflutter.errors import InputError
-from windflutter.sensitivity.eigen import ModeVectors, mbc_derivative
+from windflutter.sensitivity.eigen import ModeVectors, mbc_derivative, mode_vectors
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections
 from windflutter.steady.exact import (centrifugal_loads, configuration_deflection, configuration_displacement,
                                       deformed_motion_map)
@@ -105,10 +111,17 @@ def changed_rotor_blade(rb: RotorBlade, name: str, p: float, elements=None, mu=N
     return RotorBlade(fe, st, rb.sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe, mu))
 
 
-def _variant(base: SteadyBase, name: str, s: float, elements=None):
-    """(blade, air density, model) of the parameter ``name`` changed by ``s``."""
+#: blade properties that change the blade's mass: the support's damping follows them (module docstring)
+ROTOR_MASS = frozenset({"mass", "mass_offset"})
+
+
+def _variant(base: SteadyBase, name: str, s: float, elements=None, support: bool = False):
+    """(blade, air density, model) of the parameter ``name`` changed by ``s``; ``support``: the model's
+    support damping set with the changed rotor mass (:data:`ROTOR_MASS`)."""
     om = base.om
     if name in BLADE_PROPERTIES:
+        if support and name in ROTOR_MASS and om.options.part != "rotor":
+            om = om.with_rotor_mass(om.rotor_rigid_mass(blade=changed_rotor_blade(om.blade(0.0), name, s, elements)))
         return changed_rotor_blade(base.rb, name, s, elements, base.mu), base.steady.air_density, om
     g = GLOBAL_PARAMETERS[name]
     t, o = g.change(om.turbine, om.options, s)
@@ -182,7 +195,7 @@ def point_at(base: SteadyBase, name: str, s: float, dc: np.ndarray, elements=Non
     """The point system with the parameter changed by ``s`` and the steady state moved to ``c0 + s
     dc`` (module docstring), the blade basis the nominal point's."""
     ps, st = base.ps, base.steady
-    rb, rho, om = _variant(base, name, s, elements)
+    rb, rho, om = _variant(base, name, s, elements, support=True)
     config = displaced(base.config, s * dc)
     aero, _ = strip_state(base, config, rho)
     steady = dataclasses.replace(st, u=configuration_displacement(rb.fe, config), configuration=config,
@@ -209,3 +222,18 @@ def total_derivatives(base: SteadyBase, mvs: list[ModeVectors], names, elements=
         plus, minus = (point_at(base, name, s, dc, elements).mbc for s in (h, -h))
         out[name] = np.array([mbc_derivative(mv, plus, minus, h) for mv in mvs])
     return out
+
+
+def point_totals(om, ps, res) -> dict:
+    """``{name: (k,) dlambda/dp}`` with the steady state's own change included for the parameters of
+    the point's sensitivities ``res`` (:class:`~windflutter.sensitivity.point.PointSensitivity`): the
+    blade properties over the whole blade and the global parameters; those of :data:`HELD_EXACTLY`
+    are the held ones."""
+    names = list(res.blade) + list(res.globals_)
+    if not res.modes or not names:
+        return {}
+    base = steady_base(om, ps)
+    mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
+    out = {n: (res.blade[n].sum(axis=1) if n in res.blade else res.globals_[n]) for n in names if n in HELD_EXACTLY}
+    out.update(total_derivatives(base, mvs, [n for n in names if n not in HELD_EXACTLY]))
+    return {n: out[n] for n in names}
