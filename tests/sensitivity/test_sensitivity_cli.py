@@ -29,7 +29,7 @@ def test_table_dataset_and_plot(tmp_path, capsys):
     assert len(lines) == 40 and all("the 1st edge BW damping at 15 m/s by" in ln for ln in lines)
     assert png.stat().st_size > 10_000
     ds = xr.open_dataset(nc)
-    assert dict(ds["ddamping"].sizes) == {"mode": 1, "wind_speed": 1, "parameter": 8, "station": 30}
+    assert dict(ds["ddamping"].sizes) == {"mode": 1, "wind_speed": 1, "parameter": 9, "station": 30}
     assert ds["ddamping"].attrs["units"] == "1" and ds["dfrequency"].attrs["units"] == "Hz"
     assert ds["wind_speed"].attrs["units"] == "m/s" and list(ds["mode"].values) == ["1st edge BW"]
     st = ds["station"].values

@@ -57,10 +57,11 @@ def test_flap_stiffness_total(point, base):
 
 @pytest.mark.slow
 @pytest.mark.parametrize("name", ["edge_stiffness", "torsion_stiffness", "mass", "mass_offset", "air_density",
-                                  "axial_stiffness", "tension_offset"])
+                                  "axial_stiffness", "tension_offset", "shear_offset", "pitch_axis"])
 def test_total_against_reanalyses(point, base, name):
-    """Every other blade property over the whole blade and the air density (the axial stiffness and
-    the elastic centre pass on the tolerance's absolute floor: their derivatives are small)."""
+    """Every other blade property over the whole blade, the air density and the pitch axis (the axial
+    stiffness and the elastic centre pass on the tolerance's absolute floor: their derivatives are
+    small)."""
     _check(point, base, name)
 
 

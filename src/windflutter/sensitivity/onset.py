@@ -17,11 +17,10 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from windflutter.errors import InputError
-from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
-from windflutter.sensitivity.point import point_sensitivities
+from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS, unit_change
+from windflutter.sensitivity.point import changed_strips_point, point_sensitivities
 from windflutter.system.modes import point_modes
 from windflutter.sensitivity.finite_difference import changed_blade
-from windflutter.sensitivity.point import UNIT_OFFSET, UNIT_RELATIVE
 
 
 def _named(modes, name: str):
@@ -101,6 +100,8 @@ def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
                                      ps.omega, ps.pitch, tip_frame=ps.tip_frame)
         return point_of
     g = GLOBAL_PARAMETERS[name]
+    if g.part == "strips":
+        return lambda rpm: changed_strips_point(om, om.at(wind_speed, rpm=rpm, pitch=pitch), g.strips, p, Phi=None)
     mod = om.variant(*g.change(om.turbine, om.options, p))
     if g.part == "aero":
         import dataclasses
@@ -112,12 +113,6 @@ def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
                                       tip_frame=ps.tip_frame)
         return point_of
     return lambda rpm: mod.at(wind_speed, rpm=rpm, pitch=pitch)
-
-
-def unit_change(name: str) -> float:
-    """The table's unit change of a parameter: 1 % (relative) or 1 cm (offsets)."""
-
-    return UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
 
 
 def most_influential(sens: OnsetSensitivity, n: int = 2) -> list[str]:

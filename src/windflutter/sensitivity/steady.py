@@ -124,16 +124,21 @@ def _variant(base: SteadyBase, name: str, s: float, elements=None, support: bool
             om = om.with_rotor_mass(om.rotor_rigid_mass(blade=changed_rotor_blade(om.blade(0.0), name, s, elements)))
         return changed_rotor_blade(base.rb, name, s, elements, base.mu), base.steady.air_density, om
     g = GLOBAL_PARAMETERS[name]
+    if g.part == "strips":
+        rb = base.rb
+        return RotorBlade(rb.fe, rb.struct, g.strips(rb.sections, s), rb.apex, rb.axis, damping=rb.damping), \
+            base.steady.air_density, om
     t, o = g.change(om.turbine, om.options, s)
     return base.rb, o.air_density, om.variant(t, o)
 
 
-def strip_state(base: SteadyBase, config, air_density: float):
-    """``(aero, f_aero)`` of the strips carried by the configuration: the deflected strips, their BEM
-    induction (re-solved), polar coefficients and loads (``aero`` a dict of the
-    :class:`~windflutter.steady.SteadyState` fields) and the nodal loads (n_dof,) through the motion
-    map with its lever arms turned."""
-    om, rb, st = base.om, base.rb, base.steady
+def strip_state(base: SteadyBase, config, air_density: float, rb: RotorBlade | None = None):
+    """``(aero, f_aero)`` of the strips of the undeformed blade ``rb`` (default the nominal one)
+    carried by the configuration: the deflected strips, their BEM induction (re-solved), polar
+    coefficients and loads (``aero`` a dict of the :class:`~windflutter.steady.SteadyState` fields) and
+    the nodal loads (n_dof,) through the motion map with its lever arms turned."""
+    om, st = base.om, base.steady
+    rb = base.rb if rb is None else rb
     defl = configuration_deflection(rb.sections, rb.fe, config)
     sec = deflected_sections(rb.sections, om.rotor, defl)
     V, Om = st.wind_speed, st.omega
@@ -151,7 +156,7 @@ def residual(base: SteadyBase, rb: RotorBlade, config, air_density: float | None
     None: without ``f_aero`` (the structure's part)."""
     f_cf, _ = centrifugal_loads(rb.fe, base.steady.omega, rb.apex, rb.axis)(config)
     r = internal_forces(rb.fe, config) - f_cf
-    return r if air_density is None else r - strip_state(base, config, air_density)[1]
+    return r if air_density is None else r - strip_state(base, config, air_density, rb)[1]
 
 
 def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | None = None) -> np.ndarray:
@@ -197,7 +202,7 @@ def point_at(base: SteadyBase, name: str, s: float, dc: np.ndarray, elements=Non
     ps, st = base.ps, base.steady
     rb, rho, om = _variant(base, name, s, elements, support=True)
     config = displaced(base.config, s * dc)
-    aero, _ = strip_state(base, config, rho)
+    aero, _ = strip_state(base, config, rho, rb)
     steady = dataclasses.replace(st, u=configuration_displacement(rb.fe, config), configuration=config,
                                  air_density=rho, **aero)
     d = deflected_blade(rb, steady, ps.omega, base.mu)
