@@ -17,7 +17,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from windflutter.errors import InputError
-from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS, unit_change
+from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, change_words, is_relative,
+                                                unit_change)
 from windflutter.sensitivity.point import changed_strips_point, point_sensitivities
 from windflutter.system.modes import point_modes
 from windflutter.sensitivity.finite_difference import changed_blade
@@ -119,3 +120,34 @@ def most_influential(sens: OnsetSensitivity, n: int = 2) -> list[str]:
     """The ``n`` parameters whose unit change moves the onset most."""
     return sorted(sens.drpm, key=lambda k: -abs(sens.drpm[k] * unit_change(k)))[:n]
 
+
+
+def onset_lines(sens: OnsetSensitivity) -> list[str]:
+    """The header and the ranked sentences of an onset's sensitivity (``windflutter sensitivity --onset``):
+    ``"+1 % torsion stiffness (whole blade) raises the onset by 0.0522 RPM"``, largest shift first."""
+    out = [f"onset of the {sens.name} at {sens.wind_speed:g} m/s: {sens.rpm:.4f} RPM (the operating curve's pitch "
+           f"held, rotor speed raised); d Re(lambda)/d rpm = {sens.dsigma_drpm:.4g} 1/s per RPM; steady state held "
+           "fixed; largest onset shifts first"]
+    for name in most_influential(sens, len(sens.drpm)):
+        x = sens.drpm[name] * unit_change(name)
+        where = " (whole blade)" if name in BLADE_PROPERTIES else ""
+        out.append(f"  {change_words(name)}{where} {'raises' if x >= 0 else 'lowers'} the onset by {abs(x):.3g} RPM")
+    return out
+
+
+def onset_dataset(sens: OnsetSensitivity):
+    """The :class:`xarray.Dataset` of an onset's sensitivity: ``drpm`` (RPM per unit of each parameter)
+    and ``drpm_unit_change`` (RPM for +1 % or +1 cm) on ``parameter``; the onset in the attributes."""
+    import xarray as xr
+
+    names = list(sens.drpm)
+    per = "per unit of the parameter (relative ones: per +100 %; offsets: per m)"
+    return xr.Dataset(
+        {"drpm": ("parameter", [sens.drpm[n] for n in names], {"units": "rpm", "long_name": "d onset rotor speed / d "
+                                                              "parameter (blade properties over the whole blade) " + per}),
+         "drpm_unit_change": ("parameter", [sens.drpm[n] * unit_change(n) for n in names], {
+             "units": "rpm", "long_name": "onset shift for +1 % of a relative parameter, +1 cm of an offset"})},
+        coords={"parameter": names, "parameter_unit": ("parameter", ["1" if is_relative(n) else "m" for n in names])},
+        attrs={"mode": sens.name, "wind_speed_m_s": sens.wind_speed, "onset_rpm": sens.rpm,
+               "dsigma_drpm_per_s_per_rpm": sens.dsigma_drpm,
+               "held_fixed": "the steady state at the onset (deflected shape, stress, inflow) and the blade basis"})
