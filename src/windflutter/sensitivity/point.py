@@ -33,8 +33,8 @@ import numpy as np
 from windflutter.rotor.spin import beam_spin_elements
 from windflutter.sensitivity.eigen import (ModeVectors, blade_jacobians, blade_vectors, mbc_derivative, mode_vectors,
                                           pair_ratio, pair_vectors, system_derivative)
-from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, UNIT_OFFSET,  # noqa: F401
-                                                UNIT_RELATIVE, blade_sections, check_parameters, unit_change)
+from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections, check_parameters,
+                                                unit_change)
 from windflutter.structure.beam import beam_global_matrices
 from windflutter.system.blade import RotorBlade
 from windflutter.system.multiblade import BladeSystem, multiblade_system

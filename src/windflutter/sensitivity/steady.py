@@ -47,7 +47,7 @@ import scipy.sparse.linalg as spla
 
 from windflutter.aero.induction import sections_induction
 from windflutter.aero.strip import OperatingPoint
-from windflutter.errors import InputError
+from windflutter.errors import InputError, ModelError
 from windflutter.sensitivity.eigen import ModeVectors, mbc_derivative, mode_vectors
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections
 from windflutter.steady.exact import (centrifugal_loads, configuration_deflection, configuration_displacement,
@@ -185,7 +185,7 @@ def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | Non
     pre = spla.LinearOperator((n, n), matvec=base.factor.solve, dtype=float)
     dq, info = spla.gmres(KT, rhs, M=pre, rtol=GMRES_TOL, atol=0.0, restart=40, maxiter=4)
     if info != 0:
-        raise ArithmeticError(f"the steady state's sensitivity to {name}: GMRES did not converge ({info})")
+        raise ModelError(f"the steady state's sensitivity to {name}: GMRES did not converge ({info})")
     return np.asarray(T @ dq)
 
 
