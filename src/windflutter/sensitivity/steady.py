@@ -91,7 +91,7 @@ def steady_base(om, ps) -> SteadyBase:
     st = ps.steady
     if st is None or getattr(st, "configuration", None) is None or o.structure != "deflected" or \
             len(ps.blade.fe.shell_conn):
-        raise InputError("steady_state", "total", "a beam blade linearized about its co-rotational deflected steady "
+        raise InputError("total", True, "a beam blade linearized about its co-rotational deflected steady "
                          "state (solver.structure deflected, solver.corotational true) with aerodynamics")
     rb = om.blade(ps.pitch)
     mu = blade_mu(om.turbine) if o.damping == "file" else None
