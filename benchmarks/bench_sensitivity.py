@@ -5,7 +5,8 @@ blade properties at every element of the blade and the four global parameters) c
 Campbell at that point (the point system and its named modes).  Baseline measured in the same run:
 the finite-difference re-analyses the sensitivities replace -- two re-analyses per parameter (one
 blade property over one element; the cost per element x the number of elements and properties,
-plus the global parameters), extrapolated from a measured few.
+plus the global parameters), extrapolated from a measured few.  Also timed: the total derivatives of the whole-blade and global
+parameters (the steady state's own sensitivity included, windflutter.sensitivity.steady).
 
     python benchmarks/bench_sensitivity.py [--quick] [--turbine nrel5mw] [--wind 15]
 """
@@ -22,6 +23,7 @@ from windflutter.operating import campbell_model
 from windflutter.sensitivity import finite_difference as fd
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
 from windflutter.sensitivity.point import point_sensitivities
+from windflutter.sensitivity.steady import HELD_EXACTLY, point_totals
 from windflutter.solve.linsolve import blas_limit
 from windflutter.system.modes import point_modes
 
@@ -60,6 +62,8 @@ def main(argv=None):
         res, t_sens = best(lambda: point_sensitivities(om, ps, modes, models=models), repeat)
         n_el = len(res.station)
         n_par = len(BLADE_PROPERTIES) * n_el + len(GLOBAL_PARAMETERS)
+        totals, t_total = best(lambda: point_totals(om, ps, res), 1)
+        n_tot = len([n for n in totals if n not in HELD_EXACTLY])
         _, t_fd = best(lambda: fd.frozen_blade(om, ps, res.names, "edge_stiffness", 1e-3, [n_el // 2], max_hz), 1)
         print(f"{args.turbine} at {args.wind:g} m/s: {len(modes)} modes up to {max_hz:.2f} Hz, "
               f"{ps.mbc.M.shape[0]} DOF + {ps.mbc.A.shape[0]} aero states, {n_el} blade elements")
@@ -67,6 +71,9 @@ def main(argv=None):
         print(f"  all sensitivities ({len(BLADE_PROPERTIES)} blade properties x {n_el} elements + "
               f"{len(GLOBAL_PARAMETERS)} global = {n_par} parameters): {t_sens:.2f} s "
               f"= {t_sens / t_point:.2f}x the Campbell point")
+        print(f"  total derivatives (the steady state's own change; {n_tot} whole-blade and global parameters, "
+              f"{len(totals) - n_tot} equal to the held ones): {t_total:.2f} s = {t_total / t_point:.2f}x the "
+              f"Campbell point, {t_total / max(n_tot, 1):.2f} s per parameter")
         print(f"  baseline: finite differences, {t_fd:.2f} s per parameter (two re-analyses) -> "
               f"{t_fd * n_par:.0f} s for all ({t_fd * n_par / t_sens:.0f}x the sensitivities)")
         print(f"  target: sensitivities <= 2x the Campbell point -> {'met' if t_sens <= 2 * t_point else 'NOT met'}")

@@ -36,6 +36,35 @@ def test_blade_segment_against_reanalyses(point, prop, h):
     assert mismatches(res, res.blade[prop][:, SEGMENT].sum(axis=1), ref, prop) == []
 
 
+def test_shear_centre_against_reanalyses(point):
+    """A segment's shear centre (issue 31's item 2), on the basis held (the blade basis's own change:
+    test_sensitivity_point_slow.py)."""
+    om, ps, modes, res = point
+    _defined(res, "shear_offset")
+    ref = fd.frozen_blade(om, ps, res.names, "shear_offset", 1e-3, SEGMENT, MAX_HZ, Phi=ps.Phi)
+    assert mismatches(res, res.blade["shear_offset"][:, SEGMENT].sum(axis=1), ref, "shear_offset") == []
+
+
+def test_shear_and_tension_offsets_move_their_centres():
+    """The meaning of the offsets, from the changed section alone: a flapwise shear force applied at
+    the shear centre ``e = C[3,1] / C[3,3]`` (C the compliance) does not twist the section, and an
+    axial force at the tension centre ``z = -C[4,0] / C[4,4]`` does not bend it edgewise; both move by
+    the offset ``p`` (here from a coupled section)."""
+    from windflutter.sensitivity.parameters import BLADE_PROPERTIES
+
+    rng = np.random.default_rng(1)
+    A = rng.standard_normal((6, 6))
+    K = np.diag([2e9, 2e8, 2e8, 2e8, 4e9, 1.7e9]) + 1e7 * (A @ A.T)
+    M = np.eye(6)
+    p = 0.07
+    shear = lambda K: np.linalg.inv(K)[3, 1] / np.linalg.inv(K)[3, 3]  # noqa: E731
+    tension = lambda K: -np.linalg.inv(K)[4, 0] / np.linalg.inv(K)[4, 4]  # noqa: E731
+    K_s, _ = BLADE_PROPERTIES["shear_offset"].change(K, M, p)
+    assert shear(K_s) - shear(K) == pytest.approx(p, rel=1e-9)
+    K_t, _ = BLADE_PROPERTIES["tension_offset"].change(K, M, p)
+    assert tension(K_t) - tension(K) == pytest.approx(p, rel=1e-9)
+
+
 def test_tower_stiffness_against_reanalyses(point):
     """The tower's stiffness (its wall's Young's modulus): the whole turbine re-analysed (steady state
     included: the blade's does not depend on the tower)."""
@@ -92,7 +121,7 @@ def test_dataset_and_ranked_table(point):
 
     om, ps, modes, res = point
     ds = as_dataset([res], "NREL 5MW")
-    assert dict(ds["ddamping"].sizes) == {"mode": len(modes), "wind_speed": 1, "parameter": 8,
+    assert dict(ds["ddamping"].sizes) == {"mode": len(modes), "wind_speed": 1, "parameter": 9,
                                           "station": len(res.station)}
     assert ds["dfrequency"].attrs["units"] == "Hz" and ds["station"].attrs["units"] == "1"
     i = res.names.index("1st edge BW")
@@ -119,9 +148,9 @@ def test_total_columns(point):
     om, ps, modes, res = point
     whole = {k: v.sum(axis=1) for k, v in res.blade.items()} | dict(res.globals_)
     ds = as_dataset([dataclasses.replace(res, total=whole)])
-    assert ds["ddamping_total"].sizes["any_parameter"] == 12
+    assert ds["ddamping_total"].sizes["any_parameter"] == 14
     lines = total_table(ds, modes=["1st edge BW"])
-    assert len(lines) == 12
+    assert len(lines) == 14
     for line in lines:
         by = float(line.split(" by ")[1].split(" points")[0])
         held = float(line.split("points (")[1].split(" with")[0])

@@ -29,8 +29,11 @@ def test_every_blade_property(point, prop):
     tolerance's absolute floor, so they pass on it: a check that they are small, not a 1 % one."""
     om, ps, modes, res = point
     assert np.all(res.defined[prop])
+    # the shear centre changes the blade's own modes (flap-torsion coupling) beyond its 30-mode basis:
+    # re-analyses that recompute it differ by up to 1.3 % (1.7e-4 in dzeta); checked on the basis held
+    Phi = ps.Phi if prop == "shear_offset" else None
     for seg in (SEGMENT, np.arange(24, 30)):
-        ref = fd.frozen_blade(om, ps, res.names, prop, STEPS[prop], seg, MAX_HZ)
+        ref = fd.frozen_blade(om, ps, res.names, prop, STEPS[prop], seg, MAX_HZ, Phi=Phi)
         assert mismatches(res, res.blade[prop][:, seg].sum(axis=1), ref, f"{prop} {seg[0]}-{seg[-1]}") == []
 
 
@@ -41,6 +44,13 @@ def test_support_parameters_against_whole_reanalyses(point, name):
     assert np.all(res.defined[name])
     ref = fd.full_reanalysis(om, WIND, res.names, name, 1e-3, MAX_HZ)
     assert mismatches(res, res.globals_[name], ref, name) == []
+
+
+def test_pitch_axis_steady_state_held(point):
+    """The pitch axis (the strips' elastic-axis position) with the steady state held fixed."""
+    om, ps, modes, res = point
+    ref = fd.frozen_global(om, ps, res.names, "pitch_axis", 1e-3, MAX_HZ)
+    assert mismatches(res, res.globals_["pitch_axis"], ref, "pitch_axis") == []
 
 
 def test_air_density_steady_state_held(point):

@@ -32,8 +32,14 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     add_flags(p, FLAGS)
     p.add_argument("--modes", nargs="+", default=None, metavar="NAME",
                    help="modes to analyse by name, e.g. '1st edge BW' (quoted); default every mode")
-    p.add_argument("--total", action="store_true", help="also whole re-analyses with the steady state recomputed "
-                   "(whole blade and global parameters; two re-analyses per parameter and wind speed)")
+    p.add_argument("--total", action="store_true", help="also the derivatives with the steady state's own change "
+                   "included (its sensitivity: whole blade and global parameters; ~1 s per parameter and wind speed)")
+    p.add_argument("--onset", action="store_true", help="instead: the derivative of the first instability's onset "
+                   "rotor speed at one wind speed (the operating curve's pitch held, the rotor speed raised; implicit "
+                   "function theorem): of the mode of --modes (one) near --rpm, default the first flutter onset of "
+                   "method p's rotor-speed search")
+    p.add_argument("--rpm", type=float, default=None, metavar="R", help="with --onset: a rotor speed (RPM) near the "
+                   "onset of the --modes mode")
     p.add_argument("--top", type=int, default=12, metavar="N", help="lines of the ranked table (default 12)")
     p.add_argument("--out", default=None, metavar="FILE", help="write the sensitivities as NetCDF (.nc)")
     p.add_argument("--plot", default=None, metavar="FILE", help="plot the spanwise sensitivity of the least "
@@ -58,6 +64,8 @@ def run(args: argparse.Namespace) -> int:
         if path is not None:  # before the analysis
             check_output_file(path, flag, exts)
     winds = config.wind_speeds if args.wind_speeds is not None else None
+    if args.onset or args.rpm is not None:
+        return run_onset(args, config, winds)
     ds = sensitivity(args.turbine, winds, modes=args.modes, total=args.total, config=config)
     if args.out:
         out = ds.copy()
@@ -73,7 +81,37 @@ def run(args: argparse.Namespace) -> int:
         print("  " + sentence(r))
     lines = total_table(ds, modes=args.modes)
     if lines:
-        print("whole re-analyses (steady state recomputed), largest first:")
+        print("with the steady state's own change (whole blade), largest first:")
         for line in lines[:args.top]:
             print("  " + line)
+    return 0
+
+
+def run_onset(args: argparse.Namespace, config, winds) -> int:
+    """``--onset``: the onset rotor speed's derivatives (:func:`windflutter.api.onset_sensitivity`),
+    ranked by the onset shift of each parameter's unit change; ``--out``: a NetCDF dataset."""
+    from windflutter.api import onset_sensitivity  # noqa: PLC0415
+    from windflutter.files import prepare_output_file  # noqa: PLC0415
+    from windflutter.sensitivity.onset import onset_dataset, onset_lines  # noqa: PLC0415
+
+    if not args.onset:
+        raise InputError("--rpm", args.rpm, "--onset with it (a rotor speed near the onset)")
+    if winds is None or len(winds) != 1:
+        raise InputError("--wind-speeds", "none" if winds is None else " ".join(f"{v:g}" for v in winds),
+                         "one wind speed with --onset")
+    if args.modes is not None and len(args.modes) != 1:
+        raise InputError("--modes", " ".join(args.modes), "one mode name with --onset")
+    if args.rpm is not None and not args.rpm > 0:
+        raise InputError("--rpm", args.rpm, "a positive rotor speed (RPM)")
+    if args.plot:
+        raise InputError("--plot", args.plot, "no plot with --onset (the table and --out)")
+    if (args.modes is None) != (args.rpm is None):
+        raise InputError("--rpm" if args.rpm is None else "--modes", "missing", "--modes NAME and --rpm R together "
+                         "with --onset, or neither (method p's first flutter onset)")
+    mode = args.modes[0] if args.modes else None
+    res = onset_sensitivity(args.turbine, float(winds[0]), mode=mode, rpm=args.rpm, config=config)
+    if args.out:
+        onset_dataset(res).to_netcdf(prepare_output_file(args.out))
+    for line in onset_lines(res)[:args.top + 1]:
+        print(line)
     return 0

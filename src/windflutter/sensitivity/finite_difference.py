@@ -11,7 +11,10 @@ derivative of :mod:`windflutter.sensitivity.point`.
   and inflow (:meth:`~windflutter.system.operational.OperationalModel.assemble_point`), or the
   nominal blade on the changed turbine's support;
 * :func:`full_reanalysis`: the turbine's data changed and the whole point recomputed, steady state
-  included (what the frozen derivatives leave out shows in the difference).
+  included (what the frozen derivatives leave out shows in the difference);
+* :func:`steady_reanalysis`: the same with the steady state iterated to a tighter tolerance and the
+  blade basis held at the nominal point's (the reference of the total derivatives,
+  :mod:`windflutter.sensitivity.steady`, which differentiate the reduced model).
 """
 
 from __future__ import annotations
@@ -27,6 +30,8 @@ from windflutter.system.blade import RotorBlade
 from windflutter.system.damping import blade_damping_matrix, blade_mu
 from windflutter.sensitivity.point import damping_sections
 from windflutter.system.operational import OperationalModel
+from windflutter.steady import SteadyOptions, steady_state
+from windflutter.system.deflected import deflected_blade
 
 
 def _by_name(modes) -> dict:
@@ -62,31 +67,37 @@ def changed_blade(om, ps, name: str, p: float, elements=None):
     return RotorBlade(fe2, st, rb.sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe2, mu))
 
 
-def _point(om, ps, rb, steady=None):
+def _point(om, ps, rb, steady=None, Phi=None):
     return om.assemble_point(rb, ps.steady if steady is None else steady, ps.ksigma, ps.klink, ps.wind_speed,
-                             ps.omega, ps.pitch, tip_frame=ps.tip_frame)
+                             ps.omega, ps.pitch, tip_frame=ps.tip_frame, Phi=Phi)
 
 
-def frozen_blade(om, ps, names, name: str, h: float, elements=None, max_hz: float = 2.5) -> dict:
+def frozen_blade(om, ps, names, name: str, h: float, elements=None, max_hz: float = 2.5, Phi=None) -> dict:
     """``{mode name: dlambda/dp}`` of the blade property ``name`` (of ``elements``) by central
-    differences of re-analyses about the nominal steady state."""
-    out = [_by_name(point_modes(_point(om, ps, changed_blade(om, ps, name, s, elements)), max_hz)) for s in (h, -h)]
+    differences of re-analyses about the nominal steady state; ``Phi``: the blade basis to hold
+    (None: recomputed)."""
+    out = [_by_name(point_modes(_point(om, ps, changed_blade(om, ps, name, s, elements), Phi=Phi), max_hz))
+           for s in (h, -h)]
     return _difference(out[0], out[1], names, h)
 
 
 def frozen_global(om, ps, names, name: str, h: float, max_hz: float = 2.5) -> dict:
     """``{mode name: dlambda/dp}`` of the global parameter ``name``: the nominal blade and steady state
-    on the changed turbine's support (or with the changed air density in the strips)."""
+    on the changed turbine's support (or with the changed air density in the strips, or the changed
+    strips on the nominal deflected blade)."""
 
     g = GLOBAL_PARAMETERS[name]
     out = []
     for s in (h, -h):
         t, o = g.change(om.turbine, om.options, s)
         mod = OperationalModel(t, o)
-        steady = ps.steady
+        steady, rb = ps.steady, ps.blade
         if g.part == "aero" and steady is not None:
             steady = dataclasses.replace(steady, air_density=o.air_density)
-        out.append(_by_name(point_modes(_point(mod, ps, ps.blade, steady), max_hz)))
+        if g.part == "strips":  # the changed strips on the nominal deflected blade
+            rb = RotorBlade(rb.fe, rb.struct, g.strips(rb.sections, s), rb.apex, rb.axis, damping=rb.damping)
+            steady = dataclasses.replace(steady, sections=g.strips(steady.sections, s))
+        out.append(_by_name(point_modes(_point(mod, ps, rb, steady), max_hz)))
     return _difference(out[0], out[1], names, h)
 
 
@@ -122,14 +133,35 @@ def full_reanalysis(om, wind_speed: float, names, name: str, h: float, max_hz: f
     return _difference(out[0], out[1], names, h)
 
 
-def total_derivatives(om, wind_speed: float, names, parameters, max_hz: float = 2.5, steps=None) -> dict:
-    """``{parameter: (k,) dlambda/dp}`` of the modes ``names`` by :func:`full_reanalysis` (the steady
-    state recomputed): the blade properties over the whole blade and the global parameters; NaN for a
-    mode not found after a change.  ``steps``: ``{parameter: h}`` (default 1e-3; 1 mm for offsets)."""
-    out = {}
-    for name in parameters:
-        h = (steps or {}).get(name, 1e-2 if name in BLADE_PROPERTIES and BLADE_PROPERTIES[name].change is None
-                              else 1e-3)
-        d = full_reanalysis(om, wind_speed, names, name, h, max_hz)
-        out[name] = np.array([d[n] for n in names])
-    return out
+def changed_model(om, name: str, s: float) -> OperationalModel:
+    """The operating-point model of the turbine with the parameter ``name`` changed by ``s`` (a blade
+    property over the whole blade: the turbine's beam data changed and the blade meshed again)."""
+    if name in GLOBAL_PARAMETERS:
+        return OperationalModel(*GLOBAL_PARAMETERS[name].change(om.turbine, om.options, s))
+    return OperationalModel(blade_data(om.turbine, name, s), om.options)
+
+
+def steady_reanalysis(om, ps, names, name: str, h: float, max_hz: float = 2.5, tol: float = 1e-9) -> dict:
+    """``{mode name: dlambda/dp}`` by re-analyses of the changed turbine (:func:`changed_model`) at the
+    point's wind speed, rotor speed and pitch: the steady state iterated from the start to ``tol``
+    (:func:`~windflutter.steady.steady_state`, co-rotational beam, BEM), the blade linearized about
+    it (:func:`~windflutter.system.deflected.deflected_blade`) on the nominal point's blade basis.
+    A parameter of the strips (the pitch axis) changes them by its own ``strips`` function (the
+    turbine data's pitch axis interpolates differently: by up to 3.5 % of the change at the tip)."""
+    out = []
+    g = GLOBAL_PARAMETERS.get(name)
+    for s in (h, -h):
+        mod = om if g is not None and g.part == "strips" else changed_model(om, name, s)
+        o = mod.options
+        rb = mod.blade(ps.pitch)
+        if g is not None and g.part == "strips":
+            rb = RotorBlade(rb.fe, rb.struct, g.strips(rb.sections, s), rb.apex, rb.axis, damping=rb.damping)
+        so = SteadyOptions(deflection=True, corotational=True, tol=tol, max_iterations=300,
+                           bem={"high_thrust": o.high_thrust})
+        st = steady_state(rb.fe, rb.struct, rb.sections, mod.rotor, ps.wind_speed, ps.omega, n_blades=mod.n_blades,
+                          air_density=o.air_density, options=so)
+        d = deflected_blade(rb, st, ps.omega, blade_mu(mod.turbine) if o.damping == "file" else None)
+        p = mod.assemble_point(d.blade, d.steady, d.ksigma, d.klink, ps.wind_speed, ps.omega, ps.pitch,
+                               tip_frame=ps.tip_frame, Phi=ps.Phi)
+        out.append(_by_name(point_modes(p, max_hz)))
+    return _difference(out[0], out[1], names, h)

@@ -17,11 +17,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from windflutter.errors import InputError
-from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
-from windflutter.sensitivity.point import point_sensitivities
+from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, change_words, is_relative,
+                                                unit_change)
+from windflutter.sensitivity.point import changed_strips_point, point_sensitivities
+from windflutter.sensitivity.steady import point_totals
 from windflutter.system.modes import point_modes
-from windflutter.sensitivity.finite_difference import changed_blade
-from windflutter.sensitivity.point import UNIT_OFFSET, UNIT_RELATIVE
+from windflutter.sensitivity.finite_difference import changed_blade, changed_model
+from windflutter.system.blade import RotorBlade
+from windflutter.system.damping import blade_mu
+from windflutter.system.deflected import deflected_blade
 
 
 def _named(modes, name: str):
@@ -71,12 +75,17 @@ class OnsetSensitivity:
     rpm: float
     dsigma_drpm: float
     drpm: dict
+    #: ``d sigma/dp`` with the steady state's own change (else held at the onset)
+    total: bool = False
 
 
 def onset_sensitivity(om, wind_speed: float, name: str, rpm: float, pitch: float, max_hz: float,
-                      d_rpm: float = 0.05, blade_properties=None, global_parameters=None) -> OnsetSensitivity:
+                      d_rpm: float = 0.05, blade_properties=None, global_parameters=None,
+                      total: bool = False) -> OnsetSensitivity:
     """:class:`OnsetSensitivity` of the mode ``name`` of the operating-point model ``om`` whose
-    onset at ``wind_speed`` (m/s) and ``pitch`` (rad) is ``rpm`` (RPM)."""
+    onset at ``wind_speed`` (m/s) and ``pitch`` (rad) is ``rpm`` (RPM); ``total``: ``d sigma/dp``
+    with the steady state's own change (:func:`~windflutter.sensitivity.steady.point_totals`; the
+    blade properties over the whole blade), else with the steady state at the onset held."""
     point_of = lambda r: om.at(wind_speed, rpm=r, pitch=pitch)  # noqa: E731
     s_plus, prev = mode_sigma(point_of, rpm + d_rpm, name, max_hz)
     s_minus, _ = mode_sigma(point_of, rpm - d_rpm, name, max_hz, prev)
@@ -86,7 +95,30 @@ def onset_sensitivity(om, wind_speed: float, name: str, rpm: float, pitch: float
     res = point_sensitivities(om, ps, [m], blade_properties, global_parameters)
     out = {k: -float(v[0].sum().real) / ds for k, v in res.blade.items()}
     out.update({k: -float(v[0].real) / ds for k, v in res.globals_.items()})
-    return OnsetSensitivity(name=name, wind_speed=float(wind_speed), rpm=float(rpm), dsigma_drpm=ds, drpm=out)
+    if total:
+        out = {k: -float(v[0].real) / ds for k, v in point_totals(om, ps, res).items()}
+    return OnsetSensitivity(name=name, wind_speed=float(wind_speed), rpm=float(rpm), dsigma_drpm=ds, drpm=out,
+                            total=bool(total))
+
+
+def recomputed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
+    """``point_of(rpm)`` of the turbine with the parameter ``name`` changed by ``p`` (a blade property
+    over the whole blade, or a global parameter): its steady state recomputed at each rotor speed,
+    the blade linearized about it on the nominal point's blade basis (the reference of the total
+    onset derivative)."""
+    g = GLOBAL_PARAMETERS.get(name)
+    mod = om if g is not None and g.part == "strips" else changed_model(om, name, p)
+    mu = blade_mu(mod.turbine) if mod.options.damping == "file" else None
+
+    def point_of(rpm):
+        ps0 = om.at(wind_speed, rpm=rpm, pitch=pitch)
+        rb = mod.blade(pitch)
+        if g is not None and g.part == "strips":
+            rb = RotorBlade(rb.fe, rb.struct, g.strips(rb.sections, p), rb.apex, rb.axis, damping=rb.damping)
+        d = deflected_blade(rb, mod.steady(rb, wind_speed, ps0.omega), ps0.omega, mu)
+        return mod.assemble_point(d.blade, d.steady, d.ksigma, d.klink, wind_speed, ps0.omega, pitch,
+                                  tip_frame=ps0.tip_frame, Phi=ps0.Phi)
+    return point_of
 
 
 def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
@@ -101,6 +133,8 @@ def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
                                      ps.omega, ps.pitch, tip_frame=ps.tip_frame)
         return point_of
     g = GLOBAL_PARAMETERS[name]
+    if g.part == "strips":
+        return lambda rpm: changed_strips_point(om, om.at(wind_speed, rpm=rpm, pitch=pitch), g.strips, p, Phi=None)
     mod = om.variant(*g.change(om.turbine, om.options, p))
     if g.part == "aero":
         import dataclasses
@@ -114,13 +148,40 @@ def changed_point_of(om, wind_speed: float, pitch: float, name: str, p: float):
     return lambda rpm: mod.at(wind_speed, rpm=rpm, pitch=pitch)
 
 
-def unit_change(name: str) -> float:
-    """The table's unit change of a parameter: 1 % (relative) or 1 cm (offsets)."""
-
-    return UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
-
-
 def most_influential(sens: OnsetSensitivity, n: int = 2) -> list[str]:
     """The ``n`` parameters whose unit change moves the onset most."""
     return sorted(sens.drpm, key=lambda k: -abs(sens.drpm[k] * unit_change(k)))[:n]
 
+
+
+def onset_lines(sens: OnsetSensitivity) -> list[str]:
+    """The header and the ranked sentences of an onset's sensitivity (``windflutter sensitivity --onset``):
+    ``"+1 % torsion stiffness (whole blade) raises the onset by 0.0522 RPM"``, largest shift first."""
+    out = [f"onset of the {sens.name} at {sens.wind_speed:g} m/s: {sens.rpm:.4f} RPM (the operating curve's pitch "
+           f"held, rotor speed raised); d Re(lambda)/d rpm = {sens.dsigma_drpm:.4g} 1/s per RPM; steady state "
+           f"{'included' if sens.total else 'held fixed'}; largest onset shifts first"]
+    for name in most_influential(sens, len(sens.drpm)):
+        x = sens.drpm[name] * unit_change(name)
+        where = " (whole blade)" if name in BLADE_PROPERTIES else ""
+        out.append(f"  {change_words(name)}{where} {'raises' if x >= 0 else 'lowers'} the onset by {abs(x):.3g} RPM")
+    return out
+
+
+def onset_dataset(sens: OnsetSensitivity):
+    """The :class:`xarray.Dataset` of an onset's sensitivity: ``drpm`` (RPM per unit of each parameter)
+    and ``drpm_unit_change`` (RPM for +1 % or +1 cm) on ``parameter``; the onset in the attributes."""
+    import xarray as xr
+
+    names = list(sens.drpm)
+    per = "per unit of the parameter (relative ones: per +100 %; offsets: per m)"
+    return xr.Dataset(
+        {"drpm": ("parameter", [sens.drpm[n] for n in names], {
+            "units": "rpm", "long_name": "d onset rotor speed / d parameter (blade properties over the whole blade) "
+                                         + per}),
+         "drpm_unit_change": ("parameter", [sens.drpm[n] * unit_change(n) for n in names], {
+             "units": "rpm", "long_name": "onset shift for +1 % of a relative parameter, +1 cm of an offset"})},
+        coords={"parameter": names, "parameter_unit": ("parameter", ["1" if is_relative(n) else "m" for n in names])},
+        attrs={"mode": sens.name, "wind_speed_m_s": sens.wind_speed, "onset_rpm": sens.rpm,
+               "dsigma_drpm_per_s_per_rpm": sens.dsigma_drpm,
+               "held_fixed": ("the blade basis" if sens.total else
+                              "the steady state at the onset (deflected shape, stress, inflow) and the blade basis")})

@@ -15,13 +15,19 @@ axial, shear y, shear z, torsion, bending about y (edgewise), bending about z (f
   the inertia about the mass centre kept;
 * ``tension_offset``: m, the section's stiffness moved by ``p`` along the chord (towards the
   trailing edge): the elastic (tension) centre and its axial--edgewise coupling;
+* ``shear_offset``: m, the shear centre moved by ``p`` along the chord (towards the trailing
+  edge): the flapwise shear strain taken at the moved centre, ``gamma_xy - p kappa_x``;
 * ``damping``: relative, the element's structural damping (the files' stiffness-proportional
   ``mu``) times ``1 + p``: carried by :func:`windflutter.sensitivity.point` as the damping matrix
   itself, not through the sections.
 
-Global parameters (:data:`GLOBAL_PARAMETERS`, relative) change the turbine description or the
-options: the tower's stiffness (the Young's modulus of its wall), the drivetrain's torsional
-stiffness, the nacelle mass and the air density.
+Global parameters (:data:`GLOBAL_PARAMETERS`) change the turbine description or the options: the
+tower's stiffness (the Young's modulus of its wall), the drivetrain's torsional stiffness, the
+nacelle mass and the air density (relative), and the pitch-axis position (m): the blade's reference
+(pitch) axis moved by ``p`` along every airfoil's chord towards the trailing edge, the beam sections
+kept about it -- the airfoils (their aerodynamic forces) moved ``p`` forward relative to the blade's
+structure; the strips' elastic-axis position ``a`` (half-chords aft of mid-chord) grows by
+``2 p / chord`` (:func:`pitch_axis_strips`).
 """
 
 from __future__ import annotations
@@ -74,6 +80,12 @@ def _tension_offset(K, M, p):
     return A.T @ K @ A, M
 
 
+def _shear_offset(K, M, p):
+    A = np.eye(6)
+    A[1, 3] = -p  # flapwise shear strain at z = p: gamma_xy - p kappa_x (Gamma = u' + e1 x theta)
+    return A.T @ K @ A, M
+
+
 @dataclass(frozen=True)
 class BladeProperty:
     """A blade section property: its ``change(K, M, p)``, unit of ``p`` and the words of the table."""
@@ -95,6 +107,7 @@ BLADE_PROPERTIES: dict[str, BladeProperty] = {p.name: p for p in (
     BladeProperty("mass_offset", _mass_offset, "m", "mass centre (aft along the chord)", 1e-4, relative=False),
     BladeProperty("tension_offset", _tension_offset, "m", "elastic centre (aft along the chord)", 1e-4,
                   relative=False),
+    BladeProperty("shear_offset", _shear_offset, "m", "shear centre (aft along the chord)", 1e-4, relative=False),
     BladeProperty("damping", None, "1", "structural damping", 1.0),
 )}
 
@@ -145,17 +158,35 @@ def _air_density(turbine, options, p):
     return turbine, dataclasses.replace(options, air_density=options.air_density * (1.0 + p))
 
 
+def _pitch_axis(turbine, options, p):
+    b = turbine.blade
+    chord = np.asarray(b.chord, float)
+    blade = dataclasses.replace(b, pitch_axis=np.asarray(b.pitch_axis, float) + p / chord,
+                                section_offset_y=np.asarray(b.section_offset_y, float) + p)
+    return dataclasses.replace(turbine, blade=blade), options
+
+
+def pitch_axis_strips(sections, p: float):
+    """The strips with the blade's pitch axis moved ``p`` (m) aft along their chords (the airfoils
+    moved forward relative to the structure): elastic-axis position ``a + 2 p / chord``."""
+    return dataclasses.replace(sections, elastic_axis=np.asarray(sections.elastic_axis, float)
+                               + 2.0 * p / np.asarray(sections.chord, float))
+
+
 @dataclass(frozen=True)
 class GlobalParameter:
     """A whole-turbine parameter: ``change(turbine, options, p) -> (turbine', options')``; ``part``
     says which part of the point system it changes (``"support"``: the ground-fixed part;
-    ``"aero"``: the blade's strip aerodynamics)."""
+    ``"aero"``: the blade's strip aerodynamics, scaled; ``"strips"``: the blade's strips, changed by
+    ``strips(sections, p)``); ``relative``: ``p`` relative (else an offset in m)."""
 
     name: str
     change: Callable
     part: str
     words: str
     step: float = 1e-3
+    relative: bool = True
+    strips: Callable | None = None
 
 
 GLOBAL_PARAMETERS: dict[str, GlobalParameter] = {g.name: g for g in (
@@ -163,7 +194,29 @@ GLOBAL_PARAMETERS: dict[str, GlobalParameter] = {g.name: g for g in (
     GlobalParameter("drivetrain_stiffness", _drivetrain_stiffness, "support", "drivetrain torsional stiffness"),
     GlobalParameter("nacelle_mass", _nacelle_mass, "support", "nacelle mass"),
     GlobalParameter("air_density", _air_density, "aero", "air density"),
+    GlobalParameter("pitch_axis", _pitch_axis, "strips", "pitch axis (aft along the chord)", step=1e-4,
+                    relative=False, strips=pitch_axis_strips),
 )}
+
+#: the change a sensitivity is read for (the ranked table's): 1 % of a relative parameter, 1 cm of
+#: an offset
+UNIT_RELATIVE, UNIT_OFFSET = 0.01, 0.01
+
+
+def is_relative(name: str) -> bool:
+    """Whether the parameter ``name`` (blade property or global) is relative (else an offset, m)."""
+    return (BLADE_PROPERTIES[name] if name in BLADE_PROPERTIES else GLOBAL_PARAMETERS[name]).relative
+
+
+def unit_change(name: str) -> float:
+    """The table's unit change of a parameter: 1 % (relative) or 1 cm (offsets)."""
+    return UNIT_RELATIVE if is_relative(name) else UNIT_OFFSET
+
+
+def change_words(name: str) -> str:
+    """``"+1 % flap stiffness"``, ``"+1 cm pitch axis (aft along the chord)"``."""
+    p = BLADE_PROPERTIES[name] if name in BLADE_PROPERTIES else GLOBAL_PARAMETERS[name]
+    return ("+1 % " if p.relative else "+1 cm ") + p.words
 
 
 def check_parameters(names, table: dict, field: str) -> tuple[str, ...]:

@@ -11,8 +11,9 @@
   mode's left and right vectors expanded to the blade's nodes (:mod:`windflutter.sensitivity.eigen`);
 * the global parameters of :data:`~windflutter.sensitivity.parameters.GLOBAL_PARAMETERS`: central
   differences of the assembled multi-blade matrices, the support rebuilt from the changed turbine
-  (tower, nacelle, drivetrain) or the strip aerodynamics scaled (air density: every strip force is
-  proportional to it at a fixed inflow).
+  (tower, nacelle, drivetrain), the strip aerodynamics scaled (air density: every strip force is
+  proportional to it at a fixed inflow) or the point reassembled with changed strips on its blade
+  basis (pitch axis).
 
 Held fixed (first-order perturbation of the point's linear system, not of its steady state): the
 steady state -- the deflected shape, its stress (the initial-stress matrix), the inflow and the
@@ -32,18 +33,16 @@ import numpy as np
 from windflutter.rotor.spin import beam_spin_elements
 from windflutter.sensitivity.eigen import (ModeVectors, blade_jacobians, blade_vectors, mbc_derivative, mode_vectors,
                                           pair_ratio, pair_vectors, system_derivative)
-from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections,
-                                                check_parameters)
+from windflutter.sensitivity.parameters import (BLADE_PROPERTIES, GLOBAL_PARAMETERS, blade_sections, check_parameters,
+                                                unit_change)
 from windflutter.structure.beam import beam_global_matrices
+from windflutter.system.blade import RotorBlade
 from windflutter.system.multiblade import BladeSystem, multiblade_system
 from windflutter.structure.fem import BeamSection
 from windflutter.system.damping import MU_FLOOR, blade_mu
 from windflutter.system.support import fixed_frame
 from windflutter.errors import InputError
 
-#: the change a sensitivity is read for (the ranked table's): 1 % of a relative parameter, 1 cm of
-#: an offset
-UNIT_RELATIVE, UNIT_OFFSET = 0.01, 0.01
 #: a mode's first-order derivative is "not defined" for a parameter when that change couples it to
 #: its nearest eigenvalue by more than this fraction of half their distance, ``2 sqrt(|kappa_ij
 #: kappa_ji|) dp / |lambda_i - lambda_j|`` (:func:`~windflutter.sensitivity.eigen.pair_vectors`): a
@@ -194,6 +193,9 @@ def global_derivatives(om, ps, mvs: list[ModeVectors], names, models: dict | Non
         h = g.step
         mbcs = []
         for s in (h, -h):
+            if g.part == "strips":
+                mbcs.append(changed_strips_point(om, ps, g.strips, s).mbc)
+                continue
             if g.part == "aero":
                 bs = _aero_scaled(ps.blade_system, ps.blade_structure, ps.blade_damping, 1.0 + s)
                 mbcs.append(multiblade_system(ps.fixed, bs, ps.n_blades, ps.omega, axis))
@@ -205,11 +207,22 @@ def global_derivatives(om, ps, mvs: list[ModeVectors], names, models: dict | Non
                 if models is not None:
                     models[key] = mod
             mbcs.append(fixed_frame(mod.support(), mod.hub_mass(), axis, mod.drivetrain()))
-        if g.part == "aero":
+        if g.part in ("aero", "strips"):
             out[name] = np.array([mbc_derivative(mv, mbcs[0], mbcs[1], h) for mv in mvs])
         else:
             out[name] = np.array([_fixed_derivative(mv, ps, mbcs[0], mbcs[1], h) for mv in mvs])
     return out
+
+
+def changed_strips_point(om, ps, strips, s: float, Phi="nominal"):
+    """The point ``ps`` rebuilt with the blade's strips changed by ``strips(sections, s)`` (the
+    deflected blade's and the steady state's alike), the steady state held; ``Phi`` the blade basis
+    (default the point's; None: recomputed)."""
+    rb, st = ps.blade, ps.steady
+    rb2 = RotorBlade(rb.fe, rb.struct, strips(rb.sections, s), rb.apex, rb.axis, damping=rb.damping)
+    st2 = None if st is None else dataclasses.replace(st, sections=strips(st.sections, s))
+    return om.assemble_point(rb2, st2, ps.ksigma, ps.klink, ps.wind_speed, ps.omega, ps.pitch, tip_frame=ps.tip_frame,
+                             Phi=ps.Phi if isinstance(Phi, str) else Phi)
 
 
 def _fixed_derivative(mv: ModeVectors, ps, plus, minus, h: float) -> complex:
@@ -256,7 +269,7 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
     for name, v in found.items():
         main = v[:k]
         whole = v.sum(axis=1) if v.ndim == 2 else v  # the blade properties: the whole blade's change
-        unit = UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
+        unit = unit_change(name)
         ratio = np.array([pair_ratio(mv, whole[k + i], whole[2 * k + i], unit) for i, mv in enumerate(mvs)])
         (res.blade if v.ndim == 2 else res.globals_)[name] = main
         res.pair_ratio[name] = ratio

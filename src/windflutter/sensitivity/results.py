@@ -14,12 +14,11 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.units import RPM
 from windflutter.sensitivity.eigen import frequency_damping
-from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
-from windflutter.sensitivity.point import (PAIR_LIMIT, UNIT_OFFSET, UNIT_RELATIVE, PointSensitivity,
-                                           point_sensitivities)
+from windflutter.sensitivity.parameters import BLADE_PROPERTIES, change_words, is_relative, unit_change
+from windflutter.sensitivity.point import PAIR_LIMIT, PointSensitivity, point_sensitivities
 from windflutter.system.campbell import ambiguous
 from windflutter.system.modes import point_modes
-from windflutter.sensitivity.finite_difference import total_derivatives
+from windflutter.sensitivity.steady import point_totals
 
 #: the spanwise segments (r/R) the ranked table sums the stations over
 SEGMENTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -30,9 +29,9 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
     """:class:`PointSensitivity` of each wind speed (m/s) of the operating-point model ``om``: its
     modes up to ``max_hz`` (Hz), named and carried along the wind speeds as
     :func:`windflutter.system.campbell.campbell` does; ``modes`` (identity names) keeps only those.
-    ``total``: also the whole-blade and global parameters' derivatives by whole re-analyses (the
-    steady state recomputed; :func:`~windflutter.sensitivity.finite_difference.total_derivatives`,
-    two re-analyses per parameter) in ``PointSensitivity.total``."""
+    ``total``: also the whole-blade and global parameters' derivatives with the steady state's own
+    change included (:func:`~windflutter.sensitivity.steady.point_totals`) in
+    ``PointSensitivity.total``."""
 
     out, prev, models = [], None, {}
     ws = [float(v) for v in np.atleast_1d(wind_speeds)]
@@ -48,8 +47,7 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
         keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
         res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models)
         if total and keep:
-
-            res.total = total_derivatives(om, v, res.names, list(res.blade) + list(res.globals_), max_hz)
+            res.total = point_totals(om, ps, res)
         out.append(res)
     if modes is not None:
         seen = {n for r in out for n in r.names}
@@ -63,7 +61,7 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
 
 
 def _unit(name: str) -> float:
-    return UNIT_OFFSET if name in BLADE_PROPERTIES and not BLADE_PROPERTIES[name].relative else UNIT_RELATIVE
+    return unit_change(name)
 
 
 def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: dict | None = None):
@@ -116,6 +114,9 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                 "parameter": props, "global_parameter": globs, "any_parameter": allp,
                 "station": ("station", points[0].station if points else [], {
                     "units": "1", "long_name": "blade element mid-point radius over the tip radius (r/R)"}),
+                "global_parameter_unit": ("global_parameter", ["1" if is_relative(n) else "m" for n in globs], {
+                    "long_name": "unit of the parameter: 1 relative (d/d ln p), m an offset along the chord "
+                                 "(towards the trailing edge)"}),
                 "parameter_unit": ("parameter", [BLADE_PROPERTIES[n].unit for n in props], {
                     "long_name": "unit of the parameter: 1 relative (d/d ln p), m an offset along the chord "
                                  "(towards the trailing edge)"})},
@@ -127,11 +128,11 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                              "blade's reduction basis"})
     if any(p.total for p in points):
         ds["dfrequency_total"] = (("mode", "wind_speed", "any_parameter"), df_t, {
-            "units": "Hz", "long_name": "d frequency / d parameter by whole re-analyses (steady state recomputed; "
-            "blade properties over the whole blade) " + per})
+            "units": "Hz", "long_name": "d frequency / d parameter with the steady state's own change included "
+            "(its sensitivity; blade properties over the whole blade; blade basis held) " + per})
         ds["ddamping_total"] = (("mode", "wind_speed", "any_parameter"), dz_t, {
-            "units": "1", "long_name": "d damping ratio / d parameter by whole re-analyses (steady state "
-            "recomputed; blade properties over the whole blade) " + per})
+            "units": "1", "long_name": "d damping ratio / d parameter with the steady state's own change "
+            "included (its sensitivity; blade properties over the whole blade; blade basis held) " + per})
     ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
     ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
     for k, v in (assumptions or {}).items():
@@ -164,9 +165,9 @@ def segment_table(ds, segments=SEGMENTS, modes=None, least: int = 3) -> list[dic
             for p in ds["global_parameter"].values:
                 sel = {"mode": mode, "global_parameter": p}
                 rows.append({"mode": str(mode), "wind_speed": float(v), "parameter": str(p), "segment": None,
-                             "change": UNIT_RELATIVE,
-                             "dzeta_points": 100 * UNIT_RELATIVE * float(ds["ddamping_global"].sel(**sel).values[j]),
-                             "dfreq_hz": UNIT_RELATIVE * float(ds["dfrequency_global"].sel(**sel).values[j]),
+                             "change": _unit(str(p)),
+                             "dzeta_points": 100 * _unit(str(p)) * float(ds["ddamping_global"].sel(**sel).values[j]),
+                             "dfreq_hz": _unit(str(p)) * float(ds["dfrequency_global"].sel(**sel).values[j]),
                              "defined": bool(ds["defined"].sel(mode=mode, any_parameter=p).values[j])})
     rows.sort(key=lambda r: -abs(r["dzeta_points"]))
     return rows
@@ -182,9 +183,9 @@ def _chosen(ds, j: int, modes, least: int) -> list[str]:
 
 
 def total_table(ds, modes=None, least: int = 3) -> list[str]:
-    """Sentences of the whole re-analyses (``ddamping_total``, when the dataset has them): the unit
-    change of each parameter (blade properties over the whole blade) with the steady state
-    recomputed, beside the derivative with it held; largest first."""
+    """Sentences of the total derivatives (``ddamping_total``, when the dataset has them): the unit
+    change of each parameter (blade properties over the whole blade) with the steady state's own
+    change included, beside the derivative with it held; largest first."""
     if "ddamping_total" not in ds:
         return []
     rows = []
@@ -196,11 +197,10 @@ def total_table(ds, modes=None, least: int = 3) -> list[str]:
                 tot = 100 * u * float(ds["ddamping_total"].sel(mode=mode, any_parameter=p).values[j])
                 if p in BLADE_PROPERTIES:
                     held = float(ds["ddamping"].sel(mode=mode, parameter=p).values[j].sum())
-                    words = ("+1 cm " if not BLADE_PROPERTIES[p].relative else "+1 % ") + \
-                        BLADE_PROPERTIES[p].words + " (whole blade)"
+                    words = change_words(p) + " (whole blade)"
                 else:
                     held = float(ds["ddamping_global"].sel(mode=mode, global_parameter=p).values[j])
-                    words = "+1 % " + GLOBAL_PARAMETERS[p].words
+                    words = change_words(p)
                 if np.isfinite(tot):
                     rows.append((abs(tot), f"{words} {'raises' if tot >= 0 else 'lowers'} the {mode} damping at "
                                            f"{v:g} m/s by {abs(tot):.3g} points ({100 * u * held:+.3g} with the "
@@ -212,12 +212,11 @@ def sentence(row: dict) -> str:
     """``"+1 % edge stiffness at r/R 0.2-0.4 raises the 1st edge BW damping at 15 m/s by 0.012 points"``."""
     p = row["parameter"]
     if p in BLADE_PROPERTIES:
-        prop = BLADE_PROPERTIES[p]
-        what = f"+1 cm {prop.words}" if not prop.relative else f"+1 % {prop.words}"
+        what = change_words(p)
         a, b = row["segment"]
         what += f" at r/R {a:.1f}-{b:.1f}"
     else:
-        what = f"+1 % {GLOBAL_PARAMETERS[p].words}"
+        what = change_words(p)
     x = row["dzeta_points"]
     verb = "raises" if x >= 0 else "lowers"
     tail = "" if row["defined"] else " (not defined: near a veering or crossing)"
@@ -253,8 +252,7 @@ def spanwise_figure(ds, mode: str | None = None, wind_speed: float | None = None
         y = 100 * _unit(p) * dz / width * 0.1
         ax.step(st, y, where="mid")
         ax.axhline(0.0, color="0.6", lw=0.6)
-        prop = BLADE_PROPERTIES[p]
-        ax.set_title(("+1 cm " if not prop.relative else "+1 % ") + prop.words, fontsize=9)
+        ax.set_title(change_words(p), fontsize=9)
         ax.grid(alpha=0.3)
     for ax in axes.ravel()[len(props):]:
         ax.set_visible(False)

@@ -190,7 +190,8 @@ class OperationalModel:
         fa, ss = tower_ratios(self.turbine)
         if self.options.tower_damping is not None:
             fa = ss = np.array([float(self.options.tower_damping)])
-        Mr = sm.H.T @ self.rotor_rigid_mass() @ sm.H
+        rotor = getattr(self, "_rotor_mass", None)
+        Mr = sm.H.T @ (self.rotor_rigid_mass() if rotor is None else rotor) @ sm.H
         md = np.asarray(sm.struct.M.diagonal())
 
         def direction(v):
@@ -201,10 +202,20 @@ class OperationalModel:
         D = support_modal_damping(sm.K, sm.M, Mr, fa, ss, direction)
         return np.zeros_like(sm.K) if D is None else D
 
-    def rotor_rigid_mass(self, pitch: float = 0.0) -> np.ndarray:
+    def with_rotor_mass(self, rotor_mass: np.ndarray) -> "OperationalModel":
+        """A :meth:`variant` of this model (same turbine) whose support damping -- the files' tower modal
+        ratios, set on the tower modes with the rotor lumped at the hub -- is set with the rotor
+        rigid-body mass ``rotor_mass`` (6, 6) (:meth:`rotor_rigid_mass` of a changed blade): the
+        support of a rotor of changed blade mass (design sensitivities)."""
+        out = self.variant(self.turbine, self.options)
+        out._rotor_mass = np.asarray(rotor_mass, float)
+        return out
+
+    def rotor_rigid_mass(self, pitch: float = 0.0, blade: RotorBlade | None = None) -> np.ndarray:
         """(6, 6) rigid-body mass of the whole rotor (hub + blades) at the apex, ground-fixed axes:
-        ``sum_b Q_b^T (Gamma^T M Gamma) Q_b`` over the blade azimuths plus the hub."""
-        rb = self.blade(pitch)
+        ``sum_b Q_b^T (Gamma^T M Gamma) Q_b`` over the blade azimuths plus the hub; ``blade``: that
+        blade (at pitch 0) in place of this model's."""
+        rb = self.blade(pitch) if blade is None else blade
         G = rb.Gamma
         Mb = G.T @ (rb.struct.M @ G)
         out = self.hub_mass().copy()
