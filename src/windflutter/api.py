@@ -318,9 +318,9 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     modes : identity names to keep (``["1st edge BW"]``); default every mode up to ``max_hz``.
     blade_properties, global_parameters : names (:data:`~windflutter.sensitivity.parameters.
         BLADE_PROPERTIES`, ``GLOBAL_PARAMETERS``); default all.
-    total : also the whole-blade and global parameters' derivatives by whole re-analyses (the steady
-        state recomputed, which the sensitivities hold fixed; two re-analyses per parameter and wind
-        speed): ``dfrequency_total``, ``ddamping_total``.
+    total : also the whole-blade and global parameters' derivatives with the steady state's own change
+        (its sensitivity, :mod:`windflutter.sensitivity.steady`; the blade basis held), which the
+        per-element sensitivities hold fixed: ``dfrequency_total``, ``ddamping_total``.
     max_hz, config, progress, **options : as :func:`campbell`.
 
     Returns
@@ -350,15 +350,16 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
 
 
 def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rpm: float | None = None,
-                      blade_properties=None, global_parameters=None, max_hz: float | None = None,
-                      config: Any = None, **options):
+                      blade_properties=None, global_parameters=None, total: bool = False,
+                      max_hz: float | None = None, config: Any = None, **options):
     """The derivative of an instability's onset rotor speed with respect to the design parameters,
     by the implicit function theorem (:mod:`windflutter.sensitivity.onset`): at ``wind_speed`` (m/s),
     the operating curve's pitch held and the rotor speed raised.
 
     ``mode`` (identity name) and ``rpm`` (RPM, near the onset): default the first flutter onset of
     method p's search (:func:`stability`, which costs a rotor-speed sweep).  The onset is refined by
-    the secant method.  Other keywords as :func:`sensitivity`.
+    the secant method.  ``total``: with the steady state's own change (else held at the onset).
+    Other keywords as :func:`sensitivity`.
 
     Returns
     -------
@@ -384,7 +385,7 @@ def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rp
     r0 = onset_.onset(lambda r: om.at(float(wind_speed), rpm=r, pitch=pitch), mode, float(rpm) - 0.1,
                       float(rpm) + 0.1, hz)
     return onset_.onset_sensitivity(om, float(wind_speed), mode, r0, pitch, hz, blade_properties=blade_properties,
-                                    global_parameters=global_parameters)
+                                    global_parameters=global_parameters, total=bool(total))
 
 
 # --------------------------------------------------------------------------------------------

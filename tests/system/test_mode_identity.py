@@ -105,7 +105,7 @@ def test_iea22mw_shell_no_false_alarm_from_rigid_or_local_buckling_modes():
     negative damping below 5 Hz is either the drivetrain's rigid rotation (below 0.15 Hz, flagged
     rigid) or made of a statically unstable own mode of the prestressed blade (family buckling) --
     and then the blade's structure at that point is indeed not positive definite, checked by another
-    path (stability.operational.blade_structural_margin, the elastic pencil's lowest eigenvalue).
+    path (overspeed.blade_structural_margin, the elastic pencil's lowest eigenvalue).
     The seed's mesh (SEED_MESH: 30 span elements, outer mould line), which has a local tip-panel
     buckling at 11 m/s (the converged default mesh has one at 25 m/s, docs/mesh.md).  Measured: the
     rigid rotation at 3-12 m/s (-6 to -25 %), the tip-panel buckling at 11 m/s (-99.95 %); the

@@ -109,7 +109,7 @@ def run_onset(args: argparse.Namespace, config, winds) -> int:
         raise InputError("--rpm" if args.rpm is None else "--modes", "missing", "--modes NAME and --rpm R together "
                          "with --onset, or neither (method p's first flutter onset)")
     mode = args.modes[0] if args.modes else None
-    res = onset_sensitivity(args.turbine, float(winds[0]), mode=mode, rpm=args.rpm, config=config)
+    res = onset_sensitivity(args.turbine, float(winds[0]), mode=mode, rpm=args.rpm, total=args.total, config=config)
     if args.out:
         onset_dataset(res).to_netcdf(prepare_output_file(args.out))
     for line in onset_lines(res)[:args.top + 1]:
