@@ -60,6 +60,28 @@ def test_iea22mw_operating_damping_10ms(iea22mw):
 
 
 @pytest.mark.slow
+def test_iea22mw_operating_damping_20ms(iea22mw):
+    """20 m/s (7.061 RPM, pitch 16.70 deg), 80 s: the 1st tower side-side and fore-aft, the 1st
+    edge BW, FW and collective, the 2nd edge BW (with the 2nd tower fore-aft; negative without
+    structural damping) and FW within 10 % or 0.2 points of method p's damping, frequencies within
+    0.5 %.  Measured: side-side 0.618 % against 0.632 %, fore-aft 9.512 % against 9.471 %, 1st
+    edge BW 2.505 % against 2.448 %, FW 1.548 % against 1.519 %, collective 1.385 % against
+    1.387 %, 2nd edge BW -0.179 % against -0.118 %, FW 1.289 % against 1.344 %; frequencies
+    within 0.07 % (here the 1st edge agrees: the 10 m/s finding is not at every point)."""
+    ref, rpm, pitch = method_p_in_wind(iea22mw, 20.0, 10)
+    run = simulate_turbine(iea22mw, rpm, 20.0, pitch_deg=pitch, duration=80.0, n_span=10, f_max_hz=3.0)
+    assert run.identification.residual < 1e-2
+    for name in ("1st tower side-side", "1st tower fore-aft", "1st edge BW", "1st edge FW",
+                 "1st edge collective + 2nd flap collective", "2nd edge BW + 2nd tower fore-aft",
+                 "2nd edge FW + 2nd flap FW"):
+        lam = ref[name]
+        f_ref, z_ref = abs(lam.imag) / (2 * np.pi), -lam.real / abs(lam)
+        m = min(run.modes, key=lambda x: abs(x.lam - lam))
+        assert m.frequency_hz == pytest.approx(f_ref, rel=5e-3), (name, m.frequency_hz, f_ref)
+        assert abs(m.zeta - z_ref) <= max(0.1 * abs(z_ref), 2e-3), (name, m.zeta, z_ref)
+
+
+@pytest.mark.slow
 @pytest.mark.xfail(strict=True, reason="finding: the IEA 22 MW 1st edge BW onset is not bracketed in the time domain")
 def test_iea22mw_onset_with_the_files_damping_bracketed(iea22mw):
     """Issue 30: the IEA 22 MW 1st edge BW onset at 10 m/s (files' damping; 8.48 RPM at 30
