@@ -77,6 +77,7 @@ class WingDynamics:
         self.mass = self.beams.mass - Mad
         self.atol = self.beams.atol
         self.n_states = self.ns * self.n_lag
+        self._pm = None  # the strips' pitch from the nodes' rotation vectors (full numbering), when first needed
 
     def forces(self, t, q, v, z):
         f, _ = self.beams.forces(t, q, v, np.zeros(0))
@@ -104,7 +105,7 @@ class WingDynamics:
         return full.reshape(-1)
 
     def _pitch_map_full(self):
-        if getattr(self, "_pm", None) is None:
+        if self._pm is None:
             # (ns, 3 n): the strip's pitch from the nodes' rotation vectors (full numbering)
             S = (self.S_pitch @ self.T.T).tocsr()
             n = self.beams.fe.n_nodes
