@@ -79,7 +79,7 @@ def test_make_operator_picks_by_options_and_keeps_the_thesis_numbers():
 def test_state_space_onset_equals_pk_with_the_same_rational_C(case, circ):
     # Both methods are exact at neutral stability when they use the same C: the state-space
     # (p-method) onset of the strip operator, projected on the section's 2 DOFs, must equal the
-    # typical-section p-k onset (stability/section.py, an independent formula) run with that C.
+    # typical-section p-k onset (windflutter.section, an independent formula) run with that C.
     # Brief's requirement 0.05 %; asserted 1e-8 (root-finding tolerances 1e-10..1e-12).  Also
     # equal to section.p_method, the section module's own RFA state space.
     sec = TypicalSection.from_nondimensional(**case)

@@ -21,7 +21,7 @@ def test_rotor_edge_onset_confirmed_in_time_domain():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         turbine = load_turbine("nrel5mw")
-    res = confirm_onset(turbine, 10.0, n_span=10, duration=10.0, part="rotor")
+    res = confirm_onset(turbine, 10.0, n_span=10, duration=10.0, part="rotor", operating=False)
     assert "edge" in res.mode and 14.0 < res.onset_rpm < 16.5
     assert res.confirmed
     for c in res.checks:

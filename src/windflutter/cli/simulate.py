@@ -33,6 +33,9 @@ FLAGS = (
                                 doc="structural damping of blades and tower: none, or the turbine files' "
                                     "(--part turbine)"),
          default="none"),
+    Flag("--bracket", spec=Spec("float", lower=0.0, lower_open=True, upper=0.5,
+                                doc="--confirm-onset: simulate at (1 -+ F) x the onset's rotor speed"),
+         default=0.03, metavar="F"),
     Flag("--part", spec=Spec("choice", choices=("turbine", "blade"),
                              doc="the whole turbine (blades, tower, drivetrain) or one blade on a rigid hub"),
          default="turbine"),
@@ -50,11 +53,16 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                    "the record so far.")
     p.add_argument("turbine", help="turbine file or bundled name (e.g. nrel5mw)")
     add_flags(p, FLAGS)
+    p.add_argument("--kick", metavar="MODE",
+                   help="start the whole turbine in method p's mode of this name at the point (e.g. \"1st edge "
+                        "BW\"; a small multiple of its shape, its largest translation 1 cm); with --confirm-onset "
+                        "'onset' names the unstable mode. Default: unit loads at blade 1's recorded nodes and "
+                        "the tower top")
     p.add_argument("--confirm-onset", action="store_true",
-                   help="method p's first flutter onset (no structural damping; --part turbine: the whole "
+                   help="method p's first flutter onset (--damping; --part turbine: the whole "
                         "turbine, --part blade: the rotor on a clamped hub against one blade) at --wind-speed, "
-                        "simulated at 0.97x and 1.03x its rotor speed: decay/growth beside the eigenvalue's "
-                        "(--rpm not used)")
+                        "simulated at the operating speed and at 0.97x and 1.03x its rotor speed (--bracket): "
+                        "decay/growth beside the eigenvalue's (--rpm not used)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--output", metavar="FILE.csv", help="write the recorded response (time, node displacements)")
     p.add_argument("--plot", metavar="FILE.png", help="with --confirm-onset: the tip response at each rotor speed")
@@ -83,10 +91,12 @@ def run(args: argparse.Namespace) -> int:
         return _confirm(args, v)
     if v["rpm"] is None:
         raise InputError("--rpm", None, "a rotor speed (RPM)")
+    if args.kick is not None and v["part"] != "turbine":
+        raise InputError("--kick", args.kick, "no mode kick with --part blade (one blade on a rigid hub)")
     turbine = load_turbine(args.turbine)
     res = simulate(turbine, v["rpm"], v["wind_speed"], duration=v["duration"], pitch_deg=v["pitch"],
                    n_span=v["n_span"], f_max_hz=v["f_max"], circulation=v["circulation"], part=v["part"],
-                   damping=v["damping"], progress=None if args.json else _progress(args.quiet))
+                   damping=v["damping"], kick=args.kick, progress=None if args.json else _progress(args.quiet))
     tr = res.trajectory
     if args.output:
         _write_csv(args.output, res, v["part"])
@@ -96,13 +106,20 @@ def run(args: argparse.Namespace) -> int:
         print(json.dumps({"included": INCLUDED[v["part"]], "part": v["part"], "rpm": v["rpm"],
                           "wind_speed": v["wind_speed"],
                           "simulated_s": float(tr.t[-1]), "interrupted": tr.interrupted,
-                          "residual": res.identification.residual, "modes": modes}))
+                          "residual": res.identification.residual, "modes": modes,
+                          "kicked": _kicked(res)}))
         return 0
     print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {INCLUDED[v['part']]}")
     print(f"simulated {tr.t[-1]:.2f} s in {tr.wall_time:.0f} s, step {tr.info['dt'] * 1e3:.2f} ms"
           + (" (INTERRUPTED: identified from the partial record)" if tr.interrupted else ""))
     print(f"identification residual {res.identification.residual:.2e} (matrix pencil; spread = growth-rate "
           "difference between the record's halves)")
+    kicked = _kicked(res)
+    if kicked:
+        print(f"started in method p's {kicked['name']} ({kicked['frequency_hz']:.4f} Hz, damping "
+              f"{100 * kicked['damping_ratio']:.3f} %); identified nearest: "
+              f"{kicked['identified_frequency_hz']:.4f} Hz, "
+              f"{100 * kicked['identified_damping_ratio']:.3f} %, share {kicked['identified_share']:.3f}")
     if res.identification.residual > 0.05:
         print("the fit leaves more than 5 % of the response: the modes are not resolved -- simulate longer "
               "(--duration; close pairs such as the tower's fore-aft and side-side need about 60 s)")
@@ -121,13 +138,16 @@ def _confirm(args, v) -> int:
 
     if not v["wind_speed"]:
         raise InputError("--wind-speed", v["wind_speed"], "a positive wind speed with --confirm-onset")
+    if args.kick is not None and v["part"] != "turbine":
+        raise InputError("--kick", args.kick, "no mode kick with --part blade (one blade on a rigid hub)")
     if args.plot:
         from windflutter.post.simulate_plot import check_png  # noqa: PLC0415
 
         check_png(args.plot)
     turbine = load_turbine(args.turbine)
-    res = confirm_onset(turbine, v["wind_speed"], n_span=v["n_span"], duration=v["duration"], f_max_hz=v["f_max"],
-                        part="turbine" if v["part"] == "turbine" else "rotor", damping=v["damping"],
+    res = confirm_onset(turbine, v["wind_speed"], factors=(1 - v["bracket"], 1 + v["bracket"]), n_span=v["n_span"],
+                        duration=v["duration"], f_max_hz=v["f_max"],
+                        part="turbine" if v["part"] == "turbine" else "rotor", damping=v["damping"], kick=args.kick,
                         progress=None if args.json else _progress(args.quiet))
     if args.plot:
         from windflutter.post.simulate_plot import plot_onset_check  # noqa: PLC0415
@@ -152,6 +172,20 @@ def _confirm(args, v) -> int:
     print("CONFIRMED: decay below, growth above, as the eigenvalues" if res.confirmed
           else "NOT CONFIRMED: the simulation's growth rate has another sign than the eigenvalue's at some speed")
     return 0
+
+
+def _kicked(res) -> dict | None:
+    """The mode the run started in (``--kick``) and the identified mode nearest its eigenvalue."""
+    mode = getattr(res, "kicked", None)
+    if mode is None:
+        return None
+    import numpy as np  # noqa: PLC0415
+
+    lam = complex(mode.eigenvalue)
+    m = res.nearest(lam)
+    return {"name": mode.name, "frequency_hz": abs(lam.imag) / (2 * np.pi), "damping_ratio": -lam.real / abs(lam),
+            "identified_frequency_hz": m.frequency_hz, "identified_damping_ratio": m.zeta,
+            "identified_share": m.share}
 
 
 def _write_csv(path: str, res, part: str) -> None:

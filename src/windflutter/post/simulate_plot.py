@@ -40,8 +40,8 @@ def plot_onset_check(res, path) -> Path:
         ax.grid(alpha=0.3)
     axes[0, 0].legend(fontsize=8, loc="upper right")
     axes[-1, 0].set_xlabel("time (s)")
-    fig.suptitle(f"{res.mode} onset {res.onset_rpm:.2f} RPM at {res.wind_speed:g} m/s (rotor on a clamped hub)",
-                 fontsize=10)
+    what = "the whole turbine, blade 1's tip in its frame" if res.part == "turbine" else "rotor on a clamped hub"
+    fig.suptitle(f"{res.mode} onset {res.onset_rpm:.2f} RPM at {res.wind_speed:g} m/s ({what})", fontsize=10)
     fig.tight_layout()
     save_figure(fig, p)
     return p

@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from windflutter.errors import InputError
+from windflutter.simulate.mode_kick import method_p_config, method_p_model
 from windflutter.units import RPM
 
 __all__ = ["OnsetCheck", "SpeedCheck", "confirm_onset"]
@@ -78,14 +79,6 @@ class OnsetCheck:
         return all(c.agrees for c in self.checks)
 
 
-def _config(wind_speed, n_span, part="rotor", damping="none"):
-    from windflutter.config import load_config  # noqa: PLC0415
-
-    return load_config(None, {"wind_speeds": [float(wind_speed)], "method": ["p"], "aero": ["viscous"],
-                              "model": {"type": "beam", "part": part, "n_aero_sections": int(n_span)},
-                              "damping": {"model": damping}}, overrides_source="confirm_onset")
-
-
 def _rotating_frame(mode, omega):
     """(sigma, zeta, f_rot) of a ModeRecord on a clamped hub."""
     lam = complex(mode.eigenvalue)
@@ -95,32 +88,40 @@ def _rotating_frame(mode, omega):
 
 
 def confirm_onset(turbine, wind_speed: float, factors=(0.97, 1.03), n_span: int = 30, duration: float = 20.0,
-                  f_max_hz: float = 8.0, part: str = "turbine", damping: str = "none", progress=None) -> OnsetCheck:
+                  f_max_hz: float = 8.0, part: str = "turbine", damping: str = "none", operating: bool = True,
+                  kick: str | None = None, progress=None) -> OnsetCheck:
     """Method p's first instability at ``wind_speed`` (m/s) and the time-domain check at
-    ``factors`` x its rotor speed (module docstring; ``part``: ``turbine`` or ``rotor``;
-    ``damping``: ``none`` or, for the turbine, ``file``: the files' blade and tower damping in
-    both)."""
-    from windflutter.methods import operational_options, stability_analysis  # noqa: PLC0415
-    from windflutter.system.operational import OperationalModel  # noqa: PLC0415
+    ``factors`` x its rotor speed and (``operating``) at the operating curve's rotor speed
+    (module docstring; ``part``: ``turbine`` or ``rotor``; ``damping``: ``none`` or, for the
+    turbine, ``file``: the files' blade and tower damping in both).  ``kick``: the turbine
+    started in method p's mode of that name at each speed (``"onset"``: the unstable mode's
+    name), else the default kick (:func:`windflutter.simulate.turbine_run.kick`)."""
+    from windflutter.methods import stability_analysis  # noqa: PLC0415
 
     if part not in ("turbine", "rotor"):
         raise InputError("part", part, "turbine (the whole turbine) or rotor (one blade on a clamped hub)")
     if damping not in ("none", "file") or (damping == "file" and part != "turbine"):
         raise InputError("damping", damping, "none, or file with part turbine")
-    cfg = _config(wind_speed, n_span, part, damping)
+    if kick is not None and part != "turbine":
+        raise InputError("kick", kick, "no mode kick with part rotor (one blade on a rigid hub)")
+    cfg = method_p_config(wind_speed, n_span, part, damping)
     point = stability_analysis(turbine, cfg, "viscous", "p").analyse_operating_point(float(wind_speed))
     if point.flutter_rpm is None or not np.isfinite(point.flutter_rpm) or point.first_instability != "flutter":
         raise InputError("onset", point.first_instability, f"a flutter onset at {wind_speed:g} m/s "
                          f"(method p, model.part {part}) to confirm")
-    om = OperationalModel(turbine, operational_options(cfg, "viscous"))
-    checks = tuple(speed_check(turbine, om, point, float(wind_speed), float(f), part, n_span, duration, f_max_hz,
-                               progress, damping) for f in factors)
+    om = method_p_model(turbine, wind_speed, n_span, part, damping)
+    factors = [float(f) for f in factors]
+    if operating:
+        factors.insert(0, om.operating_point(float(wind_speed))[0] / RPM / float(point.flutter_rpm))
+    kick = point.flutter_mode if kick == "onset" else kick
+    checks = tuple(speed_check(turbine, om, point, float(wind_speed), f, part, n_span, duration, f_max_hz,
+                               progress, damping, kick) for f in factors)
     return OnsetCheck(wind_speed=float(wind_speed), onset_rpm=float(point.flutter_rpm), mode=str(point.flutter_mode),
                       pitch_deg=float(point.pitch_deg), checks=checks, part=part)
 
 
 def speed_check(turbine, om, point, wind_speed, factor, part, n_span, duration, f_max_hz, progress=None,
-                damping="none") -> SpeedCheck:
+                damping="none", kick=None) -> SpeedCheck:
     """The eigenvalue of ``point.flutter_mode`` at ``factor`` x the onset and the simulation's."""
     from windflutter.simulate.blade import blade_in_wind  # noqa: PLC0415
     from windflutter.simulate.turbine_run import simulate_turbine  # noqa: PLC0415
@@ -140,7 +141,7 @@ def speed_check(turbine, om, point, wind_speed, factor, part, n_span, duration, 
         lam = complex(modes[0].eigenvalue)
         s_e, z_e, f_e = lam.real, -lam.real / abs(lam), abs(lam.imag) / (2 * np.pi)
         run = simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=point.pitch_deg, n_span=n_span,
-                               f_max_hz=f_max_hz, damping=damping, progress=progress)
+                               f_max_hz=f_max_hz, damping=damping, kick_mode=kick, progress=progress)
         nr = 6 * len(run.nodes)
         tip = run.trajectory.y[:, 6 + nr - 6: 6 + nr - 3]  # blade 1's tip, its own frame
     m = min(run.modes, key=lambda x: abs(x.frequency_hz - f_e))

@@ -43,7 +43,7 @@ INCLUDED = {
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 20.0, pitch_deg: float | None = None,
              n_span: int = 30, f_max_hz: float = 8.0, points_per_period: float = 30.0, rho_inf: float = 0.9,
              amplitude: float | None = None, circulation: str = "jones", air_density: float = 1.225,
-             part: str = "turbine", damping: str = "none", progress=None):
+             part: str = "turbine", damping: str = "none", kick: str | None = None, progress=None):
     """Free response of a turbine's blade (module docstring) kicked by impulses, and the
     frequency and damping of its modes identified from it.
 
@@ -57,7 +57,11 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
     amplitude : size of the kick (m): the turbine's blade 1 deflection (default 1e-2), the blade's
         largest initial velocity (m/s, rad/s; default 1e-3).  circulation : ``jones`` | ``rfa``.
     part : ``turbine`` | ``blade`` (module docstring).  damping : ``none`` | ``file`` (the turbine
-        files' blade and tower damping, ``part="turbine"``).  progress : ``progress(step, n_steps, t)``.
+        files' blade and tower damping, ``part="turbine"``).  kick : the name of one of method p's
+        modes at the point (``"1st edge BW"``; ``part="turbine"``): the run starts in that mode,
+        its largest translation ``amplitude`` (:mod:`windflutter.simulate.mode_kick`); None: the
+        default kick (unit loads at blade 1's recorded nodes and the tower top).
+        progress : ``progress(step, n_steps, t)``.
 
     Returns
     -------
@@ -81,6 +85,8 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         raise InputError("circulation", circulation, "jones or rfa")
     if damping not in ("none", "file") or (damping == "file" and part != "turbine"):
         raise InputError("damping", damping, "none, or file with part turbine")
+    if kick is not None and (part != "turbine" or not isinstance(kick, str) or not kick.strip()):
+        raise InputError("kick", kick, "the name of one of method p's modes, with part turbine")
     if wind_speed > 0.0 and rpm == 0.0:
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     if part == "turbine":
@@ -89,7 +95,7 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         return simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
                                 f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,
                                 amplitude=amplitude, circulation=circulation, air_density=air_density,
-                                damping=damping, progress=progress)
+                                damping=damping, kick_mode=kick, progress=progress)
     if wind_speed == 0.0:
         return blade_in_vacuum(turbine, rpm, duration=duration, n_span=int(n_span), f_max_hz=f_max_hz,
                                points_per_period=points_per_period, rho_inf=rho_inf, amplitude=amplitude,

@@ -46,6 +46,12 @@ class TurbineRun:
     trajectory: Trajectory
     identification: Identification
     modes: tuple
+    #: ``--kick MODE``: method p's mode the run started in (a ModeRecord: its name and eigenvalue), else None
+    kicked: object = None
+
+    def nearest(self, lam: complex):
+        """The identified mode nearest the eigenvalue ``lam`` (1/s) in the complex plane."""
+        return min(self.modes, key=lambda m: abs(m.lam - complex(lam)))
 
 
 def ground_part(turbine, axis, drivetrain: str = "flexible", rotor_mass: np.ndarray | None = None) -> GroundPart:
@@ -284,11 +290,14 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
                      points_per_period: float = 30.0, rho_inf: float = 0.9, amplitude: float = 1e-2,
                      circulation: str = "jones", air_density: float = 1.225, drivetrain: str = "flexible",
                      sv_tol: float = 1e-7, tol: float = 1e-7, kick_loads=KICK_LOADS, tower_kick: float = 2e-3,
-                     kick_blades=None, damping: str = "none", progress=None) -> TurbineRun:
+                     kick_blades=None, damping: str = "none", kick_mode: str | None = None,
+                     progress=None) -> TurbineRun:
     """Free response of the whole turbine (module docstring) and its identified modes.
 
     ``amplitude``, ``kick_loads`` and ``kick_blades``: the blades' kick (:func:`kick`);
-    ``tower_kick`` the tower top's (m).  ``damping``: ``none`` or ``file`` (:func:`turbine_dynamics`).
+    ``tower_kick`` the tower top's (m).  ``kick_mode``: instead, start in method p's mode of that
+    name at the point, its largest translation ``amplitude``
+    (:func:`windflutter.simulate.mode_kick.mode_kick`).  ``damping``: ``none`` or ``file`` (:func:`turbine_dynamics`).
     ``tol``: the Newton iteration's relative increment (1e-7 of the largest
     displacement: a force error far below what the identification resolves).  Other parameters
     as :func:`windflutter.simulate.run.simulate`."""
@@ -300,10 +309,18 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     dyn = turbine_dynamics(turbine, rpm, wind_speed, pitch_deg, n_span, circulation=circulation,
                            air_density=air_density, drivetrain=drivetrain, damping=damping)
-    q0 = kick(dyn, amplitude, tower_kick, kick_loads, kick_blades)
+    mode = None
+    if kick_mode is None:
+        q0 = kick(dyn, amplitude, tower_kick, kick_loads, kick_blades)
+        v0 = np.zeros_like(q0)
+    else:
+        from windflutter.simulate.mode_kick import mode_kick  # noqa: PLC0415
+
+        q0, v0, mode = mode_kick(dyn, turbine, kick_mode, wind_speed, pitch_deg, n_span, amplitude, damping,
+                                 max_hz=max(f_max_hz, 1.0))
     z0 = np.tile(dyn.steady_lags(), dyn.N)
     dt = step_for_frequency(f_max_hz, points_per_period)
-    tr = integrate(dyn, q0, np.zeros_like(q0), z0, dt, duration, rho_inf=rho_inf, tol=tol, progress=progress)
+    tr = integrate(dyn, q0, v0, z0, dt, duration, rho_inf=rho_inf, tol=tol, progress=progress)
     ident = identify(tr.t, scaled_channels(dyn, tr.t, tr.y), sv_tol=sv_tol)
     return TurbineRun(rpm=float(rpm), wind_speed=float(wind_speed), nodes=dyn.record, trajectory=tr,
-                      identification=ident, modes=corrected_modes(ident, dt, rho_inf))
+                      identification=ident, modes=corrected_modes(ident, dt, rho_inf), kicked=mode)
