@@ -84,7 +84,7 @@ def _progress(quiet: bool):
 def run(args: argparse.Namespace) -> int:
     from windflutter.api import load_turbine, simulate  # noqa: PLC0415
     from windflutter.errors import InputError  # noqa: PLC0415
-    from windflutter.simulate.run import INCLUDED  # noqa: PLC0415
+    from windflutter.simulate.run import included  # noqa: PLC0415
 
     v = command_values(args, FLAGS)
     if args.confirm_onset:
@@ -103,13 +103,13 @@ def run(args: argparse.Namespace) -> int:
     modes = [{"frequency_hz": m.frequency_hz, "damping_ratio": m.zeta, "share": m.share,
               "sigma_spread": m.sigma_spread} for m in res.modes if m.frequency_hz <= v["f_max"]]
     if args.json:
-        print(json.dumps({"included": INCLUDED[v["part"]], "part": v["part"], "rpm": v["rpm"],
+        print(json.dumps({"included": included(v["part"], v["damping"]), "part": v["part"], "rpm": v["rpm"],
                           "wind_speed": v["wind_speed"],
                           "simulated_s": float(tr.t[-1]), "interrupted": tr.interrupted,
                           "residual": res.identification.residual, "modes": modes,
                           "kicked": _kicked(res)}))
         return 0
-    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {INCLUDED[v['part']]}")
+    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {included(v['part'], v['damping'])}")
     print(f"simulated {tr.t[-1]:.2f} s in {tr.wall_time:.0f} s, step {tr.info['dt'] * 1e3:.2f} ms"
           + (" (INTERRUPTED: identified from the partial record)" if tr.interrupted else ""))
     print(f"identification residual {res.identification.residual:.2e} (matrix pencil; spread = growth-rate "

@@ -26,7 +26,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.simulate.blade import blade_in_vacuum, blade_in_wind
 
-__all__ = ["simulate", "INCLUDED"]
+__all__ = ["simulate", "INCLUDED", "included"]
 
 #: one line on what each simulation holds (printed by the CLI)
 INCLUDED = {
@@ -38,6 +38,16 @@ INCLUDED = {
               "strip aerodynamics with lag states and frozen BEM induction; no tower, drivetrain, other "
               "blades, gravity, dynamic inflow or structural damping"),
 }
+
+
+def included(part: str, damping: str = "none") -> str:
+    """:data:`INCLUDED`'s line for ``part``, with the structural damping it runs with (``file``: the
+    turbine files' blade and tower damping)."""
+    line = INCLUDED[part]
+    if damping == "file":
+        line = line.replace("gravity, dynamic inflow or structural damping",
+                            "gravity or dynamic inflow; with the turbine files' structural damping")
+    return line
 
 
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 20.0, pitch_deg: float | None = None,
