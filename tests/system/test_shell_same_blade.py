@@ -141,3 +141,51 @@ def test_shell_static_deflection_against_the_beam_of_its_own_properties(name, wi
         assert got["file"]["flap"] < 0.93 * sh["flap"]  # the file's beam is another blade's data
     else:
         assert abs(bm["twist"] - sh["twist"]) < 0.5
+
+
+def with_the_shell_damping(turbine):
+    """``turbine`` whose beam blade gets the structural damping a shell blade gets from the same file:
+    the shell's is ``beta K`` with ``beta`` the larger of the two bending coefficients (system/damping.py
+    ``blade_damping_matrix``), the beam's the file's coefficient per direction; here every direction
+    of the beam takes that ``beta``."""
+    import dataclasses
+
+    d = turbine.blade.damping
+    mu = np.full(6, float(max(d.mu[4], d.mu[5])))
+    return dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, damping=dataclasses.replace(d, mu=mu)))
+
+
+@pytest.mark.slow
+def test_nrel5mw_shell_overspeed_onsets_against_the_beam_of_its_own_properties():
+    """Issue 33: the NREL 5 MW shell at 8 and 10 m/s at the default mesh, its first overspeed
+    instability (``windflutter.stability``, method p, the defaults) within 5 % of the beam's and in
+    the same mode -- the beam of the same blade (40 stations of the shell's extracted properties)
+    with the same structural damping (:func:`with_the_shell_damping`).  Measured (4 Dec 2026):
+
+    * 8 m/s: both first diverge, shell 26.25 against 26.57 RPM (-1.2 %); their flutter is the same
+      1st torsion BW + 2nd edge BW, 26.85 against 27.71 RPM (-3.1 %);
+    * 10 m/s: both first flutter in the 1st edge BW + 1st flap BW, 21.22 against 21.32 RPM (-0.5 %).
+
+    Not compared here, and the reason the issue's check fails without it: with the file's damping per
+    direction (edge bending 0.0014, flap 0.0022; the shell gives the edge its flap's 0.0022, 57 %
+    more) the beam's 1st edge BW goes unstable at 20.37 and 19.45 RPM (8, 10 m/s), against the
+    shell's divergence at 26.25 and flutter at 21.22 RPM.  That mode's damping falls by 0.2 point
+    per RPM there, so the edge's structural damping (0.3 against 0.5 % at 0.69 Hz) is worth 2 RPM;
+    without structural damping the beam's crosses at 16.92 RPM (10 m/s).  The file-6x6 beam (the
+    tables' blade): 16.37 / 16.88 RPM, 1st edge BW.  ~15 min on the shared machine."""
+    import windflutter.api as api
+
+    t, ts = same_blade("nrel5mw", 40, {})
+    tb = with_the_shell_damping(ts)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        for V in (8.0, 10.0):
+            sh = api.stability(t, V, model="shell")[0].as_dict()
+            bm = api.stability(tb, V, model="beam")[0].as_dict()
+            print(V, "shell", sh, "beam", bm)
+            assert sh["first_instability"] == bm["first_instability"]
+            kind = sh["first_instability"]
+            assert sh[f"{kind}_rpm"] == pytest.approx(bm[f"{kind}_rpm"], rel=0.05)
+            assert sh["flutter_mode"] == bm["flutter_mode"]
+            if kind == "divergence":  # the flutter beyond it: the same mode, within 5 % as well
+                assert sh["flutter_rpm"] == pytest.approx(bm["flutter_rpm"], rel=0.05)
