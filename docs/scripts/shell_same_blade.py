@@ -36,7 +36,8 @@ def static():
     for name, V in (("iea22mw", 11.0), ("nrel5mw", 11.4)):
         t = load_turbine(name)
         ts = with_shell_blade_properties(t, 40)
-        for label, tb, model in (("shell", t, "shell"), ("beam, shell's properties", ts, "beam"), ("beam, file 6x6", t, "beam")):
+        rows = (("shell", t, "shell"), ("beam, shell's properties", ts, "beam"), ("beam, file 6x6", t, "beam"))
+        for label, tb, model in rows:
             om = OperationalModel(tb, OperationalOptions(model=model, part="rotor"))
             omega, pitch = om.operating_point(V)
             st = om.steady(om.blade(pitch), V, omega)
