@@ -277,7 +277,6 @@ HEAVY_MODULES = frozenset({
 _CLI_START_UP = "CLI start-up: a sub-command imports what it runs after its arguments are parsed"
 _LATE_BINDING = ("entries into real work, looked up when called (tests/cli's HeavyWork guard patches them "
                  "in their module, which only a late import sees)")
-_OTHER_ISSUE = "a file another open issue is changing (left as it is here)"
 #: function-local imports of the package's own modules that stay: importing file (relative to
 #: src/windflutter; a folder ends in '/') -> (the modules it may import locally, why).  Every other
 #: import of our own modules is at module level (issue 29); cli/ is exempt as a whole.
@@ -285,17 +284,15 @@ LOCAL_IMPORTS: dict[str, tuple[frozenset[str], str]] = {
     "cli/": (frozenset({"*"}), _CLI_START_UP),
     "__init__.py": (frozenset({"windflutter.api"}), "the package facade: `import windflutter` stays light, the "
                     "API is loaded on first use"),
-    "api.py": (frozenset({"windflutter.model", "windflutter.mesh.analysis", "windflutter.workflow",
-                          "windflutter.simulate.run", "windflutter.simulate.onset"}),
-               f"{_LATE_BINDING}; simulate: {_OTHER_ISSUE}"),
+    "api.py": (frozenset({"windflutter.model", "windflutter.mesh.analysis", "windflutter.workflow"}), _LATE_BINDING),
     "system/operational.py": (frozenset({"windflutter.mesh.turbine"}), f"build_model: {_LATE_BINDING}"),
     "analysers.py": (frozenset({"windflutter.frozen.turbine"}), "the seed's methods (frozen.turbine), a fenced "
                      "plug-in loaded only when a pk or thesis case runs"),
     "methods.py": (frozenset({"windflutter.frozen.turbine"}), "the seed's methods, a fenced plug-in "
                    "loaded only when a pk or thesis case is built"),
-    "mesh/": (frozenset({"*"}), _OTHER_ISSUE),
-    "simulate/": (frozenset({"*"}), _OTHER_ISSUE),
-    "system/deflected_shell.py": (frozenset({"*"}), _OTHER_ISSUE),
+    "mesh/shell_beam.py": (frozenset({"windflutter.mesh.turbine"}), f"build_model: {_LATE_BINDING}"),
+    "simulate/blade.py": (frozenset({"windflutter.mesh.turbine"}), f"build_model: {_LATE_BINDING}"),
+    "simulate/turbine_run.py": (frozenset({"windflutter.mesh.turbine"}), f"build_model: {_LATE_BINDING}"),
 }
 
 

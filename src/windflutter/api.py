@@ -30,6 +30,7 @@ Units as at the CLI: wind speed m/s, rotor speed RPM, angles in degrees, frequen
 from __future__ import annotations
 
 import dataclasses
+import inspect
 import re
 from pathlib import Path
 from typing import Any
@@ -45,6 +46,7 @@ from windflutter import methods as build  # module access: tests patch build.sta
 from windflutter.operating import campbell_model
 from windflutter.sensitivity import onset as onset_
 from windflutter.sensitivity.results import as_dataset, sensitivities
+from windflutter.simulate import onset as simulate_onset, run as simulate_run
 from windflutter.methods import operational_options
 from windflutter.system.campbell import default_wind_speeds
 from windflutter.system.operational import missing_curve_error
@@ -406,13 +408,9 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, **options):
     -------
     windflutter.simulate.turbine_run.TurbineRun (or windflutter.simulate.blade.BladeRun)
     """
-    import inspect  # noqa: PLC0415
-
-    from windflutter.simulate.run import simulate as _simulate  # noqa: PLC0415
-
-    known = [k for k in inspect.signature(_simulate).parameters if k not in ("turbine", "rpm", "wind_speed")]
+    known = [k for k in inspect.signature(simulate_run.simulate).parameters if k not in ("turbine", "rpm", "wind_speed")]
     _no_unknown("simulate", {k: v for k, v in options.items() if k not in known}, known)
-    return _simulate(as_turbine(turbine), rpm, wind_speed, **options)
+    return simulate_run.simulate(as_turbine(turbine), rpm, wind_speed, **options)
 
 
 def confirm_onset(turbine, wind_speed: float, **options):
@@ -420,13 +418,9 @@ def confirm_onset(turbine, wind_speed: float, **options):
     "turbine"``, the default) or of the rotor on a clamped hub (``part="rotor"``) -- simulated in
     the time domain at 0.97 and 1.03 x its rotor speed: ``windflutter simulate --confirm-onset``
     (keywords as :func:`windflutter.simulate.onset.confirm_onset`)."""
-    import inspect  # noqa: PLC0415
-
-    from windflutter.simulate.onset import confirm_onset as _confirm  # noqa: PLC0415
-
-    known = [k for k in inspect.signature(_confirm).parameters if k not in ("turbine", "wind_speed")]
+    known = [k for k in inspect.signature(simulate_onset.confirm_onset).parameters if k not in ("turbine", "wind_speed")]
     _no_unknown("confirm_onset", {k: v for k, v in options.items() if k not in known}, known)
-    return _confirm(as_turbine(turbine), wind_speed, **options)
+    return simulate_onset.confirm_onset(as_turbine(turbine), wind_speed, **options)
 
 
 # --------------------------------------------------------------------------------------------

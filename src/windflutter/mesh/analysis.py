@@ -9,6 +9,9 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.mesh.settings import MeshSettings
 from windflutter.mesh.turbine import build_model, rotor_geometry
+from windflutter.rotor.rotating import rotor_matrices
+from windflutter.structure import assemble, modes
+from windflutter.structure.labels import label_modes
 from windflutter.units import RPM
 
 
@@ -29,7 +32,6 @@ def rotating_stiffness(fe, struct, turbine, omega: float):
     centrifugal stiffening (geometric stiffness of the static centrifugal prestress) and spin
     softening, from :func:`windflutter.rotor.rotating.rotor_matrices` (Coriolis is left out of
     natural frequencies, as in BModes)."""
-    from windflutter.rotor.rotating import rotor_matrices
 
     _, Kr, Ks = rotor_matrices(fe, struct, omega, rotor_geometry(turbine), prestress=True)
     return (Ks - Kr).tocsr()
@@ -45,8 +47,6 @@ def turbine_modes(turbine, settings: MeshSettings | None = None, n_modes: int = 
     n_modes : number of modes.
     rpm : rotor speed (rev/min); > 0 adds centrifugal stiffening and spin softening.
     """
-    from windflutter.structure import assemble, modes
-    from windflutter.structure.labels import label_modes
 
     if not (np.isfinite(rpm) and rpm >= 0):
         raise InputError("rpm", rpm, "a non-negative rotor speed (rev/min)")

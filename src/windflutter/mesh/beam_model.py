@@ -9,6 +9,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.mesh.blade_shell import station_positions
 from windflutter.mesh.loft import chord_frame
+from windflutter.mesh.section_props import thin_walled_properties
 from windflutter.model.turbine import interp_span
 from windflutter.structure.fem import BeamSection
 
@@ -46,7 +47,6 @@ def blade_beam_properties(turbine):
         return turbine.blade.beam
     if turbine.blade.layup is None:
         raise InputError("blade.beam", None, "6x6 beam properties or a composite layup for the beam model")
-    from windflutter.mesh.section_props import thin_walled_properties
 
     return thin_walled_properties(turbine)
 

@@ -48,6 +48,8 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from windflutter.errors import InputError, InputWarning
+from windflutter.model.section import layup_beam_sections
+from windflutter.model import windio  # module access: tests patch windio.load_turbine
 
 MASS_TOLERANCE = 0.15
 STIFFNESS_TOLERANCE = 0.25
@@ -283,7 +285,6 @@ def check_layup_against_6x6(turbine, n_contour: int = 240) -> LayupCheck:
     thin-walled calculator cannot evaluate raises its :class:`~windflutter.errors.InputError`, as
     the shell and beam models would.
     """
-    from windflutter.model.section import layup_beam_sections
 
     blade = turbine.blade
     name = turbine_label(turbine)
@@ -358,13 +359,12 @@ def main(argv: list[str] | None = None) -> int:
     import argparse
     import json
 
-    from windflutter.model.windio import load_turbine
 
     ap = argparse.ArgumentParser(prog="python -m windflutter.mesh.layup_check", description=main.__doc__)
     ap.add_argument("turbine", help="turbine file or bundled name")
     ap.add_argument("--json", action="store_true", help="print the result as JSON")
     a = ap.parse_args(argv)
-    res = check_layup_against_6x6(load_turbine(a.turbine))
+    res = check_layup_against_6x6(windio.load_turbine(a.turbine))
     if a.json:
         print(json.dumps(res.to_dict(), indent=1))
     else:

@@ -32,6 +32,7 @@ import scipy.sparse as sp
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew
 from windflutter.simulate.inertia import SpinningMass
+from windflutter.simulate.integrator import fd_jacobian
 from windflutter.structure.corotational import (
     BeamConfiguration,
     beam_elements,
@@ -125,7 +126,6 @@ class SpinningBeams:
         rebuild); else the beam's tangent at the configuration (inertial loads left out).  The
         Newton iteration converges to the same step with either."""
         if self.external is not None:
-            from windflutter.simulate.integrator import fd_jacobian  # noqa: PLC0415
 
             return fd_jacobian(self, t, q, v, z, 1e-7)
         K = beam_tangent(self.fe, self.configuration(q), elements=self.el).K

@@ -17,12 +17,19 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from windflutter.aero.unsteady import circulation as make_circulation
+from windflutter.aero_types import RotorGeometry
 from windflutter.errors import InputError
+from windflutter.mesh.settings import MeshSettings
 from windflutter.simulate.beam import SpinningBeams, spin_equilibrium
 from windflutter.simulate.identify import Identification, IdentifiedMode, identify
 from windflutter.simulate.inertia import SpinningMass
 from windflutter.simulate.integrator import Trajectory, algorithmic_damping, integrate, step_for_frequency
-from windflutter.units import RPM
+from windflutter.simulate.rotor_aero import BladeAero
+from windflutter.steady import SteadyOptions, steady_state
+from windflutter.structure.assembly import assemble
+from windflutter.structure.corotational import beam_tangent, deformed_model
+from windflutter.units import DEG, RPM
 
 __all__ = ["BladeRun", "blade_in_vacuum", "blade_in_wind", "corrected_modes", "blade_model", "wind_setup"]
 
@@ -59,9 +66,7 @@ def corrected_modes(ident: Identification, dt: float, rho_inf: float) -> tuple:
 
 def blade_model(turbine, n_span: int = 30):
     """``(fe, struct, sections, apex, axis)`` of one beam blade clamped at the root."""
-    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
     from windflutter.mesh.turbine import build_model, rotor_geometry  # noqa: PLC0415
-    from windflutter.structure import assemble  # noqa: PLC0415
 
     fe, sections = build_model(turbine, MeshSettings(part="blade", model="beam", n_span=n_span))
     geo = rotor_geometry(turbine)
@@ -74,7 +79,6 @@ def _kick(dyn, fe, nodes, amplitude):
     forces at the recorded nodes (largest translation ``amplitude``, m) plus that under unit
     moments (largest rotation ``amplitude / 2``, rad), with the velocity of unit impulses at the
     same nodes (largest translational velocity ``amplitude`` m/s) for the higher modes."""
-    from windflutter.structure.corotational import beam_tangent  # noqa: PLC0415
 
     T = dyn.T
     K = np.asarray((T.T @ beam_tangent(fe, dyn.base, elements=dyn.el).K @ T).todense())
@@ -97,8 +101,6 @@ def blade_in_vacuum(turbine, rpm: float, duration: float = 8.0, n_span: int = 30
     """Free vibration of a blade spinning at ``rpm`` (rev/min) in vacuum, kicked by impulses at
     ``n_record`` nodes along the span (:func:`_kick`, size ``amplitude``); the time step
     from ``f_max_hz``, the highest frequency retained (``points_per_period`` steps per period)."""
-    from windflutter.structure.assembly import assemble  # noqa: PLC0415
-    from windflutter.structure.corotational import deformed_model  # noqa: PLC0415
 
     if not (np.isfinite(rpm) and rpm >= 0):
         raise InputError("rpm", rpm, "a non-negative rotor speed (rev/min)")
@@ -130,7 +132,6 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
     state's BEM induction frozen (:mod:`windflutter.simulate.rotor_aero`).  The blade starts at its
     own equilibrium (found from the co-rotational steady state) and is kicked as in
     :func:`blade_in_vacuum`.  ``pitch_deg`` defaults to the operating curve's at the wind speed."""
-    from windflutter.simulate.rotor_aero import BladeAero  # noqa: PLC0415
 
     if not (np.isfinite(wind_speed) and wind_speed > 0):
         raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s)")
@@ -138,9 +139,6 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
         raise InputError("rpm", rpm, "a positive rotor speed (rev/min)")
     setup = wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
     fe, struct, sections, apex, axis, st = setup
-    from windflutter.aero.unsteady import circulation as make_circulation  # noqa: PLC0415
-    from windflutter.structure.assembly import assemble  # noqa: PLC0415
-    from windflutter.structure.corotational import deformed_model  # noqa: PLC0415
 
     omega = rpm * RPM
     inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
@@ -166,12 +164,7 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
 
 def wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density):
     """The blade model at the pitch and its co-rotational steady state (BEM induction)."""
-    from windflutter.aero_types import RotorGeometry  # noqa: PLC0415
-    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
     from windflutter.mesh.turbine import build_model  # noqa: PLC0415
-    from windflutter.steady import SteadyOptions, steady_state  # noqa: PLC0415
-    from windflutter.structure import assemble  # noqa: PLC0415
-    from windflutter.units import DEG  # noqa: PLC0415
 
     if pitch_deg is None:
         oc = turbine.operating_curve

@@ -22,7 +22,12 @@ from __future__ import annotations
 
 import numpy as np
 
+from windflutter.config import load_config
 from windflutter.errors import InputError
+from windflutter.methods import operational_options
+from windflutter.system.modes import point_modes
+from windflutter.system.multiblade import coleman_matrix
+from windflutter.system.operational import OperationalModel, OperationalOptions
 from windflutter.units import RPM
 
 __all__ = ["method_p_config", "method_p_model", "named_mode", "mode_state", "mode_kick"]
@@ -31,7 +36,6 @@ __all__ = ["method_p_config", "method_p_model", "named_mode", "mode_state", "mod
 def method_p_config(wind_speed: float, n_span: int, part: str = "rotor", damping: str = "none"):
     """The analysis config of method p at one wind speed (``n_span`` strips, viscous strips,
     no structural damping or the files')."""
-    from windflutter.config import load_config  # noqa: PLC0415
 
     return load_config(None, {"wind_speeds": [float(wind_speed)], "method": ["p"], "aero": ["viscous"],
                               "model": {"type": "beam", "part": part, "n_aero_sections": int(n_span)},
@@ -42,12 +46,10 @@ def method_p_model(turbine, wind_speed: float, n_span: int, part: str = "turbine
     """Method p's operating-point model (:class:`~windflutter.system.operational.OperationalModel`)
     as :func:`windflutter.simulate.onset.confirm_onset` builds it (``n_span`` blade elements and
     strips, no structural damping or the files'); in vacuum (``wind_speed`` 0) without aerodynamics."""
-    from windflutter.system.operational import OperationalModel, OperationalOptions  # noqa: PLC0415
 
     if float(wind_speed) == 0.0:
         return OperationalModel(turbine, OperationalOptions(part=part, aero=None, damping=damping,
                                                             mesh={"n_span": int(n_span)}))
-    from windflutter.methods import operational_options  # noqa: PLC0415
 
     cfg = method_p_config(wind_speed, n_span, part, damping)
     return OperationalModel(turbine, operational_options(cfg, "viscous"))
@@ -57,7 +59,6 @@ def named_mode(turbine, name: str, rpm: float, wind_speed: float, pitch_deg: flo
                damping: str = "none", max_hz: float = 8.0):
     """``(ps, mode)``: method p's point system at the operating point and its mode named ``name``
     (its ``name`` or its structural identity's); unknown: InputError listing the names there."""
-    from windflutter.system.modes import point_modes  # noqa: PLC0415
 
     om = method_p_model(turbine, wind_speed, n_span, "turbine", damping)
     pitch = None if pitch_deg is None else np.radians(float(pitch_deg))
@@ -91,7 +92,6 @@ def mode_state(ps, mode, blade_T, n_nodes: int, labels) -> tuple[np.ndarray, np.
         raise InputError("drivetrain", missing, "the same ground coordinates in method p's model")
     qF = x[np.array(idx)]
     eta = x[nF:nF + N * m].reshape(N, m)  # the multi-blade coordinates (collective, cos, sin, ...)
-    from windflutter.system.multiblade import coleman_matrix  # noqa: PLC0415
 
     C, dC, _ = coleman_matrix(N, 0.0)
     eb = C @ eta

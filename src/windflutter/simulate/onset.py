@@ -24,7 +24,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from windflutter.errors import InputError
+from windflutter.methods import stability_analysis
+from windflutter.simulate.blade import blade_in_wind
 from windflutter.simulate.mode_kick import method_p_config, method_p_model
+from windflutter.simulate.turbine_run import simulate_turbine
+from windflutter.system.modes import point_modes
 from windflutter.units import RPM
 
 __all__ = ["OnsetCheck", "SpeedCheck", "confirm_onset"]
@@ -96,7 +100,6 @@ def confirm_onset(turbine, wind_speed: float, factors=(0.97, 1.03), n_span: int 
     turbine, ``file``: the files' blade and tower damping in both).  ``kick``: the turbine
     started in method p's mode of that name at each speed (``"onset"``: the unstable mode's
     name), else the default kick (:func:`windflutter.simulate.turbine_run.kick`)."""
-    from windflutter.methods import stability_analysis  # noqa: PLC0415
 
     if part not in ("turbine", "rotor"):
         raise InputError("part", part, "turbine (the whole turbine) or rotor (one blade on a clamped hub)")
@@ -123,9 +126,6 @@ def confirm_onset(turbine, wind_speed: float, factors=(0.97, 1.03), n_span: int 
 def speed_check(turbine, om, point, wind_speed, factor, part, n_span, duration, f_max_hz, progress=None,
                 damping="none", kick=None) -> SpeedCheck:
     """The eigenvalue of ``point.flutter_mode`` at ``factor`` x the onset and the simulation's."""
-    from windflutter.simulate.blade import blade_in_wind  # noqa: PLC0415
-    from windflutter.simulate.turbine_run import simulate_turbine  # noqa: PLC0415
-    from windflutter.system.modes import point_modes  # noqa: PLC0415
 
     rpm = factor * float(point.flutter_rpm)
     ps = om.at(wind_speed, rpm=rpm, pitch=np.radians(point.pitch_deg))

@@ -25,6 +25,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.simulate.blade import blade_in_vacuum, blade_in_wind
+from windflutter.simulate.turbine_run import simulate_turbine
 
 __all__ = ["simulate", "INCLUDED", "included"]
 
@@ -100,7 +101,6 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
     if wind_speed > 0.0 and rpm == 0.0:
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     if part == "turbine":
-        from windflutter.simulate.turbine_run import simulate_turbine  # noqa: PLC0415
 
         return simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
                                 f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,

@@ -24,10 +24,21 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from windflutter.aero.unsteady import circulation as make_circulation
 from windflutter.errors import InputError
+from windflutter.mesh.parts import hub_mass
+from windflutter.mesh.settings import MeshSettings
+from windflutter.simulate.beam import spin_equilibrium
+from windflutter.simulate.blade import blade_model, corrected_modes, wind_setup
 from windflutter.simulate.identify import Identification, identify
+from windflutter.simulate.inertia import SpinningMass
 from windflutter.simulate.integrator import Trajectory, integrate, step_for_frequency
-from windflutter.simulate.turbine import BladePart, GroundPart, TurbineDynamics, check_blades, rigid_map
+from windflutter.simulate.mode_kick import mode_kick
+from windflutter.simulate.rotor_aero import BladeAero
+from windflutter.simulate.turbine import BladePart, GroundPart, TurbineDynamics, axis_turn, check_blades, rigid_map
+from windflutter.structure.assembly import assemble
+from windflutter.structure.corotational import beam_tangent, deformed_model
+from windflutter.system.damping import blade_damping_matrix, blade_mu, support_modal_damping, tower_ratios
 from windflutter.units import RPM
 
 __all__ = ["TurbineRun", "ground_part", "turbine_dynamics", "simulate_turbine", "multiblade_channels", "kick",
@@ -59,9 +70,7 @@ def ground_part(turbine, axis, drivetrain: str = "flexible", rotor_mass: np.ndar
     (6, 6) rigid-body mass at the apex (blades and hub): given, the support gets the files' tower
     modal damping on the tower modes with the rotor lumped at the hub
     (:func:`windflutter.system.damping.support_modal_damping`, the damping's definition)."""
-    from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
     from windflutter.mesh.turbine import build_model  # noqa: PLC0415
-    from windflutter.structure.assembly import assemble  # noqa: PLC0415
 
     fe, _ = build_model(turbine, MeshSettings(part="support", model="beam"))
     st = assemble(fe)
@@ -107,7 +116,6 @@ def ground_part(turbine, axis, drivetrain: str = "flexible", rotor_mass: np.ndar
 
 def _hub_rigid_mass(turbine) -> np.ndarray:
     """(6, 6) the hub's rigid-body mass at the apex (the turbine's hub mass and inertia)."""
-    from windflutter.mesh.parts import hub_mass  # noqa: PLC0415
 
     hm = hub_mass(turbine, 0)
     cg = skew3(np.asarray(hm.offset, float))
@@ -120,7 +128,6 @@ def _hub_rigid_mass(turbine) -> np.ndarray:
 
 def _tower_damping(turbine, st, Ms, Ks, Mr):
     """The files' tower modal ratios on the support's modes with the rotor lumped at the hub."""
-    from windflutter.system.damping import support_modal_damping, tower_ratios  # noqa: PLC0415
 
     fa, ss = tower_ratios(turbine)
     md = np.asarray(st.M.diagonal())
@@ -140,11 +147,6 @@ def skew3(v):
 
 def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_density, damping="none"):
     """The blade at its spinning equilibrium (in the wind: with the strips), and its pitch (deg)."""
-    from windflutter.simulate.beam import spin_equilibrium  # noqa: PLC0415
-    from windflutter.simulate.blade import blade_model, wind_setup  # noqa: PLC0415
-    from windflutter.simulate.inertia import SpinningMass  # noqa: PLC0415
-    from windflutter.structure.assembly import assemble  # noqa: PLC0415
-    from windflutter.structure.corotational import deformed_model  # noqa: PLC0415
 
     omega = rpm * RPM
     if wind_speed == 0.0:
@@ -156,8 +158,6 @@ def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_de
         M = np.asarray(assemble(deformed_model(fe, base)).M.todense())
         return BladePart(fe=fe, T=struct.T, M=M, base=base, inertia=inertia,
                          damping=_blade_damping(turbine, deformed_model(fe, base), damping)), apex, axis
-    from windflutter.aero.unsteady import circulation as make_circulation  # noqa: PLC0415
-    from windflutter.simulate.rotor_aero import BladeAero  # noqa: PLC0415
 
     fe, struct, sections, apex, axis, st = wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
     inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
@@ -182,7 +182,6 @@ def _blade_damping(turbine, fe, damping):
         raise InputError("damping", damping, "none or file (the turbine files' structural damping)")
     if damping == "none":
         return None
-    from windflutter.system.damping import blade_damping_matrix, blade_mu  # noqa: PLC0415
 
     C = blade_damping_matrix(fe, blade_mu(turbine))
     return None if C is None else C.tocsr()
@@ -200,9 +199,7 @@ def turbine_dynamics(turbine, rpm: float, wind_speed: float = 0.0, pitch_deg: fl
                                     air_density, damping)
     rotor = None
     if damping == "file":  # the rotor's rigid-body mass at the apex: the blades turned to their azimuths + hub
-        from windflutter.simulate.turbine import axis_turn  # noqa: PLC0415
 
-        from windflutter.structure.assembly import assemble  # noqa: PLC0415
 
         G = rigid_map(np.asarray(blade.fe.nodes, float), apex)  # the undeformed blade's structural mass
         Mb = G.T @ np.asarray(assemble(blade.fe).M.todense()) @ G
@@ -229,7 +226,6 @@ def kick(dyn: TurbineDynamics, amplitude: float = 1e-2, tower_amplitude: float =
     the recorded nodes, largest translation ``amplitude`` (m) -- or every blade's, times its
     weight in ``blades`` (N,) (e.g. ``cos(2 pi b / N)``: a cyclic kick); the tower top's under unit
     fore-aft and side-side hub forces, ``tower_amplitude`` (m; 0: none)."""
-    from windflutter.structure.corotational import beam_tangent  # noqa: PLC0415
 
     b = dyn.b
     T = dyn.T
@@ -301,7 +297,6 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
     ``tol``: the Newton iteration's relative increment (1e-7 of the largest
     displacement: a force error far below what the identification resolves).  Other parameters
     as :func:`windflutter.simulate.run.simulate`."""
-    from windflutter.simulate.blade import corrected_modes  # noqa: PLC0415
 
     if not (np.isfinite(rpm) and rpm >= 0):
         raise InputError("rpm", rpm, "a non-negative rotor speed (rev/min)")
@@ -314,7 +309,6 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
         q0 = kick(dyn, amplitude, tower_kick, kick_loads, kick_blades)
         v0 = np.zeros_like(q0)
     else:
-        from windflutter.simulate.mode_kick import mode_kick  # noqa: PLC0415
 
         q0, v0, mode = mode_kick(dyn, turbine, kick_mode, wind_speed, pitch_deg, n_span, amplitude, damping,
                                  max_hz=max(f_max_hz, 1.0))

@@ -28,10 +28,13 @@ from windflutter.aero.strip import apparent_mass
 from windflutter.aero.unsteady import circulation as make_circulation
 from windflutter.errors import InputError
 from windflutter.simulate.beam import SpinningBeams, left_jacobian
+from windflutter.simulate.blade import corrected_modes
 from windflutter.simulate.identify import Identification, identify
 from windflutter.simulate.inertia import SpinningMass
 from windflutter.simulate.integrator import Trajectory, integrate, step_for_frequency
 from windflutter.simulate.strips import StripGeometry, flat_plate, strip_forces
+from windflutter.structure.assembly import assemble
+from windflutter.structure.corotational import reference_configuration
 
 __all__ = ["WingDynamics", "WingRun", "simulate_wing"]
 
@@ -41,8 +44,6 @@ class WingDynamics:
     :func:`~windflutter.frozen.wing.build_wing`) at airspeed ``U`` (m/s) (module docstring)."""
 
     def __init__(self, fe, sections, U: float, air_density: float, lift_slope: float, circ):
-        from windflutter.structure.assembly import assemble  # noqa: PLC0415
-        from windflutter.structure.corotational import reference_configuration  # noqa: PLC0415
 
         st = assemble(fe)
         base = reference_configuration(fe)
@@ -142,7 +143,6 @@ def simulate_wing(fe, sections, U: float, duration: float, *, air_density: float
     axial motions) and the modes identified from it.
     ``f_max_hz`` sets the step (``points_per_period`` steps in its period); the scheme's
     ``rho_inf`` damps the much higher beam modes."""
-    from windflutter.simulate.blade import corrected_modes  # noqa: PLC0415
 
     if not (np.isfinite(U) and U > 0):
         raise InputError("U", U, "a positive airspeed (m/s)")

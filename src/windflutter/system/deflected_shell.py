@@ -48,6 +48,7 @@ from windflutter.structure.assembly import assemble
 from windflutter.structure.prestress import membrane_geometric_stiffness
 from windflutter.structure.shell import shell_membrane_resultants
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
+from windflutter.system.damping import blade_damping_matrix
 
 __all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade"]
 
@@ -151,7 +152,6 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     omega : rotor speed (rad/s) about ``rb.axis``.
     mu : the blade's damping coefficients (None: no damping).
     """
-    from windflutter.system.damping import blade_damping_matrix
 
     fe = rb.fe
     if not len(fe.shell_conn):
