@@ -20,7 +20,7 @@ import scipy.sparse.linalg as spla
 from windflutter.errors import InputError
 from windflutter.solve.linsolve import as_operator, factorize
 from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-from windflutter.structure.modal import symmetric_eigs
+from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
 __all__ = ["spd_operator", "refine_modes"]
 
@@ -98,9 +98,8 @@ def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1
             keep = nr > 1e-12 * max(float(eta.max()), 1e-300)
             if np.any(keep):
                 R, MR = R[:, keep] / nr[keep], MR[:, keep] / nr[keep]
-                g, U = np.linalg.eigh(0.5 * (R.T @ MR + MR.T @ R))
-                U = U[:, g > 1e-12 * g.max()] / np.sqrt(g[g > 1e-12 * g.max()])
-                w2, X, MX = _ritz(K, M, np.hstack([X, R @ U]), p, MQ=np.hstack([MX, MR @ U]))
+                Z = m_orthonormalize(R, M, tol=1e-12, gram=R.T @ MR)
+                w2, X, MX = _ritz(K, M, np.hstack([X, Z]), p)
             if done:
                 return w2, X
     except (np.linalg.LinAlgError, ValueError):  # lost rank: start again from scratch
