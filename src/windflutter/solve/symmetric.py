@@ -85,7 +85,7 @@ def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1
     p = X.shape[1]
     K, M = _csr(K), _csr(M)
     try:
-        w2, X, MX = _ritz(K, M, X, p)
+        w2, X, KX, MX = _ritz(X, np.asarray(K @ X), np.asarray(M @ X), p)
         for _ in range(max_iter):
             R = X - np.asarray(solve(MX)) * w2
             MR = np.asarray(M @ R)
@@ -99,7 +99,8 @@ def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1
             if np.any(keep):
                 R, MR = R[:, keep] / nr[keep], MR[:, keep] / nr[keep]
                 Z = m_orthonormalize(R, M, tol=1e-12, gram=R.T @ MR)
-                w2, X, MX = _ritz(K, M, np.hstack([X, Z]), p)
+                w2, X, KX, MX = _ritz(np.hstack([X, Z]), np.hstack([KX, np.asarray(K @ Z)]),
+                                      np.hstack([MX, np.asarray(M @ Z)]), p)
             if done:
                 return w2, X
     except (np.linalg.LinAlgError, ValueError):  # lost rank: start again from scratch
@@ -111,9 +112,8 @@ def _csr(A):
     return A.tocsr() if sp.issparse(A) else np.asarray(A)
 
 
-def _ritz(K, M, Q: np.ndarray, p: int, MQ: np.ndarray | None = None):
-    """The ``p`` lowest Ritz pairs of the pencil on ``span(Q)``: ``(w2 (p,), X (n, p), M X)``, ``X``
-    M-orthonormal; ``MQ``: ``M Q`` when the caller has it."""
-    MQ = np.asarray(M @ Q) if MQ is None else MQ
-    w2, U = symmetric_eigs(Q.T @ np.asarray(K @ Q), Q.T @ MQ, p)
-    return w2, Q @ U, MQ @ U
+def _ritz(Q: np.ndarray, KQ: np.ndarray, MQ: np.ndarray, p: int):
+    """The ``p`` lowest Ritz pairs of the pencil on ``span(Q)`` (``KQ = K Q``, ``MQ = M Q``):
+    ``(w2 (p,), X (n, p), K X, M X)``, ``X`` M-orthonormal."""
+    w2, U = symmetric_eigs(Q.T @ KQ, Q.T @ MQ, p)
+    return w2, Q @ U, KQ @ U, MQ @ U
