@@ -18,6 +18,7 @@ from the default run's are printed.
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 import warnings
@@ -102,6 +103,7 @@ def main(argv=None) -> int:
         rows.append(dict(case=label, wall=out["wall"], build=out["build"], points=out["points"],
                          per_point=out["points"] / n, blade_dof=out["blade_dof"], basis=out["basis"],
                          states=out["states"], rss_mb=rss, unstable=out["unstable"]))
+        print(f"  {label}: {out['wall']:.1f} s, peak RSS {rss:.0f} MB (load avg {os.getloadavg()[0]:.2f})", flush=True)
     base = rows[0]["wall"]
     for r in rows:
         r["ratio"] = r["wall"] / base
