@@ -58,21 +58,28 @@ def run_case(turbine: str, winds: list, structure: str, cold: bool) -> dict:
     res = campbell(tb, winds, model=om, max_hz=2.5)
     t2 = time.perf_counter()
     ps = om.at(float(winds[0]))
-    modes = [[(m.frequency_hz, m.damping_ratio, bool(m.rigid)) for m in p.modes] for p in res.points]
+    modes = [[(complex(m.eigenvalue), bool(m.rigid)) for m in p.modes] for p in res.points]
     return dict(build=t1 - t0, points=t2 - t1, wall=t2 - t0, blade_dof=rb.struct.nq,
                 basis=None if ps.Phi is None else ps.Phi.shape[1], states=ps.mbc.A.shape[0], modes=modes,
                 unstable=len(res.unstable()))
 
 
 def _difference(a, b):
-    """Largest relative frequency and absolute damping-ratio difference of the elastic modes (by rank)."""
+    """Largest relative frequency and absolute damping-ratio difference of the elastic modes, each mode
+    of ``a`` paired with the nearest eigenvalue of ``b`` (an assignment: modes of nearly equal
+    frequency and different damping can swap ranks)."""
+    from scipy.optimize import linear_sum_assignment
+
     df = dz = 0.0
     for p, q in zip(a, b):
-        if len(p) != len(q):
-            return float("nan"), float("nan")
-        for (f0, z0, rigid), (f1, z1, _) in zip(p, q):
-            if not rigid:
-                df, dz = max(df, abs(f1 / f0 - 1)), max(dz, abs(z1 - z0))
+        la = np.array([x for x, rigid in p if not rigid])
+        lb = np.array([x for x, _ in q])
+        if not la.size:
+            continue
+        r, c = linear_sum_assignment(np.abs(la[:, None] - lb[None, :]) / np.abs(la)[:, None])
+        fa, fb = np.abs(la[r]), np.abs(lb[c])
+        df = max(df, float(np.max(np.abs(fb / fa - 1))))
+        dz = max(dz, float(np.max(np.abs(lb[c].real / fb - la[r].real / fa))))
     return df, dz
 
 

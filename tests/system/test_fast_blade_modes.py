@@ -43,15 +43,17 @@ def _campbell(turbine, monkeypatch, basis_modes):
 
 def _largest_difference(ref, other):
     """(max relative frequency difference, max absolute damping-ratio difference) over the elastic
-    modes of all points, modes paired by rank (both lists ascending in frequency)."""
+    modes of all points, each paired with the nearest eigenvalue of the other run (an assignment)."""
+    from scipy.optimize import linear_sum_assignment
+
     df = dz = 0.0
     for p, q in zip(ref.points, other.points):
+        a = np.array([m.eigenvalue for m in p.modes if not m.rigid])
+        b = np.array([m.eigenvalue for m in q.modes])
         assert len(p.modes) == len(q.modes)
-        for a, b in zip(p.modes, q.modes):
-            if a.rigid:
-                continue
-            df = max(df, abs(b.frequency_hz / a.frequency_hz - 1))
-            dz = max(dz, abs(b.damping_ratio - a.damping_ratio))
+        r, c = linear_sum_assignment(np.abs(a[:, None] - b[None, :]) / np.abs(a)[:, None])
+        df = max(df, float(np.max(np.abs(np.abs(b[c]) / np.abs(a[r]) - 1))))
+        dz = max(dz, float(np.max(np.abs(b[c].real / np.abs(b[c]) - a[r].real / np.abs(a[r])))))
     return df, dz
 
 
