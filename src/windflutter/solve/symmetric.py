@@ -58,9 +58,10 @@ def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1
     11.6) converges the highest wanted mode by the ratio ``w_n^2 / w_(p+1)^2`` per iteration only,
     slow in the dense band of panel modes (10-20 Hz) of a large shell blade: on the IEA 22 MW shell
     blade from one wind speed to the next, 7 block solves became 3, the returned residuals 20x
-    smaller (docs/notes/performance_rounds.md, §10).  On convergence the last residuals, already
-    computed, give one more Rayleigh-Ritz step for free (its Ritz values are no larger, so no
-    further from the eigenvalues, than those of the block that passed the test).
+    smaller (docs/notes/performance_rounds.md, "The deflected shell Campbell at the converged
+    mesh").  On convergence the last residuals, already computed, give one more Rayleigh-Ritz
+    step for free (its Ritz values are no larger, so no further from the eigenvalues, than those of
+    the block that passed the test).
 
     Parameters
     ----------
