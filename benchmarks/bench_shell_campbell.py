@@ -1,0 +1,134 @@
+"""The shell Campbell diagram (method p) of issue 33: deflected against undeformed, times, sizes, memory.
+
+Issue 33's target: the IEA 22 MW shell Campbell at 23 wind speeds in at most 90 s on 2 cores, the
+blades linearized about their deflected shape, peak memory under 4 GB; the undeformed shell
+(``solver.structure: undeformed``) is the same-run baseline.  Both at the defaults of
+``windflutter campbell TURBINE --model shell`` (the default mesh: the blade length / 100 along the span,
+40 around, midsurface skin; 30 fixed-interface blade modes + aerodynamic corrections).  Each case runs
+in a forked child with one BLAS thread, so its peak RSS (``resource.getrusage``) is its own.
+``--cold``: also the deflected run with the blade modes from shift-invert Lanczos at every wind speed
+(``BladeBasis.restart`` before each: the path before the refinement, and the reference of
+``tests/system/test_fast_blade_modes.py``); the largest frequency and damping differences of its modes
+from the default run's are printed.
+
+    python benchmarks/bench_shell_campbell.py [--quick] [--turbine iea22mw] [--winds 23] [--cold]
+                                             [--only deflected|undeformed]
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import sys
+import time
+import warnings
+from pathlib import Path
+
+import numpy as np
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+from _benchutil import header, isolated, table  # noqa: E402
+
+
+def run_case(turbine: str, winds: list, structure: str, cold: bool) -> dict:
+    """One Campbell run (in the child): wall time of the model build and of the points, sizes, modes."""
+    from windflutter.config import config_from_dict
+    from windflutter.model import load_turbine
+    from windflutter.api import operational_options
+    from windflutter.system.blade_basis import BladeBasis
+    from windflutter.system.campbell import campbell
+    from windflutter.system.operational import OperationalModel
+
+    warnings.simplefilter("ignore")
+    tb = load_turbine(turbine)
+    cfg = config_from_dict({"model": {"type": "shell"}, "solver": {"structure": structure}})
+    if cold:
+        orig = BladeBasis._sparse_modes
+
+        def from_scratch(self, *a, **k):
+            self.restart()
+            return orig(self, *a, **k)
+
+        BladeBasis._sparse_modes = from_scratch
+    t0 = time.perf_counter()
+    om = OperationalModel(tb, operational_options(cfg, "viscous"))
+    rb = om.blade(0.0)
+    om.support(), om.reference()
+    t1 = time.perf_counter()
+    res = campbell(tb, winds, model=om, max_hz=2.5)
+    t2 = time.perf_counter()
+    ps = om.at(float(winds[0]))
+    modes = [[(complex(m.eigenvalue), bool(m.rigid)) for m in p.modes] for p in res.points]
+    return dict(build=t1 - t0, points=t2 - t1, wall=t2 - t0, blade_dof=rb.struct.nq,
+                basis=None if ps.Phi is None else ps.Phi.shape[1], states=ps.mbc.A.shape[0], modes=modes,
+                unstable=len(res.unstable()))
+
+
+def _difference(a, b):
+    """Largest relative frequency and absolute damping-ratio difference of the elastic modes, each mode
+    of ``a`` paired with the nearest eigenvalue of ``b`` (an assignment: modes of nearly equal
+    frequency and different damping can swap ranks)."""
+    from scipy.optimize import linear_sum_assignment
+
+    df = dz = 0.0
+    for p, q in zip(a, b):
+        la = np.array([x for x, rigid in p if not rigid])
+        lb = np.array([x for x, _ in q])
+        if not la.size:
+            continue
+        r, c = linear_sum_assignment(np.abs(la[:, None] - lb[None, :]) / np.abs(la)[:, None])
+        fa, fb = np.abs(la[r]), np.abs(lb[c])
+        df = max(df, float(np.max(np.abs(fb / fa - 1))))
+        dz = max(dz, float(np.max(np.abs(lb[c].real / fb - la[r].real / fa))))
+    return df, dz
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--quick", action="store_true", help="4 wind speeds")
+    ap.add_argument("--turbine", default="iea22mw")
+    ap.add_argument("--winds", type=int, default=23, help="wind speeds along 3-25 m/s (default 23)")
+    ap.add_argument("--cold", action="store_true", help="also the deflected run with modes from scratch")
+    ap.add_argument("--only", choices=("deflected", "undeformed"), default=None)
+    args = ap.parse_args(argv)
+    from windflutter.model import load_turbine
+    from windflutter.system.campbell import default_wind_speeds
+
+    ws = default_wind_speeds(load_turbine(args.turbine))
+    n = 4 if args.quick else args.winds
+    winds = [float(v) for v in np.linspace(ws[0], ws[-1], n)]
+    header(f"bench_shell_campbell: {args.turbine} shell Campbell, {n} wind speeds {winds[0]:g}-{winds[-1]:g} m/s")
+    cases = [("undeformed [baseline]", "undeformed", False), ("deflected (default)", "deflected", False)]
+    if args.only:
+        cases = [c for c in cases if c[1] == args.only]
+    if args.cold:
+        cases.append(("deflected, Lanczos at every point", "deflected", True))
+    rows, runs = [], {}
+    for label, structure, cold in cases:
+        out, dt, rss = isolated(run_case, args.turbine, winds, structure, cold)
+        runs[label] = out
+        rows.append(dict(case=label, wall=out["wall"], build=out["build"], points=out["points"],
+                         per_point=out["points"] / n, blade_dof=out["blade_dof"], basis=out["basis"],
+                         states=out["states"], rss_mb=rss, unstable=out["unstable"]))
+        print(f"  {label}: {out['wall']:.1f} s, peak RSS {rss:.0f} MB (load avg {os.getloadavg()[0]:.2f})", flush=True)
+    base = rows[0]["wall"]
+    for r in rows:
+        r["ratio"] = r["wall"] / base
+    table(rows, ["case", "wall", "build", "points", "per_point", "ratio", "blade_dof", "basis", "states", "rss_mb",
+                 "unstable"])
+    print("times in s (wall = build + points); ratio: to the first row; basis: blade basis vectors (modes + "
+          "corrections); states: first-order MBC system; rss_mb: peak RSS of the case's process")
+    if args.cold and "deflected (default)" in runs:
+        df, dz = _difference(runs["deflected, Lanczos at every point"]["modes"], runs["deflected (default)"]["modes"])
+        print(f"default vs Lanczos at every point: max rel. frequency difference {df:.2e}, max damping-ratio "
+              f"difference {dz:.2e} (elastic modes)")
+    target = [r for r in rows if r["case"].startswith("deflected (default)")]
+    if target and n == 23:
+        t = target[0]["wall"]
+        print(f"issue 33 target: 23 wind speeds deflected <= 90 s -> {'met' if t <= 90 else 'NOT met'} ({t:.0f} s); "
+              f"peak memory < 4 GB -> {'met' if target[0]['rss_mb'] < 4096 else 'NOT met'}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
