@@ -8,7 +8,8 @@ about its deflected shape (the default) in under 90 s, with the undeformed shell
 length / 100 along the span, 40 around, since 4 Dec 2026) and at the seed's 30 x 40 (``--seed-mesh``).
 Measured 4 Dec 2026 (shared 2-core machine, load average 6-9 from other sessions: pessimistic):
 deflected 42.5 s at 30 x 40, 593 s at the default, peak memory 3.0 GB -- the 90 s target is met by the
-seed's mesh only.
+seed's mesh only; after the block Rayleigh-Ritz refinement 186 s at the default on a quiet machine
+(benchmarks/bench_shell_campbell.py).
 
     python benchmarks/bench_campbell.py [--quick] [--turbine iea22mw] [--shell]
 """
