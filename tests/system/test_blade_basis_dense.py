@@ -55,3 +55,14 @@ def test_dense_modes_of_a_regular_pencil_are_the_ordinary_ones():
     V = dense_modes(K, M, 3)
     w2 = np.einsum("ij,ik,kj->j", V, K, V) / np.einsum("ij,ik,kj->j", V, M, V)
     assert np.allclose(w2, sla.eigh(K, M, eigvals_only=True)[:3], rtol=1e-10)
+
+
+def test_dense_modes_with_an_indefinite_stiffness_keep_the_ordinary_form():
+    """A buckled panel (K not positive definite) cannot take the inverted form: the ordinary one, as
+    before, with its negative root first (the structure's instability stays visible)."""
+    K, M = chain()
+    M = M + np.diag(np.where(np.diag(M) > 0, 0.0, 1e-14))  # numerically positive, singular in effect
+    K[0, 0] -= 10.0  # the root spring negative: one negative root
+    V = dense_modes(K, M, 2)
+    w2 = np.einsum("ij,ik,kj->j", V, K, V) / np.einsum("ij,ik,kj->j", V, M, V)
+    assert w2[0] < 0

@@ -31,10 +31,16 @@ SINGULAR_MASS = 1e-10
 def dense_modes(K: np.ndarray, M: np.ndarray, n: int) -> np.ndarray:
     """The ``n`` lowest modes of a small blade (dense ``K``, ``M``).  A singular mass (massless DOFs:
     the drilling rotations of a coarse shell) takes the inverted form ``M v = mu K v``, whose finite
-    roots are the blade's modes; ``eigh(K, M)`` would return round-off modes of the massless DOFs."""
+    roots are the blade's modes; ``eigh(K, M)`` would return round-off modes of the massless DOFs.
+    A stiffness that is not positive definite (a coarse shell's panel buckled under the steady
+    stress) keeps the ordinary form."""
     m = np.linalg.eigvalsh(0.5 * (M + M.T))
-    singular = m[0] < SINGULAR_MASS * max(m[-1], 1e-300)
-    return symmetric_eigs(K, M, n, inverted=bool(singular))[1]
+    if m[0] < SINGULAR_MASS * max(m[-1], 1e-300):
+        try:
+            return symmetric_eigs(K, M, n, inverted=True)[1]
+        except np.linalg.LinAlgError:  # the inverted form needs K positive definite (a buckled panel
+            pass                       # under steady stress is not): the ordinary form, as before
+    return symmetric_eigs(K, M, n)[1]
 
 
 #: large blades: modes computed beyond the wanted ones, the guard of the next point's subspace
