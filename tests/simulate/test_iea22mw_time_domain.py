@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from windflutter.api import load_turbine
+from method_p_reference import method_p_in_wind
 from windflutter.simulate.turbine_run import simulate_turbine
 
 
@@ -28,15 +29,6 @@ def iea22mw():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return load_turbine("iea22mw")
-
-
-def method_p_in_wind(turbine, wind, n_span):
-    from windflutter import api
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        p = api.campbell(turbine, [wind], model={"n_aero_sections": n_span}, damping={"model": "none"}).points[0]
-    return {m.name: complex(m.eigenvalue) for m in p.modes}, p.rotor_speed_rpm, p.pitch_deg
 
 
 @pytest.mark.slow

@@ -25,6 +25,7 @@ import pytest
 
 from windflutter.api import load_turbine
 from windflutter.simulate.integrator import AlphaScheme, fd_jacobian
+from method_p_reference import method_p_in_wind
 from windflutter.simulate.turbine_run import simulate_turbine, turbine_dynamics
 
 
@@ -136,16 +137,6 @@ def test_turbine_frequencies_in_vacuum_fine(nrel5mw, rpm):
     0.5 % -- the 1st tower fore-aft and side-side (0.316 / 0.323 Hz, 2 % apart), the 1st flap
     and edge modes (BW / collective / FW when spinning; the tilt and yaw pairs at standstill)."""
     _compare_vacuum(nrel5mw, rpm, 30, 60.0, 1.3)
-
-
-def method_p_in_wind(turbine, wind, n_span):
-    """Method p's modes (whole turbine, no structural damping) at the operating point."""
-    from windflutter import api
-
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        p = api.campbell(turbine, [wind], model={"n_aero_sections": n_span}, damping={"model": "none"}).points[0]
-    return {m.name: complex(m.eigenvalue) for m in p.modes}, p.rotor_speed_rpm, p.pitch_deg
 
 
 @pytest.mark.slow
