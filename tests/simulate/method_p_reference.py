@@ -14,3 +14,18 @@ def method_p_in_wind(turbine, wind, n_span):
         warnings.simplefilter("ignore")
         p = api.campbell(turbine, [wind], model={"n_aero_sections": n_span}, damping={"model": "none"}).points[0]
     return {m.name: complex(m.eigenvalue) for m in p.modes}, p.rotor_speed_rpm, p.pitch_deg
+
+
+def assert_identified_like(run, ref: dict, names) -> None:
+    """Each named mode of method p (``ref``: name -> eigenvalue) found in the time-domain run's
+    identified modes (the nearest eigenvalue): frequency within 0.5 %, damping ratio within 10 %
+    (relative) or 0.2 points (issue 30's band)."""
+    import numpy as np
+    import pytest
+
+    for name in names:
+        lam = ref[name]
+        f_ref, z_ref = abs(lam.imag) / (2 * np.pi), -lam.real / abs(lam)
+        m = min(run.modes, key=lambda x: abs(x.lam - lam))
+        assert m.frequency_hz == pytest.approx(f_ref, rel=5e-3), (name, m.frequency_hz, f_ref)
+        assert abs(m.zeta - z_ref) <= max(0.1 * abs(z_ref), 2e-3), (name, m.zeta, z_ref)
