@@ -29,3 +29,15 @@ def assert_identified_like(run, ref: dict, names) -> None:
         m = min(run.modes, key=lambda x: abs(x.lam - lam))
         assert m.frequency_hz == pytest.approx(f_ref, rel=5e-3), (name, m.frequency_hz, f_ref)
         assert abs(m.zeta - z_ref) <= max(0.1 * abs(z_ref), 2e-3), (name, m.zeta, z_ref)
+
+
+def assert_checks_agree(res) -> None:
+    """Each rotor speed of an onset confirmation (``confirm_onset``'s checks): a clean fit (residual
+    below 1e-2, growth-rate spread below 20 % of it), damping ratio within 10 % (relative) or 0.2
+    points of the eigenvalue's, frequency within 0.5 %."""
+    import pytest
+
+    for c in res.checks:
+        assert c.residual < 1e-2 and c.sigma_spread < 0.2 * abs(c.sigma_sim)
+        assert abs(c.zeta_sim - c.zeta_eig) <= max(0.1 * abs(c.zeta_eig), 2e-3)
+        assert c.frequency_sim_hz == pytest.approx(c.frequency_eig_hz, rel=5e-3)
