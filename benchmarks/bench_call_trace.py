@@ -52,7 +52,7 @@ def trace(argv: list[str]) -> dict:
             "packages": sorted({unit(m) for m in modules}), "changes": changes}
 
 
-def main_(args: list[str]) -> None:
+def report(args: list[str]) -> None:
     turbine = args[0] if args else "iea15mw"
     wind = args[1] if len(args) > 1 else "10"
     res = trace(["campbell", turbine, "--wind-speeds", wind, "--json"])
@@ -67,4 +67,4 @@ def main_(args: list[str]) -> None:
 
 
 if __name__ == "__main__":
-    main_(sys.argv[1:])
+    report(sys.argv[1:])

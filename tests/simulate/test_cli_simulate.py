@@ -133,3 +133,11 @@ def test_confirm_onset_cli_real(tmp_path, capsys):
         assert abs(c["zeta_sim"] - c["zeta_eig"]) <= max(0.1 * abs(c["zeta_eig"]), 2e-3), c
         assert c["frequency_sim_hz"] == pytest.approx(c["frequency_eig_hz"], rel=5e-3), c
     assert out.stat().st_size > 1000
+
+
+def test_the_included_line_names_the_damping_it_runs_with():
+    from windflutter.simulate.run import included
+
+    assert included("turbine").endswith("no gravity, dynamic inflow or structural damping")
+    assert included("turbine", "file").endswith("no gravity or dynamic inflow; with the turbine files' structural damping")
+    assert included("blade").endswith("no tower, drivetrain, other blades, gravity, dynamic inflow or structural damping")

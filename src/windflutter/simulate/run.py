@@ -29,26 +29,25 @@ from windflutter.simulate.turbine_run import simulate_turbine
 
 __all__ = ["simulate", "INCLUDED", "included"]
 
-#: one line on what each simulation holds (printed by the CLI)
+#: one line on what each simulation holds (printed by the CLI), up to what it leaves out
 INCLUDED = {
     "turbine": ("the whole turbine: co-rotational beam blades in frames turning with the hub, the tower and "
                 "nacelle (linear beams) and the drivetrain (shaft spring, generator inertia, constant generator "
-                "torque); strip aerodynamics with lag states and frozen BEM induction; no gravity, dynamic "
-                "inflow or structural damping"),
+                "torque); strip aerodynamics with lag states and frozen BEM induction"),
     "blade": ("one blade on a rigid hub at constant rotor speed (co-rotational beam, spinning frame); "
-              "strip aerodynamics with lag states and frozen BEM induction; no tower, drivetrain, other "
-              "blades, gravity, dynamic inflow or structural damping"),
+              "strip aerodynamics with lag states and frozen BEM induction"),
 }
+#: what each simulation leaves out, besides structural damping unless it runs with the files'
+LEFT_OUT = {"turbine": ("gravity", "dynamic inflow"),
+            "blade": ("tower", "drivetrain", "other blades", "gravity", "dynamic inflow")}
 
 
 def included(part: str, damping: str = "none") -> str:
-    """:data:`INCLUDED`'s line for ``part``, with the structural damping it runs with (``file``: the
-    turbine files' blade and tower damping)."""
-    line = INCLUDED[part]
-    if damping == "file":
-        line = line.replace("gravity, dynamic inflow or structural damping",
-                            "gravity or dynamic inflow; with the turbine files' structural damping")
-    return line
+    """The line on what the simulation of ``part`` holds and leaves out, with the structural damping
+    it runs with (``file``: the turbine files' blade and tower damping)."""
+    out = list(LEFT_OUT[part]) + (["structural damping"] if damping != "file" else [])
+    line = f"{INCLUDED[part]}; no {', '.join(out[:-1])} or {out[-1]}"
+    return line + ("; with the turbine files' structural damping" if damping == "file" else "")
 
 
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 20.0, pitch_deg: float | None = None,
