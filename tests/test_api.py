@@ -106,9 +106,9 @@ class _Recorder:
 
 
 def test_stability_api_builds_the_cli_solver(cached, monkeypatch, capsys):
-    import windflutter.methods as build
+    import windflutter.methods as methods
 
-    monkeypatch.setattr(build, "stability_analysis", _Recorder)
+    monkeypatch.setattr(methods, "stability_analysis", _Recorder)
     _Recorder.configs = []
     cli = cli_json(capsys, ["stability", "nrel5mw", "--wind-speeds", "8", "12", "--model", "shell", "--n-span", "12",
                             "--rpm", "4", "30", "2", "--aero", "potential", "--basis-modes", "20", "--json"])

@@ -42,12 +42,11 @@ from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
 from windflutter.model.turbine import Turbine
 from windflutter import operating
 from windflutter.schema import Spec
-from windflutter import methods as build  # module access: tests patch build.stability_analysis
+from windflutter import methods  # module access: tests patch methods.stability_analysis
 from windflutter.operating import campbell_model
 from windflutter.sensitivity import onset as onset_
 from windflutter.sensitivity.results import as_dataset, sensitivities
 from windflutter.simulate import onset as simulate_onset, run as simulate_run
-from windflutter.methods import operational_options
 from windflutter.system.campbell import default_wind_speeds
 from windflutter.system.operational import missing_curve_error
 
@@ -271,8 +270,8 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
     """
     cfg = _config(config, {**options, "wind_speeds": wind_speeds}, "windflutter.stability() keywords")
     aero, method = _one(cfg, "aero", "aerodynamic variant"), _one(cfg, "method", "search method")
-    build.case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
-    solver = build.stability_analysis(as_turbine(turbine), cfg, aero, method)
+    methods.case_options(cfg, aero, method)  # the solver's options checked before the turbine is read
+    solver = methods.stability_analysis(as_turbine(turbine), cfg, aero, method)
     return [solver.analyse_operating_point(v) for v in cfg.wind_speeds]
 
 
@@ -302,7 +301,7 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
     if max_hz is not None:
         extra["campbell.max_hz"] = max_hz
     cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
-    build.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
     return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
 
@@ -336,7 +335,7 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     if max_hz is not None:
         extra["campbell.max_hz"] = max_hz
     cfg = _config(config, {**options, **extra}, "windflutter.sensitivity() keywords")
-    operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     t = as_turbine(turbine)
     if getattr(t, "operating_curve", None) is None:
 

@@ -72,11 +72,11 @@ def test_campbell_refines_an_ambiguous_wind_step_through_its_middle(monkeypatch)
 
 def test_overspeed_sweep_refines_an_ambiguous_rotor_speed_step_through_its_middle(monkeypatch):
     """Along the rotor speed: the same for the overspeed sweep's step 12 -> 14 RPM."""
-    from windflutter import overspeed as operational
+    from windflutter import overspeed
 
     calls = []
-    monkeypatch.setattr(operational, "point_modes", _recording_point_modes(calls, 13.0))
-    st = operational.OperationalStability.__new__(operational.OperationalStability)
+    monkeypatch.setattr(overspeed, "point_modes", _recording_point_modes(calls, 13.0))
+    st = overspeed.OperationalStability.__new__(overspeed.OperationalStability)
     st.model = SimpleNamespace(at=lambda v, rpm, pitch: SimpleNamespace(x=rpm))
     st._points = OrderedDict()
     st.max_hz = lambda pitch: 5.0
