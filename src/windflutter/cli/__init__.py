@@ -26,9 +26,16 @@ COMMANDS = ("section", "simple", "wing", "modes", "mesh", "beam_properties", "st
             "simulate", "run")
 
 
-@functools.lru_cache(maxsize=1)
-def build_parser() -> argparse.ArgumentParser:
-    """The parser of every command (built once; parsing does not change it)."""
+def build_parser(argv: list[str] | None = None) -> argparse.ArgumentParser:
+    """The parser of ``argv``'s sub-command alone when ``argv`` starts with one (the others'
+    options are not built: they are never read), else of every command (``--help``, ``--version``,
+    a mistyped command: the message lists them all).  Built once per command."""
+    typed = {c.replace("_", "-"): c for c in COMMANDS}
+    return _parser(typed.get(argv[0]) if argv else None)
+
+
+@functools.lru_cache(maxsize=None)
+def _parser(command: str | None) -> argparse.ArgumentParser:
     from windflutter.cli.options import OneLineParser  # noqa: PLC0415
 
     parser = OneLineParser(
@@ -38,7 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"windflutter {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=OneLineParser)
     sub.required = True
-    for name in COMMANDS:
+    for name in COMMANDS if command is None else (command,):
         module = importlib.import_module(f"windflutter.cli.{name}")
         module.add_parser(sub)
     return parser
@@ -61,7 +68,8 @@ def main(argv: list[str] | None = None) -> int:
 
 
 def _main(argv: list[str] | None) -> int:
-    parser = build_parser()
+    argv = sys.argv[1:] if argv is None else list(argv)
+    parser = build_parser(argv)
     try:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, --version, or a usage error already printed in one line

@@ -3,10 +3,10 @@ field with its :class:`~windflutter.schema.Spec` (see :mod:`windflutter.config`)
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import json
 import math
-from collections.abc import Iterator
 from dataclasses import Field, asdict, dataclass, field, fields
 from typing import Any
 
@@ -351,21 +351,31 @@ class AnalysisConfig:
         return hashlib.sha256(json.dumps(d, sort_keys=True).encode()).hexdigest()[:16]
 
 
-def declared_fields(cls: type = AnalysisConfig, prefix: str = "") -> Iterator[tuple[str, Field, Spec]]:
-    """``(dotted name, dataclass field, spec)`` of every declared setting, in declaration order."""
+def declared_fields(cls: type = AnalysisConfig, prefix: str = "") -> tuple[tuple[str, Field, Spec], ...]:
+    """``(dotted name, dataclass field, spec)`` of every declared setting, in declaration order
+    (computed once per section: the declarations do not change)."""
+    return _declared(cls, prefix)
+
+
+@functools.lru_cache(maxsize=None)
+def _declared(cls: type, prefix: str) -> tuple[tuple[str, Field, Spec], ...]:
+    out: list[tuple[str, Field, Spec]] = []
     for f in fields(cls):
         if "section" in f.metadata:
-            yield from declared_fields(f.metadata["section"], f"{prefix}{f.name}.")
+            out.extend(_declared(f.metadata["section"], f"{prefix}{f.name}."))
         else:
-            yield f"{prefix}{f.name}", f, f.metadata["spec"]
+            out.append((f"{prefix}{f.name}", f, f.metadata["spec"]))
+    return tuple(out)
+
+
+@functools.lru_cache(maxsize=1)
+def _specs_by_name() -> dict[str, Spec]:
+    return {name: spec for name, _, spec in declared_fields()}
 
 
 def field_spec(dotted: str) -> Spec:
     """The :class:`~windflutter.schema.Spec` of a dotted config field, e.g. ``solver.basis_modes``."""
-    for name, _, spec in declared_fields():
-        if name == dotted:
-            return spec
-    raise KeyError(dotted)
+    return _specs_by_name()[dotted]
 
 
 def _document(cls: type) -> None:

@@ -142,7 +142,15 @@ def config_from_dict(data: dict | None, source: str | None = None,
     cfg = _merge(AnalysisConfig, {} if data is None else data, base or AnalysisConfig(), "", source, given)
     for rule in RULES:
         cfg = rule(cfg, given, source)
+    _VALIDATED[cfg] = None
+    while len(_VALIDATED) > 64:
+        del _VALIDATED[next(iter(_VALIDATED))]
     return cfg
+
+
+#: the configs :func:`config_from_dict` returned (validated; a config is immutable and hashable, and
+#: an equal config is equally valid), so that :func:`check_config` does not check them again
+_VALIDATED: dict[AnalysisConfig, None] = {}
 
 
 def check_config(config: AnalysisConfig, source: str = "config") -> AnalysisConfig:
@@ -151,6 +159,11 @@ def check_config(config: AnalysisConfig, source: str = "config") -> AnalysisConf
     Returns the equal, validated config."""
     if not isinstance(config, AnalysisConfig):
         raise InputError("config", type(config).__name__, "an AnalysisConfig", source)
+    try:
+        if config in _VALIDATED:
+            return config
+    except TypeError:  # a field set to a list or dict in Python: unhashable, checked below
+        pass
     return config_from_dict(config.to_dict(), source)
 
 

@@ -46,14 +46,15 @@ def strip_polars(blade, airfoils: dict, eta: np.ndarray) -> list[Polar]:
     names = blade.airfoil_names
     tc = [airfoils[n].relative_thickness for n in names]
     jj, ww = stack_weights(pos, tc, eta, blade.at("relative_thickness", eta))
+    polars = {n: airfoils[n].polar for n in set(names) if airfoils[n].polars}  # each airfoil's once
     out = []
     for j, w in zip(jj, ww):
         j, w = int(j), float(w)
-        a0, a1 = airfoils[names[j]], airfoils[names[j + 1]]
-        if not a0.polars or not a1.polars:
+        n0, n1 = names[j], names[j + 1]
+        if n0 not in polars or n1 not in polars:
             out.append(Polar(np.array([-np.pi, np.pi]), np.zeros(2), np.zeros(2), np.zeros(2), name="none"))
             continue
-        out.append(blend_polar(a0.polar, a1.polar, w, f"{names[j]}|{names[j + 1]}@{w:.3f}"))
+        out.append(blend_polar(polars[n0], polars[n1], w, f"{n0}|{n1}@{w:.3f}"))
     return out
 
 
@@ -77,11 +78,13 @@ def rigid_fit_rows(points: np.ndarray, nodes: np.ndarray, ref: np.ndarray) -> tu
     return cols, W
 
 
-def rigid_transfer_rows(node_xyz: np.ndarray, node: int, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Rigid transfer of a node's 6 DOFs to point ``ref``: ``u_p = u_n + theta x (p - x_n)``."""
-    W = np.eye(6)
-    W[:3, 3:] = -skew(ref - node_xyz)
-    return 6 * node + np.arange(6), W
+def rigid_transfer_rows(node_xyz: np.ndarray, nodes: np.ndarray, ref: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Rigid transfer of nodes' 6 DOFs to points ``ref``: ``u_p = u_n + theta x (p - x_n)``, for
+    (k, 3) node coordinates, (k,) node numbers and (k, 3) points: (k, 6) DOF numbers and (k, 6, 6)
+    weights."""
+    W = np.broadcast_to(np.eye(6), (len(nodes), 6, 6)).copy()
+    W[:, :3, 3:] = -skew(np.asarray(ref, float) - np.asarray(node_xyz, float))
+    return 6 * np.asarray(nodes)[:, None] + np.arange(6)[None, :], W
 
 
 def assemble_motion_map(blocks: list[tuple[np.ndarray, np.ndarray]], n_dof: int) -> sp.csr_matrix:

@@ -116,15 +116,16 @@ def local_blade_mesh(turbine, st):
 def _strip_rows(b: ModelBuilder, bm, st, gx: np.ndarray, off: int, o: np.ndarray) -> None:
     """Motion-map rows of each strip of one blade: rigid fit of the section's skin nodes (shell) or
     the mean of the element's end nodes carried to the strip point (beam)."""
-    for i in range(len(o)):
-        if st.model == "shell":
+    if st.model == "shell":
+        for i in range(len(o)):
             sn = np.concatenate([bm.station_nodes[i], bm.station_nodes[i + 1]])
-            cols, W = am.rigid_fit_rows(gx[sn], sn + off, o[i])
-        else:
-            c0, W0 = am.rigid_transfer_rows(gx[i], i + off, o[i])
-            c1, W1 = am.rigid_transfer_rows(gx[i + 1], i + 1 + off, o[i])
-            cols, W = np.concatenate([c0, c1]), 0.5 * np.hstack([W0, W1])
-        b.strip_blocks.append((cols, W))
+            b.strip_blocks.append(am.rigid_fit_rows(gx[sn], sn + off, o[i]))
+        return
+    k = np.arange(len(o))
+    c0, W0 = am.rigid_transfer_rows(gx[k], k + off, o)
+    c1, W1 = am.rigid_transfer_rows(gx[k + 1], k + 1 + off, o)
+    cols, W = np.concatenate([c0, c1], axis=1), 0.5 * np.concatenate([W0, W1], axis=2)
+    b.strip_blocks.extend(zip(cols, W))
 
 
 def _add_blade_strips(b: ModelBuilder, turbine, k: int, R: np.ndarray, origin: np.ndarray, geo: dict) -> np.ndarray:

@@ -41,7 +41,8 @@ from windflutter.errors import InputError
 from windflutter.linalg_tools import congruence, skew
 from windflutter.rotor.translational import coriolis_and_softening
 from windflutter.structure.assembly import coo_matrix_of, lumped_mass_matrices
-from windflutter.structure.beam import GAUSS_W, GAUSS_XI, block_rotation, shape_functions, beam_frames, element_dofs
+from windflutter.structure.beam import (GAUSS_W, GAUSS_XI, beam_frames, block_rotation, element_dofs,
+                                        gauss_shape_functions, gauss_sum)
 from windflutter.structure.fem import FEModel
 
 _EPS = np.zeros((3, 3, 3))
@@ -91,8 +92,9 @@ def section_spin(m, mc, Q, omega_unit: np.ndarray, X: np.ndarray):
         out[..., 3:, 3:] = -_sandwich(A, Q)
         return out
 
-    G = blocks(2.0 * W)
-    Kr = blocks(P)
+    shape = np.broadcast_shapes(np.shape(X)[:-1], np.shape(m)) + (6, 6)  # (Gauss points and) sections
+    G = np.broadcast_to(blocks(2.0 * W), shape)
+    Kr = np.broadcast_to(blocks(P), shape).copy()
     PX = np.einsum("...ij,...j->...i", P, X)
     FsT = np.einsum("...i,...j->...ij", PX, mc) + P @ Q  # int F s^T dm
     Fs = np.einsum("...i,...i->...", PX, mc) + np.trace(P @ Q, axis1=-2, axis2=-1)
@@ -116,22 +118,15 @@ def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndar
     x = np.asarray(fe.nodes, float) - np.asarray(center, float)
     x0, x1 = x[conn[:, 0]], x[conn[:, 1]]
     w_loc = np.einsum("eij,j->ei", R, axis)
-    G = np.zeros((len(L), 12, 12))
-    Kr, Me = np.zeros_like(G), np.zeros_like(G)
-    f = np.zeros((len(L), 12))
-    for xi, wq in zip(GAUSS_XI, GAUSS_W):
-        N, _ = shape_functions(L, xi)
-        X = np.einsum("eij,ej->ei", R, (1.0 - xi) * x0 + xi * x1)
-        Gs, Ks, fs = section_spin(m, mc, Q, w_loc, X)
-        wl = (wq * L)[:, None, None]
-        G += wl * congruence(N, Gs)
-        Kr += wl * congruence(N, Ks)
-        Me += wl * congruence(N, Ms)
-        f[:, :6] += (wq * L * (1.0 - xi))[:, None] * fs  # loads lumped on the nodes (docstring)
-        f[:, 6:] += (wq * L * xi)[:, None] * fs
-    T = block_rotation(R)
-    G, Kr, Me = (congruence(T, A) for A in (G, Kr, Me))
-    f = np.einsum("eki,ek->ei", T, f)
+    xi = GAUSS_XI[:, None, None]
+    X = np.einsum("eij,qej->qei", R, (1.0 - xi) * x0 + xi * x1)  # (nq, ne, 3) Gauss points
+    Gs, Ks, fs = section_spin(m, mc, Q, w_loc, X)
+    N, _ = gauss_shape_functions(L)
+    G, Kr, Me = gauss_sum(L, congruence(N, np.stack(np.broadcast_arrays(Gs, Ks, Ms[None]))))
+    wl = (GAUSS_W[:, None] * L[None, :])[..., None]
+    f = np.concatenate([(wl * (1.0 - xi) * fs).sum(0), (wl * xi * fs).sum(0)], axis=1)  # lumped on the nodes
+    G, Kr, Me = congruence(block_rotation(R), np.stack([G, Kr, Me]))
+    f = np.einsum("eki,ek->ei", block_rotation(R), f)
     return G, Kr, f, Me, element_dofs(conn)
 
 

@@ -148,6 +148,19 @@ def shape_functions(L: np.ndarray, xi: float) -> tuple[np.ndarray, np.ndarray]:
     return N, dN
 
 
+def gauss_shape_functions(L: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`shape_functions` at every Gauss point (:data:`GAUSS_XI`): N (nq, nb, 6, 12) and
+    dN (nq, nb, 2, 12), for quadratures done in one batched product."""
+    both = [shape_functions(L, xi) for xi in GAUSS_XI]
+    return np.stack([n for n, _ in both]), np.stack([d for _, d in both])
+
+
+def gauss_sum(L: np.ndarray, A: np.ndarray) -> np.ndarray:
+    """``sum_q w_q L A[..., q, e, :, :]``: the Gauss quadrature over the elements' lengths of
+    integrands ``A`` (..., nq, nb, i, j) (summed point after point, as a loop would)."""
+    return (GAUSS_W[:, None, None, None] * L[None, :, None, None] * A).sum(axis=-4)
+
+
 def beam_local_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Element stiffness and mass in section frames.
 
@@ -163,11 +176,8 @@ def beam_local_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray
     Kt = beam_tip_stiffness(L, C_inv[sec])
     H = _H(L)
     K_loc = congruence(H, Kt)
-    M_loc = np.zeros_like(K_loc)
-    Mse = Ms[sec]
-    for xi, w in zip(GAUSS_XI, GAUSS_W):
-        N, _ = shape_functions(L, xi)
-        M_loc += (w * L)[:, None, None] * congruence(N, Mse)
+    N, _ = gauss_shape_functions(L)
+    M_loc = gauss_sum(L, congruence(N, Ms[sec][None]))
     return K_loc, M_loc, L, R
 
 
@@ -180,9 +190,7 @@ def beam_global_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarra
     dofs : (nb, 12) int, global DOF numbers.
     """
     K_loc, M_loc, L, R = beam_local_matrices(fe)
-    T = block_rotation(R)
-    K_e = congruence(T, K_loc)
-    M_e = congruence(T, M_loc)
+    K_e, M_e = congruence(block_rotation(R), np.stack([K_loc, M_loc]))
     dofs = element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))
     return K_e, M_e, dofs
 
@@ -210,10 +218,8 @@ def beam_axial_force(fe: FEModel, u0: np.ndarray) -> np.ndarray:
 def beam_geometric_matrices(fe: FEModel, N_axial: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Geometric stiffness (nb, 12, 12) in global axes for axial forces N_axial (N) and DOFs."""
     L, R = beam_frames(fe)
-    KG_loc = np.zeros((L.shape[0], 12, 12))
-    for xi, w in zip(GAUSS_XI, GAUSS_W):
-        _, dN = shape_functions(L, xi)
-        KG_loc += (w * L * N_axial)[:, None, None] * np.einsum("eki,ekj->eij", dN, dN)
+    _, dN = gauss_shape_functions(L)
+    KG_loc = gauss_sum(L, N_axial[None, :, None, None] * np.einsum("qeki,qekj->qeij", dN, dN))
     T = block_rotation(R)
     KG = congruence(T, KG_loc)
     return KG, element_dofs(np.asarray(fe.beam_conn, dtype=np.int64))

@@ -18,7 +18,7 @@ Conventions
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -274,6 +274,15 @@ class FEModel:
     @property
     def n_nodes(self) -> int:
         return int(self.nodes.shape[0])
+
+    def with_beam_stiffness_scaled(self, r: np.ndarray) -> FEModel:
+        """A copy whose beam sections' 6x6 stiffness ``C`` becomes ``diag(r) C diag(r)`` (``r`` (6,),
+        BeamSection order), masses, lumped masses and springs removed: the elements' stiffness
+        scaled per direction (stiffness-proportional damping with one coefficient per direction)."""
+        r = np.asarray(r, float)
+        secs = [BeamSection(stiffness=r[:, None] * s.stiffness * r[None, :], mass=s.mass, name=s.name)
+                for s in self.beam_sections]
+        return replace(self, beam_sections=secs, masses=[], springs=[])
 
     @property
     def n_dof(self) -> int:

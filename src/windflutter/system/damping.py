@@ -22,7 +22,6 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.structure.assembly import assemble_matrices
-from windflutter.structure.fem import BeamSection
 from windflutter.structure.modal import symmetric_eigs
 
 
@@ -49,9 +48,7 @@ def blade_damping_matrix(fe, mu: np.ndarray | None, K=None) -> sp.csr_matrix | N
     mu = np.asarray(mu, float)
     if len(fe.beam_conn):
         r = np.sqrt(np.maximum(mu, MU_FLOOR * mu.max()))
-        secs = [BeamSection(stiffness=r[:, None] * s.stiffness * r[None, :], mass=s.mass, name=s.name)
-                for s in fe.beam_sections]
-        _, K = assemble_matrices(replace(fe, beam_sections=secs, masses=[], springs=[]))
+        _, K = assemble_matrices(fe.with_beam_stiffness_scaled(r))
         return sp.csr_matrix(K)
     beta = float(max(mu[4], mu[5]))
     if K is None or len(fe.springs):

@@ -33,6 +33,7 @@ point, which fail at high pitch, high damping and strong coupling.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -90,8 +91,10 @@ class Identity:
         return identity_name(self.family, self.whirl, self.order)
 
 
+@functools.lru_cache(maxsize=1024)
 def identity_name(family: str, whirl: str, order: int) -> str:
-    """``"1st flap BW"``, ``"2nd tower side-side"``, ``"drivetrain"``, ``"drivetrain rigid-body"``."""
+    """``"1st flap BW"``, ``"2nd tower side-side"``, ``"drivetrain"``, ``"drivetrain rigid-body"``
+    (a few dozen distinct names, asked for thousands of times along a sweep: made once each)."""
     if family in TOWER_NAMES:
         return f"{ordinal(order)} {TOWER_NAMES[family]}"
     if family == "drivetrain":
