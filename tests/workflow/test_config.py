@@ -7,12 +7,16 @@ import yaml
 
 from windflutter.cli import main
 from windflutter.config import AnalysisConfig, config_from_dict, default_config, load_config
+from windflutter.config.validation import bundled_config
 from windflutter.errors import InputError
 
 
 def test_bundled_default_equals_dataclass_defaults():
-    # the commented YAML shipped with the package and the dataclass must not drift apart
-    assert default_config() == AnalysisConfig()
+    # the commented YAML shipped with the package and the dataclass must not drift apart; the
+    # defaults a run uses without reading the file pass every field check and rule (the YAML
+    # reading validates them)
+    assert bundled_config() == default_config() == AnalysisConfig()
+    assert config_from_dict(AnalysisConfig().to_dict(), "defaults") == AnalysisConfig()
 
 
 def test_partial_file_merges_over_defaults(tmp_path):

@@ -38,11 +38,10 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.errors import InputError
-from windflutter.linalg_tools import congruence, skew
+from windflutter.linalg_tools import skew
 from windflutter.rotor.translational import coriolis_and_softening
 from windflutter.structure.assembly import coo_matrix_of, lumped_mass_matrices
-from windflutter.structure.beam import (GAUSS_W, GAUSS_XI, beam_frames, block_rotation, element_dofs,
-                                        gauss_shape_functions, gauss_sum)
+from windflutter.structure.beam import beam_section_integrals
 from windflutter.structure.fem import FEModel
 
 _EPS = np.zeros((3, 3, 3))
@@ -79,9 +78,8 @@ def section_spin(m, mc, Q, omega_unit: np.ndarray, X: np.ndarray):
     omega_unit : (..., 3) unit rotor-speed vector in the sections' frame.
     X : (..., 3) position of the reference point from a point on the spin axis (m), same frame.
     """
-    W = skew(omega_unit)
+    W, Sc = skew(np.stack(np.broadcast_arrays(omega_unit, mc)))  # S(omega), m S(c)
     P = np.swapaxes(W, -1, -2) @ W
-    Sc = skew(mc)  # m S(c)
     m_ = np.asarray(m, float)[..., None, None]
 
     def blocks(A):
@@ -108,26 +106,17 @@ def section_spin(m, mc, Q, omega_unit: np.ndarray, X: np.ndarray):
 def _beam_terms(fe: FEModel, spin: np.ndarray, axis: np.ndarray, center: np.ndarray):
     """(G, Kr, f, M, dofs) of the rotating beam elements ``spin`` (mask), global axes; ``M`` is the
     elements' consistent mass (the same quadrature as :mod:`windflutter.structure.beam`'s)."""
-    conn = np.asarray(fe.beam_conn, dtype=np.int64)[spin]
-    L, R = beam_frames(fe)
-    L, R = L[spin], R[spin]
     # the section masses as assembled (validated there); symmetric part
     Ms = np.array([np.asarray(fe.beam_sections[i].mass, float) for i in np.asarray(fe.beam_section)[spin]])
     Ms = 0.5 * (Ms + np.swapaxes(Ms, -1, -2))
     m, mc, Q = inertia_moments(Ms)
-    x = np.asarray(fe.nodes, float) - np.asarray(center, float)
-    x0, x1 = x[conn[:, 0]], x[conn[:, 1]]
-    w_loc = np.einsum("eij,j->ei", R, axis)
-    xi = GAUSS_XI[:, None, None]
-    X = np.einsum("eij,qej->qei", R, (1.0 - xi) * x0 + xi * x1)  # (nq, ne, 3) Gauss points
-    Gs, Ks, fs = section_spin(m, mc, Q, w_loc, X)
-    N, _ = gauss_shape_functions(L)
-    G, Kr, Me = gauss_sum(L, congruence(N, np.stack(np.broadcast_arrays(Gs, Ks, Ms[None]))))
-    wl = (GAUSS_W[:, None] * L[None, :])[..., None]
-    f = np.concatenate([(wl * (1.0 - xi) * fs).sum(0), (wl * xi * fs).sum(0)], axis=1)  # lumped on the nodes
-    G, Kr, Me = congruence(block_rotation(R), np.stack([G, Kr, Me]))
-    f = np.einsum("eki,ek->ei", block_rotation(R), f)
-    return G, Kr, f, Me, element_dofs(conn)
+
+    def sections(X, R):
+        Gs, Ks, fs = section_spin(m, mc, Q, np.einsum("eij,j->ei", R, axis), X)
+        return np.stack(np.broadcast_arrays(Gs, Ks, Ms[None])), fs
+
+    (G, Kr, Me), f, dofs = beam_section_integrals(fe, spin, sections, center)
+    return G, Kr, f, Me, dofs
 
 
 def _lumped_terms(fe: FEModel, rotating: np.ndarray, axis: np.ndarray, center: np.ndarray):
@@ -141,9 +130,10 @@ def _lumped_terms(fe: FEModel, rotating: np.ndarray, axis: np.ndarray, center: n
     return G, Kr, f, Me[keep], dofs[keep]
 
 
-def _sparse(mats: np.ndarray, dofs: np.ndarray, n: int) -> sp.csr_matrix:
-    r, c, v = coo_matrix_of(mats, dofs)
-    return sp.csr_matrix((v, (r, c)), shape=(n, n))
+def _sparse(mats: tuple[np.ndarray, ...], dofs: np.ndarray, n: int) -> list[sp.csr_matrix]:
+    """Each of ``mats`` (element matrices on the same ``dofs``) as a sparse (n, n) matrix."""
+    r, c, _ = coo_matrix_of(mats[0], dofs)
+    return [sp.csr_matrix((A.reshape(-1), (r, c)), shape=(n, n)) for A in mats]
 
 
 def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.ndarray, center: np.ndarray):
@@ -173,10 +163,11 @@ def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.n
             parts.append(lt)
     G1 = Kr1 = sp.csr_matrix((n, n))
     f1 = np.zeros(n)
+    sparse = [_sparse((Ge, Ke, Me), de, n) for Ge, Ke, _, Me, de in parts]
     if M is not None:
         rest = sp.csr_matrix(M).copy()
-        for p in parts:
-            rest = rest - _sparse(p[3], p[4], n)
+        for _, _, Ms in sparse:
+            rest = rest - Ms
         scale = abs(sp.csr_matrix(M)).max() if sp.csr_matrix(M).nnz else 1.0
         rest.data[np.abs(rest.data) <= 1e-12 * scale] = 0.0
         rest.eliminate_zeros()
@@ -185,9 +176,8 @@ def spin_terms(fe: FEModel, M: sp.spmatrix | None, nodes: np.ndarray, axis: np.n
             X = np.zeros(n)
             X.reshape(-1, 6)[nodes, :3] = np.asarray(fe.nodes, float)[nodes] - np.asarray(center, float)
             f1 = np.asarray(Kr1 @ X)
-    for Ge, Ke, fe_, _, de in parts:
-        G1 = G1 + _sparse(Ge, de, n)
-        Kr1 = Kr1 + _sparse(Ke, de, n)
+    for (Gs, Ks, _), (_, _, fe_, _, de) in zip(sparse, parts):
+        G1, Kr1 = G1 + Gs, Kr1 + Ks
         np.add.at(f1, de.ravel(), fe_.ravel())
     return (0.5 * (G1 - G1.T)).tocsr(), (0.5 * (Kr1 + Kr1.T)).tocsr(), f1
 

@@ -161,6 +161,33 @@ def gauss_sum(L: np.ndarray, A: np.ndarray) -> np.ndarray:
     return (GAUSS_W[:, None, None, None] * L[None, :, None, None] * A).sum(axis=-4)
 
 
+def beam_section_integrals(fe: FEModel, elements: np.ndarray, sections, origin: np.ndarray):
+    """Element matrices and nodal loads of section quantities, by Gauss quadrature along the beam
+    elements ``elements`` (mask or indices) of ``fe``: the generic assembly a section kernel is
+    passed to (the rotating-frame terms of :mod:`windflutter.rotor.spin` are one).
+
+    ``sections(X, R) -> (A, a)`` gives, at the Gauss points' positions ``X`` (nq, ne, 3) from
+    ``origin`` in the element frames ``R`` (ne, 3, 3) (global -> local), section matrices ``A``
+    (k, nq, ne, 6, 6) and section loads ``a`` (nq, ne, 6) per metre, in the element frames.
+
+    Returns ``(mats, loads, dofs)``: ``int N^T A N dx`` (k, ne, 12, 12) and the loads lumped on
+    the two nodes with the linear weights ``(1 - xi, xi)`` (ne, 12), both in global axes, and the
+    elements' global DOFs (ne, 12).
+    """
+    conn = np.asarray(fe.beam_conn, dtype=np.int64)[elements]
+    L, R = beam_frames(fe)
+    L, R = L[elements], R[elements]
+    x = np.asarray(fe.nodes, float) - np.asarray(origin, float)
+    xi = GAUSS_XI[:, None, None]
+    A, a = sections(np.einsum("eij,qej->qei", R, (1.0 - xi) * x[conn[:, 0]] + xi * x[conn[:, 1]]), R)
+    N, _ = gauss_shape_functions(L)
+    mats = gauss_sum(L, congruence(N, A))
+    wl = (GAUSS_W[:, None] * L[None, :])[..., None]
+    loads = np.concatenate([(wl * (1.0 - xi) * a).sum(0), (wl * xi * a).sum(0)], axis=1)
+    T = block_rotation(R)
+    return congruence(T, mats), np.einsum("eki,ek->ei", T, loads), element_dofs(conn)
+
+
 def beam_local_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Element stiffness and mass in section frames.
 
