@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 import numbers
-from dataclasses import dataclass
+from dataclasses import dataclass, field, fields
 from typing import Any, Callable
 
 from windflutter.errors import InputError
@@ -166,3 +166,29 @@ def check_keys(prefix: str, data: dict, allowed, source: str | None,
         if not isinstance(k, str) or k not in allowed:
             raise InputError(name, data[k], "a known key (unknown key; allowed: "
                              + ", ".join(sorted(allowed)) + ")", source)
+
+
+# ------------------------------------------------------------------------------------------------
+# settings declared as dataclass fields, each with its Spec
+# ------------------------------------------------------------------------------------------------
+def setting(default: Any, kind: str, doc: str, **spec: Any) -> Any:
+    """A dataclass field declared with its default and :class:`Spec` (in the field's metadata)."""
+    return field(default=default, metadata={"spec": Spec(kind, doc=doc, **spec)})
+
+
+def section(cls: type) -> Any:
+    """A nested section of settings (a dataclass of declared fields)."""
+    return field(default_factory=cls, metadata={"section": cls})
+
+
+def document_settings(cls: type) -> None:
+    """Append a NumPy ``Attributes`` section, generated from the declared settings, to ``cls.__doc__``."""
+    lines = ["", "", "Attributes", "----------"]
+    for f in fields(cls):
+        if "section" in f.metadata:
+            lines.append(f"{f.name} : :class:`{f.metadata['section'].__name__}`")
+            continue
+        s: Spec = f.metadata["spec"]
+        extra = ", ".join(x for x in (s.unit if s.unit not in ("", "-") else "", s.range_text()) if x)
+        lines.append(f"{f.name} : {s.doc}" + (f" ({extra})" if extra else "") + f"; default {f.default!r}.")
+    cls.__doc__ = (cls.__doc__ or "") + "\n    ".join(lines)

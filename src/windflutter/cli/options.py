@@ -19,9 +19,13 @@ import re
 from dataclasses import dataclass
 from typing import Any, Callable
 
-from windflutter.config import PLOT_FORMATS, field_spec, n_points_for_step
+from windflutter.config import PLOT_FORMATS, field_specs, n_points_for_step
 from windflutter.errors import InputError, one_line
 from windflutter.schema import Spec
+
+
+#: the config fields' specs by dotted name
+SPECS = field_specs()
 
 
 class OneLineParser(argparse.ArgumentParser):
@@ -75,7 +79,7 @@ class Flag:
         if self.spec is not None:
             return self.spec
         assert self.path is not None, self.name
-        return field_spec(self.path)
+        return SPECS[self.path]
 
     def add_to(self, parser: argparse.ArgumentParser) -> None:
         spec = self.the_spec() if (self.spec is not None or self.path) else None
@@ -243,7 +247,7 @@ def derived_flag(path: str) -> Flag:
     section's name unless the section is one of :data:`BARE_SECTIONS`."""
     head, _, last = path.rpartition(".")
     name = last if head in BARE_SECTIONS else f"{head}_{last}"
-    kind = field_spec(path).kind
+    kind = SPECS[path].kind
     return Flag("--" + name.replace("_", "-"), path, metavar={"float": "X", "int": "N"}.get(kind))
 
 

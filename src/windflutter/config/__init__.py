@@ -37,8 +37,6 @@ from windflutter.config.declarations import (  # noqa: F401
     MAX_BLADE_ELEMENTS,
     MAX_MODES,
     MAX_AIR_DENSITY,
-    opt,
-    section,
     RotorSpeedConfig,
     ModelConfig,
     DampingConfig,
@@ -49,6 +47,7 @@ from windflutter.config.declarations import (  # noqa: F401
     AnalysisConfig,
     declared_fields,
     field_spec,
+    field_specs,
 )
 from windflutter.config.validation import (  # noqa: F401
     RULES,

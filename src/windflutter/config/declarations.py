@@ -7,7 +7,9 @@ import functools
 import hashlib
 import json
 import math
-from dataclasses import Field, asdict, dataclass, field, fields
+from dataclasses import Field, asdict, dataclass, fields
+from collections.abc import Mapping
+from types import MappingProxyType
 from typing import Any
 
 from windflutter.aero_types import HIGH_THRUST
@@ -15,7 +17,7 @@ from windflutter.backends import check_backend_name
 from windflutter.exporters import check_export_format
 from windflutter.errors import InputError
 from windflutter.files import dump_yaml
-from windflutter.schema import Spec, check_keys, is_number
+from windflutter.schema import Spec, check_keys, document_settings, is_number, section, setting
 
 AERO_VARIANTS = ("potential", "viscous")
 SEARCH_METHODS = ("p", "pk", "thesis")
@@ -52,16 +54,6 @@ RENAMED = {"solver": {
     "n_modes": "renamed: solver.n_eig (eigenvalues per eigen-solve); the projection basis is solver.basis_modes",
     "shift_hz": "removed: the p-k search shifts each eigen-solve to the tracked mode's own frequency",
 }}
-
-
-def opt(default: Any, kind: str, doc: str, **spec: Any) -> Any:
-    """A config field declared with its default and :class:`~windflutter.schema.Spec`."""
-    return field(default=default, metadata={"spec": Spec(kind, doc=doc, **spec)})
-
-
-def section(cls: type) -> Any:
-    """A nested config section (a dataclass of declared fields)."""
-    return field(default_factory=cls, metadata={"section": cls})
 
 
 def _wind_speeds(v: Any, name: str, src: str | None) -> tuple[float, ...]:
@@ -125,15 +117,15 @@ _RPM = dict(unit="RPM")
 class RotorSpeedConfig:
     """Rotor-speed range searched for the onset, and the Campbell sweep grid (RPM)."""
 
-    min_rpm: float = opt(2.0, "float", "lower end of the rotor-speed search", lower=0.0, upper=MAX_RPM,
+    min_rpm: float = setting(2.0, "float", "lower end of the rotor-speed search", lower=0.0, upper=MAX_RPM,
                          upper_open=True, **_RPM)
-    max_rpm: float = opt(40.0, "float", "upper end of the search; the onset is looked for in (min_rpm, max_rpm]",
+    max_rpm: float = setting(40.0, "float", "upper end of the search; the onset is looked for in (min_rpm, max_rpm]",
                          lower=0.0, lower_open=True, upper=MAX_RPM, **_RPM)
-    n_points: int = opt(20, "int", "rotor speeds of the sweep (evenly spaced, ends included): the Campbell "
+    n_points: int = setting(20, "int", "rotor speeds of the sweep (evenly spaced, ends included): the Campbell "
                         "diagram and the brackets of the onset search", lower=2, upper=MAX_GRID_POINTS)
-    tolerance_rpm: float = opt(0.01, "float", "onset located to this rotor-speed tolerance; at most the sweep step",
+    tolerance_rpm: float = setting(0.01, "float", "onset located to this rotor-speed tolerance; at most the sweep step",
                                lower=1e-6, upper=10.0, **_RPM)
-    full_sweep: bool = opt(False, "bool", "sweep the whole grid (Campbell and damping beyond the first "
+    full_sweep: bool = setting(False, "bool", "sweep the whole grid (Campbell and damping beyond the first "
                            "instability); false stops at the first grid speed past both onsets (same onsets)")
 
 
@@ -141,34 +133,34 @@ class RotorSpeedConfig:
 class ModelConfig:
     """Which structural model to build."""
 
-    type: str = opt("beam", "choice", "shell (the thesis's composite shells), beam (Timoshenko beams with 6x6 "
+    type: str = setting("beam", "choice", "shell (the thesis's composite shells), beam (Timoshenko beams with 6x6 "
                     "sections, much faster) or section (the seed's 2-DOF section: windflutter simple)",
                     choices=MODEL_TYPES)
-    part: str = opt("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub on a "
+    part: str = setting("turbine", "choice", "turbine (tower, nacelle, hub and blades) or rotor (blades and hub on a "
                     "fixed nacelle, no tower; the shaft as model.drivetrain says: method p free by default, locked = "
                     "hub clamped; pk and thesis always hub clamped)", choices=MODEL_PARTS)
-    mesh_density: float = opt(1.0, "float", "multiplier on the element counts (blade elements along the span "
+    mesh_density: float = setting(1.0, "float", "multiplier on the element counts (blade elements along the span "
                               "n_aero_sections x density, or the shell's element length / density; shells also "
                               "around each section and on the tower)",
                               lower=0.1, upper=4.0, unit="-")
-    n_aero_sections: int | None = opt(None, "int", "blade elements along the span, one aerodynamic strip each (at "
+    n_aero_sections: int | None = setting(None, "int", "blade elements along the span, one aerodynamic strip each (at "
                                       "mesh_density 1); null: 30 for beams, for shells from the element length",
                                       lower=4, upper=MAX_BLADE_ELEMENTS, nullable=True)
-    element_length: float | None = opt(None, "float", "shell models, when n_aero_sections is null: target length "
+    element_length: float | None = setting(None, "float", "shell models, when n_aero_sections is null: target length "
                                        "of the blade's skin elements along the span (the elements around a "
                                        "section follow, at least 40); null: the blade length / 100, the default "
                                        "chosen by the mesh convergence study (docs/mesh.md)", lower=0.0,
                                        lower_open=True, upper=100.0, nullable=True, unit="m")
-    reference_surface: str = opt("midsurface", "choice", "shell models: the skin's reference surface -- "
+    reference_surface: str = setting("midsurface", "choice", "shell models: the skin's reference surface -- "
                                  "midsurface (the laminate midsurface, inside the outer mould line by half the "
                                  "laminate: the walls the layup describes) or outer (the seed's: on the outer "
                                  "mould line, half of each laminate outside the airfoil)",
                                  choices=REFERENCE_SURFACES)
-    tip_closure: str = opt("rib", "choice", "shell models: how each blade's end section is closed -- rib (a thin "
+    tip_closure: str = setting("rib", "choice", "shell models: how each blade's end section is closed -- rib (a thin "
                            "rib: the section keeps its shape in its plane, warping free), rigid (a rigid section) or "
                            "open (the skin's free edge; it buckles locally under the steady compression at overspeed, "
                            "docs/mesh.md)", choices=TIP_CLOSURES)
-    drivetrain: str = opt("flexible", "choice", "method p: flexible (shaft spring and generator inertia of the "
+    drivetrain: str = setting("flexible", "choice", "method p: flexible (shaft spring and generator inertia of the "
                           "turbine file), rigid (one rotor azimuth freedom) or locked (the rotor locked to the "
                           "nacelle, as the seed's model; pk and thesis always lock it)", choices=DRIVETRAINS)
 
@@ -177,16 +169,16 @@ class ModelConfig:
 class DampingConfig:
     """Structural damping."""
 
-    model: str = opt("file", "choice", "file (the turbine files' structural damping: blade mu per direction, "
+    model: str = setting("file", "choice", "file (the turbine files' structural damping: blade mu per direction, "
                      "tower modal ratios; none where a file gives none), none, stiffness (D = beta K), rayleigh "
                      "(alpha M + beta K) or modal (the ratio in every structural mode of the basis; needs "
                      "solver.reduction mta or modal)", choices=DAMPING_MODELS)
-    ratio: float = opt(0.0, "float", "damping ratio; 0 gives the onset of the undamped structure (conservative); "
+    ratio: float = setting(0.0, "float", "damping ratio; 0 gives the onset of the undamped structure (conservative); "
                        "> 0 with model none switches the model to modal", lower=0.0, upper=1.0, upper_open=True,
                        unit="-")
-    reference_hz: float = opt(1.0, "float", "reference frequency of stiffness / Rayleigh damping (Rayleigh: and "
+    reference_hz: float = setting(1.0, "float", "reference frequency of stiffness / Rayleigh damping (Rayleigh: and "
                               "10 x it)", lower=1e-3, upper=1000.0, unit="Hz")
-    tower_ratio: float | None = opt(None, "float", "model file, method p: the modal damping ratio of every tower "
+    tower_ratio: float | None = setting(None, "float", "model file, method p: the modal damping ratio of every tower "
                                     "mode in place of the files' (e.g. to match another code's tower model); null: "
                                     "the files'", lower=0.0, upper=1.0, upper_open=True, nullable=True, unit="-")
 
@@ -195,45 +187,45 @@ class DampingConfig:
 class SolverConfig:
     """Eigen-solver, model-reduction and search options."""
 
-    backend: str = opt("windflutter", "custom", "windflutter (the built-in solver) or the name of a plug-in "
+    backend: str = setting("windflutter", "custom", "windflutter (the built-in solver) or the name of a plug-in "
                        "analyser registered in the entry-point group windflutter.backends", parse=_backend)
-    reduction: str = opt("mta", "choice", "mta (structural modes + aerodynamic static-correction vectors), modal "
+    reduction: str = setting("mta", "choice", "mta (structural modes + aerodynamic static-correction vectors), modal "
                          "(structural modes only) or none (full order, the reference)", choices=REDUCTIONS)
-    basis_modes: int = opt(30, "int", "structural modes per reference rotor speed in the projection basis",
+    basis_modes: int = setting(30, "int", "structural modes per reference rotor speed in the projection basis",
                            lower=1, upper=MAX_MODES)
-    correction_tol: float = opt(1e-8, "float", "mta only: relative cut-off of the aerodynamic correction "
+    correction_tol: float = setting(1e-8, "float", "mta only: relative cut-off of the aerodynamic correction "
                                 "directions (kept above sqrt(tol) of the largest)", lower=1e-16, upper=1.0,
                                 upper_open=True, unit="-")
-    n_eig: int = opt(20, "int", "eigenvalues per eigen-solve (near each tracked mode's frequency)",
+    n_eig: int = setting(20, "int", "eigenvalues per eigen-solve (near each tracked mode's frequency)",
                      lower=2, upper=MAX_MODES)
-    n_tracked: int | None = opt(None, "int", "modes followed across rotor speed by the p-k search; null: every "
+    n_tracked: int | None = setting(None, "int", "modes followed across rotor speed by the p-k search; null: every "
                                 "mode up to 1.25 x the first blade-torsion frequency; <= basis_modes when reduced",
                                 lower=1, upper=MAX_MODES, nullable=True)
-    aero_distribution: str = opt("spline", "choice", "shell models: spline (rigid-section fit of the skin nodes) "
+    aero_distribution: str = setting("spline", "choice", "shell models: spline (rigid-section fit of the skin nodes) "
                                  "or skin (the seed's skin quads); beams need spline", choices=AERO_DISTRIBUTIONS)
-    geometric_stiffness: bool = opt(True, "bool", "centrifugal stress stiffness K_sigma (full physics); false "
+    geometric_stiffness: bool = setting(True, "bool", "centrifugal stress stiffness K_sigma (full physics); false "
                                     "reproduces the thesis")
-    rigid_sections: bool = opt(True, "bool", "pk and thesis searches: the centrifugal, Coriolis and spin-softening "
+    rigid_sections: bool = setting(True, "bool", "pk and thesis searches: the centrifugal, Coriolis and spin-softening "
                                "terms of beam sections as rigid bodies (mass-centre offsets, rotary inertia) with "
                                "the initial stress of every stress resultant (full physics; independent of where "
                                "the 6x6 reference axis lies); false: the thesis's translational terms and axial "
                                "initial stress.  Method p always has the full terms")
-    induction: bool = opt(True, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
+    induction: bool = setting(True, "bool", "axial and tangential induction from a steady BEM solution, frozen in "
                           "the stability problem; false is the thesis's inflow V, Omega r")
-    high_thrust: str = opt("buhl", "choice", "the BEM's thrust-induction relation: buhl (momentum to "
+    high_thrust: str = setting("buhl", "choice", "the BEM's thrust-induction relation: buhl (momentum to "
                            "a = 0.4, Buhl's turbulent-wake thrust above; OpenFAST AeroDyn's), madsen (HAWC2's and "
                            "HAWCStab2's cubic a(CT), Madsen et al. 2020) or momentum (no high-thrust correction)",
                            choices=HIGH_THRUST)
-    mean_loads: bool = opt(True, "bool", "the mean-load terms: the quasi-steady force of the mean lift, drag "
+    mean_loads: bool = setting(True, "bool", "the mean-load terms: the quasi-steady force of the mean lift, drag "
                            "and moment (polars at each strip's steady angle of attack) under section motion -- "
                            "the edgewise aerodynamic damping; false is the thesis's model")
-    deflection: bool = opt(True, "bool", "method p: linearize about the deflected steady state (BEM, centrifugal "
+    deflection: bool = setting(True, "bool", "method p: linearize about the deflected steady state (BEM, centrifugal "
                            "and aerodynamic loads, elastic twist); false: the undeformed blade (pk and thesis "
                            "always)")
-    corotational: bool = opt(True, "bool", "method p, beam blades: the deflected steady state on the "
+    corotational: bool = setting(True, "bool", "method p, beam blades: the deflected steady state on the "
                              "co-rotational beam (exact for any reference line of the sections); false: the "
                              "linear structure with second-order load corrections (shell blades always)")
-    structure: str = opt("auto", "choice", "method p: the blade structure the stability problem is linearized "
+    structure: str = setting("auto", "choice", "method p: the blade structure the stability problem is linearized "
                          "about: deflected (beam blades: the co-rotational beam re-equilibrated under the steady "
                          "loads, the geometric stiffness of every steady stress resultant; shell blades: the "
                          "shell carried to its deflected steady shape and re-assembled there, with the membrane "
@@ -241,11 +233,11 @@ class SolverConfig:
                          "elastic twist, the geometric stiffness of the undeformed blade's stress) or auto "
                          "(deflected with solver.deflection, undeformed otherwise)",
                          choices=STRUCTURES)
-    circulation: str = opt("jones", "choice", "method p: the rational approximation of Theodorsen's C(k) behind "
+    circulation: str = setting("jones", "choice", "method p: the rational approximation of Theodorsen's C(k) behind "
                            "the aerodynamic lag states: jones (R.T. Jones, 2 states per strip), rfa (Roger fit "
                            "with n_lag poles) or quasi_steady (C = 1, no states)", choices=CIRCULATIONS)
-    n_lag: int = opt(4, "int", "method p, circulation rfa: lag poles of the Roger fit", lower=1, upper=8)
-    dynamic_stall: bool = opt(False, "bool", "method p: the separation-point lag of Oye's dynamic-stall model "
+    n_lag: int = setting(4, "int", "method p, circulation rfa: lag poles of the Roger fit", lower=1, upper=8)
+    dynamic_stall: bool = setting(False, "bool", "method p: the separation-point lag of Oye's dynamic-stall model "
                               "(one more state per strip)")
 
 
@@ -253,9 +245,9 @@ class SolverConfig:
 class CampbellConfig:
     """The operating-point Campbell analysis of ``windflutter run`` (method p)."""
 
-    enabled: bool = opt(True, "bool", "add the operating-point Campbell diagram (every mode along the operating "
+    enabled: bool = setting(True, "bool", "add the operating-point Campbell diagram (every mode along the operating "
                         "curve, ground-fixed frame) to the run")
-    max_hz: float | None = opt(None, "float", "modes up to this frequency; null: 1.25 x the first blade torsion "
+    max_hz: float | None = setting(None, "float", "modes up to this frequency; null: 1.25 x the first blade torsion "
                                "frequency", lower=0.01, upper=100.0, nullable=True, unit="Hz")
 
 
@@ -263,12 +255,12 @@ class CampbellConfig:
 class OperatingConfig:
     """Reference rotor speeds for margins; ``null`` takes the value from the turbine."""
 
-    rated_rpm: float | None = opt(None, "float", "rated rotor speed for the margins; null: the turbine's",
+    rated_rpm: float | None = setting(None, "float", "rated rotor speed for the margins; null: the turbine's",
                                   lower=0.0, lower_open=True, upper=MAX_RPM, nullable=True, **_RPM)
-    overspeed_factor: float = opt(1.2, "float", "overspeed = factor x rated unless overspeed_rpm is given (1.2 "
+    overspeed_factor: float = setting(1.2, "float", "overspeed = factor x rated unless overspeed_rpm is given (1.2 "
                                   "is a common design overspeed, not a standard's value)", lower=1.0, upper=3.0,
                                   unit="-")
-    overspeed_rpm: float | None = opt(None, "float", "explicit overspeed; at least the rated rotor speed",
+    overspeed_rpm: float | None = setting(None, "float", "explicit overspeed; at least the rated rotor speed",
                                       lower=0.0, lower_open=True, upper=MAX_RPM, nullable=True, **_RPM)
 
 
@@ -276,17 +268,17 @@ class OperatingConfig:
 class OutputConfig:
     """What the run writes into its output folder."""
 
-    plots: bool = opt(True, "bool", "write OUTDIR/figures/*")
-    report: bool = opt(True, "bool", "write OUTDIR/report.html (figures embedded)")
-    formats: tuple[str, ...] = opt(("png",), "choices", "figure formats", choices=PLOT_FORMATS)
-    dpi: int = opt(110, "int", "raster resolution of the figures", lower=20, upper=1200)
-    exports: tuple[str, ...] = opt((), "custom", "export formats of the operating-point Campbell, each written to "
+    plots: bool = setting(True, "bool", "write OUTDIR/figures/*")
+    report: bool = setting(True, "bool", "write OUTDIR/report.html (figures embedded)")
+    formats: tuple[str, ...] = setting(("png",), "choices", "figure formats", choices=PLOT_FORMATS)
+    dpi: int = setting(110, "int", "raster resolution of the figures", lower=20, upper=1200)
+    exports: tuple[str, ...] = setting((), "custom", "export formats of the operating-point Campbell, each written to "
                                    "OUTDIR/campbell.<suffix>: csv, cmb, amp, figure, netcdf or a plug-in's "
                                    "(entry-point group windflutter.exporters)", parse=_exports)
-    mode_shapes: bool = opt(True, "bool", "store the flutter mode shape and the aero-work diagnostic per point")
-    animations: bool = opt(True, "bool", "write the flutter mode of every point with flutter as a VTK time "
+    mode_shapes: bool = setting(True, "bool", "store the flutter mode shape and the aero-work diagnostic per point")
+    animations: bool = setting(True, "bool", "write the flutter mode of every point with flutter as a VTK time "
                            "series (OUTDIR/animations/*.pvd, ParaView)")
-    animation_frames: int = opt(24, "int", "frames per cycle of the animations (>= 16 for a smooth loop)",
+    animation_frames: int = setting(24, "int", "frames per cycle of the animations (>= 16 for a smooth loop)",
                                 lower=4, upper=360)
 
 
@@ -294,20 +286,20 @@ class OutputConfig:
 class AnalysisConfig:
     """Everything ``windflutter run`` needs besides the turbine."""
 
-    wind_speeds: tuple[float, ...] = opt(
+    wind_speeds: tuple[float, ...] = setting(
         (4.0, 6.0, 8.0, 10.0, 12.0, 14.0, 16.0, 18.0, 20.0, 22.0, 25.0), "custom",
         f"a list of positive, strictly increasing wind speeds up to {MAX_WIND_SPEED:g} m/s, or {{start, stop, "
         f"step}} (inclusive); at most {MAX_WIND_SPEEDS}", parse=_wind_speeds, unit="m/s")
-    aero: tuple[str, ...] = opt(("viscous",), "choices", "aerodynamic variants: viscous (the airfoil polars: "
+    aero: tuple[str, ...] = setting(("viscous",), "choices", "aerodynamic variants: viscous (the airfoil polars: "
                                 "method p their local slopes at the steady angle of attack, pk / thesis the seed's "
                                 "fitted slopes and drag) and/or potential (2 pi, no drag)", choices=AERO_VARIANTS)
-    method: tuple[str, ...] = opt(("p",), "choices", "search methods: p (eigenvalues of the whole turbine in "
+    method: tuple[str, ...] = setting(("p",), "choices", "search methods: p (eigenvalues of the whole turbine in "
                                   "multi-blade coordinates with aerodynamic states: valid at any damping), pk "
                                   "(the seed's model: p-k with onset root-finding) and/or thesis (the seed's 8 "
                                   "reduced frequencies)", choices=SEARCH_METHODS)
-    air_density: float = opt(1.225, "float", "air density", lower=0.0, lower_open=True, upper=MAX_AIR_DENSITY,
+    air_density: float = setting(1.225, "float", "air density", lower=0.0, lower_open=True, upper=MAX_AIR_DENSITY,
                              unit="kg/m^3")
-    title: str = opt("", "str", "free text shown in the report", max_len=500)
+    title: str = setting("", "str", "free text shown in the report", max_len=500)
     rotor_speed: RotorSpeedConfig = section(RotorSpeedConfig)
     model: ModelConfig = section(ModelConfig)
     damping: DampingConfig = section(DampingConfig)
@@ -369,28 +361,16 @@ def _declared(cls: type, prefix: str) -> tuple[tuple[str, Field, Spec], ...]:
 
 
 @functools.lru_cache(maxsize=1)
-def _specs_by_name() -> dict[str, Spec]:
-    return {name: spec for name, _, spec in declared_fields()}
+def field_specs() -> Mapping[str, Spec]:
+    """Every config field's :class:`~windflutter.schema.Spec` by dotted name (read-only)."""
+    return MappingProxyType({name: spec for name, _, spec in declared_fields()})
 
 
 def field_spec(dotted: str) -> Spec:
     """The :class:`~windflutter.schema.Spec` of a dotted config field, e.g. ``solver.basis_modes``."""
-    return _specs_by_name()[dotted]
-
-
-def _document(cls: type) -> None:
-    """Append a NumPy ``Attributes`` section, generated from the declarations, to ``cls.__doc__``."""
-    lines = ["", "", "Attributes", "----------"]
-    for f in fields(cls):
-        if "section" in f.metadata:
-            lines.append(f"{f.name} : :class:`{f.metadata['section'].__name__}`")
-            continue
-        s: Spec = f.metadata["spec"]
-        extra = ", ".join(x for x in (s.unit if s.unit not in ("", "-") else "", s.range_text()) if x)
-        lines.append(f"{f.name} : {s.doc}" + (f" ({extra})" if extra else "") + f"; default {f.default!r}.")
-    cls.__doc__ = (cls.__doc__ or "") + "\n    ".join(lines)
+    return field_specs()[dotted]
 
 
 for _cls in (RotorSpeedConfig, ModelConfig, DampingConfig, SolverConfig, CampbellConfig, OperatingConfig, OutputConfig,
              AnalysisConfig):
-    _document(_cls)
+    document_settings(_cls)

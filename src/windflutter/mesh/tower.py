@@ -88,7 +88,8 @@ def tower_beam_mesh(tower, materials: dict, n_axial: int, offset: int = 0) -> To
     nodes = np.column_stack([np.zeros_like(z), np.zeros_like(z), z])
     conn = offset + np.column_stack([np.arange(n_axial), np.arange(1, n_axial + 1)])
     dm, tm = 0.5 * (d[:-1] + d[1:]), 0.5 * (t[:-1] + t[1:])
-    secs = [tube_section(mat.E, mat.G, mat.rho, a, b) for a, b in zip(dm, tm)]
+    E, G, rho = mat.E, mat.G, mat.rho
+    secs = [tube_section(E, G, rho, a, b) for a, b in zip(dm, tm)]
     orient = np.tile([1.0, 0.0, 0.0], (n_axial, 1))
     ring = offset + np.arange(len(s)).reshape(-1, 1)
     return TowerMesh(nodes, ring, conn, np.arange(n_axial), secs, orient, s)
