@@ -18,16 +18,12 @@ from __future__ import annotations
 from typing import Callable
 
 import numpy as np
-import scipy.sparse as sp
 from scipy.optimize import brentq
 
 from windflutter.errors import InputError
 from windflutter.linalg_tools import mac, mac_matrix
 from windflutter.results import Onset
-from windflutter.frozen.pk_roots import (STATIC_DENSE_LIMIT, STATIC_K, THESIS_K,  # noqa: F401
-                                            FrequencyDomainSystem, PencilSystem, dense, excluded_roots,
-                                            pencil, qep, solve_near_singular, newton_mode, pk_mode,
-                                            static_frequency, static_min_eig, structural_eig)
+from windflutter.frozen.pk_roots import STATIC_K, THESIS_K, qep, pk_mode, static_frequency, static_min_eig, structural_eig
 
 
 _LOST = (complex(np.nan, np.nan), None)

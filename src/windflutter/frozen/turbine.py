@@ -27,7 +27,8 @@ from windflutter.aero.skin import skin_distribution
 from windflutter.aero.strip import AeroOptions
 from windflutter.config import AERO_DISTRIBUTIONS, AERO_VARIANTS, DAMPING_MODELS, REDUCTIONS, SEARCH_METHODS
 from windflutter.errors import InputError, check_choice
-from windflutter.frozen.search import pk_search, structural_eig, thesis_search
+from windflutter.frozen.pk_roots import structural_eig
+from windflutter.frozen.search import pk_search, thesis_search
 from windflutter.frozen.tracking import has_torsion, mode_names
 from windflutter.linalg_tools import mac_matrix
 from windflutter.mesh import turbine as mesh_turbine
