@@ -42,3 +42,27 @@ def test_stability_plot_draws_the_first_point(monkeypatch, tmp_path, capsys):
     assert main(["stability", "nrel5mw", "--wind-speeds", "10", "12", "--plot", str(out), "--json"]) == 0
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10_000
     assert '"flutter_rpm": 12.0' in capsys.readouterr().out
+
+
+def test_real_roots_are_not_drawn_as_zero_frequency_and_divergence_is_a_line():
+    # past static divergence (and for overdamped roots) a root is real: its damped frequency is 0.
+    # The Campbell figure draws oscillations: that point is left out of its track (no line down to
+    # the axis), and the divergence onset is drawn like the flutter onset.
+    from windflutter.post import plots, store
+    from windflutter.workflow import OperatingPoint
+
+    s = summary()
+    s.damped_frequency_hz = np.array([[0.7, 1.1], [0.72, 1.08], [0.74, 0.0]])
+    s.divergence_rpm = 13.5
+    res = point_result(s)
+    ds = store.combine({0: store.point_dataset(OperatingPoint(0, 10.0, "viscous", "p", 10.0, 14.0, 0.01,
+                                                              tuple(s.sweep_rpm)), res)}, {"turbine": "toy"})
+    fig = plots.campbell(ds, 0)
+    ax = fig.axes[0]
+    tracks = [ln.get_ydata() for ln in ax.lines if len(ln.get_ydata()) == 3 and ln.get_linestyle() == "-"]
+    edge = next(y for y in tracks if np.isclose(y[0], 1.1))
+    assert np.isnan(edge[2]) and np.allclose(edge[:2], [1.1, 1.08])
+    assert any("divergence 13.50 RPM" in t for t in ax.get_legend_handles_labels()[1])
+    # the mask itself: the sweep's real roots only
+    f = plots.oscillating(np.array([[1.0, 0.0], [2.0, 1e-9]]))
+    assert np.isnan(f[:, 1]).all() and np.array_equal(f[:, 0], [1.0, 2.0])

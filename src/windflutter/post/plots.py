@@ -135,12 +135,28 @@ _SWEEP_FIG = (9.5, 6.2)
 _SWEEP_X = (0.085, 0.64)
 
 
+#: a root whose damped frequency is below this fraction of the sweep's highest is real (no
+#: oscillation: an overdamped or, past divergence, a statically unstable root)
+REAL_ROOT = 1e-4
+
+
+def oscillating(freq: np.ndarray) -> np.ndarray:
+    """``freq`` (Hz) with the real roots (:data:`REAL_ROOT`) made NaN: a Campbell diagram draws the
+    frequencies of oscillations; a real root drawn at 0 Hz would join its track with a line to the
+    axis (static divergence has its own line)."""
+    top = float(np.nanmax(freq)) if freq.size and np.any(np.isfinite(freq)) else 0.0
+    with np.errstate(invalid="ignore"):
+        return np.where(freq > REAL_ROOT * top, freq, np.nan)
+
+
 def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
-    """Campbell diagram of point ``i``: frequency vs rotor speed coloured by damping ratio."""
+    """Campbell diagram of point ``i``: frequency vs rotor speed coloured by damping ratio; real
+    roots are not drawn (:func:`oscillating`), the flutter and divergence onsets are lines."""
     fig = Figure(figsize=_SWEEP_FIG)
     ax = fig.add_axes((_SWEEP_X[0], 0.2, _SWEEP_X[1], 0.72))
     rpm, freq, zeta, labels = _sweep(ds, i)
     jf = flutter_column(ds, i, rpm, zeta)
+    freq = oscillating(freq)
     # colour scale: +-10 % damping at most, so that the region near zero stays readable
     zmax = float(np.nanpercentile(np.abs(zeta), 95)) if zeta.size and np.any(np.isfinite(zeta)) else 0.05
     zmax = min(max(zmax, 1e-3), 0.1)
@@ -151,7 +167,7 @@ def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
         ax.plot(rpm, freq[:, j], "-", color="k" if bold else "0.7", lw=2.2 if bold else 1, zorder=1)
         sc = ax.scatter(rpm, freq[:, j], c=np.clip(zeta[:, j], -zmax, zmax), cmap="RdBu", norm=norm, s=26, zorder=2,
                         edgecolors="k", linewidths=0.3)
-    fmax = float(np.nanmax(freq)) * 1.15 if freq.size else 1.0
+    fmax = float(np.nanmax(freq)) * 1.15 if np.any(np.isfinite(freq)) else 1.0
     for n in harmonics:
         ax.plot(rpm, n * rpm / 60.0, "--", color="0.3", lw=0.8)
         xe = min(rpm[-1], fmax * 60.0 / n)
@@ -161,6 +177,9 @@ def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
     fr = ds["flutter_rpm"].values[i]
     if np.isfinite(fr):
         ax.axvline(fr, color="r", lw=1.2, label=f"flutter {fr:.2f} RPM")
+    dv = ds["divergence_rpm"].values[i]
+    if np.isfinite(dv):
+        ax.axvline(dv, color="m", lw=1.2, ls="--", label=f"divergence {dv:.2f} RPM")
     ax.set_ylim(0, fmax)
     ax.set_xlim(rpm[0], rpm[-1] if rpm.size else 1)
     if freq.size:
