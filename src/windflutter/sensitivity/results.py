@@ -13,7 +13,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.units import RPM
-from windflutter.sensitivity.eigen import frequency_damping
+from windflutter.sensitivity.eigen import frequency_damping, state_eig
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, change_words, is_relative, unit_change
 from windflutter.sensitivity.point import PAIR_LIMIT, PointSensitivity, point_sensitivities
 from windflutter.system.campbell import ambiguous
@@ -39,13 +39,14 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
         if progress is not None:
             progress(i / len(ws), f"V = {v:g} m/s")
         ps = om.at(v)
-        named = point_modes(ps, max_hz=max_hz, previous=prev)
+        eig = state_eig(ps.mbc)  # one eigen-solve with left vectors for the names and the sensitivities
+        named = point_modes(ps, max_hz=max_hz, previous=prev, eig=eig)
         if prev is not None and ambiguous(prev, named):
             mid = point_modes(om.at(0.5 * (ws[i - 1] + v)), max_hz=max_hz, previous=prev)
-            named = point_modes(ps, max_hz=max_hz, previous=mid)
+            named = point_modes(ps, max_hz=max_hz, previous=mid, eig=eig)
         prev = named
         keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
-        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models)
+        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models, eig=eig)
         if total and keep:
             res.total = point_totals(om, ps, res)
         out.append(res)

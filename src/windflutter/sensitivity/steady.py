@@ -151,11 +151,12 @@ def strip_state(base: SteadyBase, config, air_density: float, rb: RotorBlade | N
     return aero, np.asarray(f, float)
 
 
-def residual(base: SteadyBase, rb: RotorBlade, config, air_density: float | None) -> np.ndarray:
+def residual(base: SteadyBase, rb: RotorBlade, config, air_density: float | None, fe=None) -> np.ndarray:
     """(n_dof,) ``f_int - f_cf - f_aero`` of the blade ``rb`` at the configuration; ``air_density``
-    None: without ``f_aero`` (the structure's part)."""
-    f_cf, _ = centrifugal_loads(rb.fe, base.steady.omega, rb.apex, rb.axis)(config)
-    r = internal_forces(rb.fe, config) - f_cf
+    None: without ``f_aero`` (the structure's part); ``fe`` the blade's FE model (default ``rb.fe``)."""
+    fe = rb.fe if fe is None else fe
+    f_cf, _ = centrifugal_loads(fe, base.steady.omega, rb.apex, rb.axis)(config)
+    r = internal_forces(fe, config) - f_cf
     return r if air_density is None else r - strip_state(base, config, air_density, rb)[1]
 
 
@@ -192,8 +193,10 @@ def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | Non
 def _residual_of(base: SteadyBase, name: str, s: float, elements) -> np.ndarray:
     """The residual at the nominal configuration with the parameter changed by ``s`` (a blade
     property leaves the aerodynamic loads of a configuration as they are: the structure's part)."""
+    if name in BLADE_PROPERTIES:  # the changed sections alone (the residual needs no assembled matrix)
+        return residual(base, base.rb, base.config, None, fe=blade_sections(base.rb.fe, name, s, elements))
     rb, rho, _ = _variant(base, name, s, elements)
-    return residual(base, rb, base.config, None if name in BLADE_PROPERTIES else rho)
+    return residual(base, rb, base.config, rho)
 
 
 def point_at(base: SteadyBase, name: str, s: float, dc: np.ndarray, elements=None):
@@ -238,7 +241,7 @@ def point_totals(om, ps, res) -> dict:
     if not res.modes or not names:
         return {}
     base = steady_base(om, ps)
-    mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
+    mvs = res.vectors if res.vectors is not None else mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
     out = {n: (res.blade[n].sum(axis=1) if n in res.blade else res.globals_[n]) for n in names if n in HELD_EXACTLY}
     out.update(total_derivatives(base, mvs, [n for n in names if n not in HELD_EXACTLY]))
     return {n: out[n] for n in names}
