@@ -65,6 +65,10 @@ GMRES_TOL = 1e-7
 #: step of the directional differences of the aerodynamic loads along a configuration change: the
 #: largest nodal translation (m) / rotation (rad) of the step
 LOAD_STEP = 1e-6
+#: the equilibrium of a point along the path ``c0 + s dc/dp`` is confirmed by ONE Newton step (this
+#: tolerance stops after it): the path's residual is of order ``s^2`` and one step leaves ``s^4``, far
+#: below the central difference's own ``h^2`` error
+NEWTON_TOL = np.inf
 
 
 @dataclass
@@ -208,7 +212,7 @@ def point_at(base: SteadyBase, name: str, s: float, dc: np.ndarray, elements=Non
     aero, _ = strip_state(base, config, rho, rb)
     steady = dataclasses.replace(st, u=configuration_displacement(rb.fe, config), configuration=config,
                                  air_density=rho, **aero)
-    d = deflected_blade(rb, steady, ps.omega, base.mu)
+    d = deflected_blade(rb, steady, ps.omega, base.mu, tol=NEWTON_TOL)
     return om.assemble_point(d.blade, d.steady, d.ksigma, d.klink, ps.wind_speed, ps.omega, ps.pitch,
                              tip_frame=ps.tip_frame, Phi=ps.Phi)
 
