@@ -33,7 +33,21 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
     change included (:func:`~windflutter.sensitivity.steady.point_totals`) in
     ``PointSensitivity.total``."""
 
-    out, prev, models = [], None, {}
+    out, models = [], {}
+    for ps, eig, keep in named_points(om, wind_speeds, max_hz, modes, progress):
+        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models, eig=eig)
+        if total and keep:
+            res.total = point_totals(om, ps, res)
+        out.append(res)
+    check_found(modes, [r.names for r in out])
+    return out
+
+
+def named_points(om, wind_speeds, max_hz: float, modes=None, progress=None):
+    """Yield ``(point system, its eigen-solve with left vectors, kept named modes)`` of each wind speed
+    (m/s): the modes up to ``max_hz`` (Hz) named and carried along the wind speeds as
+    :func:`windflutter.system.campbell.campbell` does; ``modes`` (identity names) keeps only those."""
+    prev = None
     ws = [float(v) for v in np.atleast_1d(wind_speeds)]
     for i, v in enumerate(ws):
         if progress is not None:
@@ -45,20 +59,19 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
             mid = point_modes(om.at(0.5 * (ws[i - 1] + v)), max_hz=max_hz, previous=prev)
             named = point_modes(ps, max_hz=max_hz, previous=mid, eig=eig)
         prev = named
-        keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
-        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models, eig=eig)
-        if total and keep:
-            res.total = point_totals(om, ps, res)
-        out.append(res)
+        yield ps, eig, (named if modes is None else [m for m in named if m.identity_name in set(modes)])
+    if progress is not None:
+        progress(1.0, "done")
+
+
+def check_found(modes, found: list[list[str]]) -> None:
+    """InputError naming the first of the asked ``modes`` that no point's named modes ``found`` has."""
     if modes is not None:
-        seen = {n for r in out for n in r.names}
+        seen = {n for names in found for n in names}
         missing = [n for n in modes if n not in seen]
         if missing:
             raise InputError("modes", missing[0], "a mode name of the point (e.g. '1st edge BW'; "
                              "`windflutter campbell` lists them), below the frequency limit")
-    if progress is not None:
-        progress(1.0, "done")
-    return out
 
 
 def _unit(name: str) -> float:
