@@ -22,6 +22,7 @@ from windflutter.model import load_turbine
 from windflutter.operating import campbell_model
 from windflutter.sensitivity import finite_difference as fd
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
+from windflutter.sensitivity.eigen import state_eig
 from windflutter.sensitivity.point import point_sensitivities
 from windflutter.sensitivity.steady import HELD_EXACTLY, point_totals
 from windflutter.solve.linsolve import blas_limit
@@ -52,14 +53,15 @@ def main(argv=None):
         max_hz = om.reference().default_max_hz()
         om.at(args.wind)  # warm: the model's parts (blade, support, identities) are built once per turbine
 
-        def campbell_point():
+        def campbell_point():  # its one eigen-solve with left vectors, shared with the sensitivities
             ps = om.at(args.wind)
-            return ps, point_modes(ps, max_hz)
+            eig = state_eig(ps.mbc)
+            return ps, eig, point_modes(ps, max_hz, eig=eig)
 
-        (ps, modes), t_point = best(campbell_point, repeat)
+        (ps, eig, modes), t_point = best(campbell_point, repeat)
         models = {}
-        point_sensitivities(om, ps, modes, models=models)  # warm: the changed turbines' supports, per run
-        res, t_sens = best(lambda: point_sensitivities(om, ps, modes, models=models), repeat)
+        point_sensitivities(om, ps, modes, models=models, eig=eig)  # warm: the changed turbines' supports, per run
+        res, t_sens = best(lambda: point_sensitivities(om, ps, modes, models=models, eig=eig), repeat)
         n_el = len(res.station)
         n_par = len(BLADE_PROPERTIES) * n_el + len(GLOBAL_PARAMETERS)
         totals, t_total = best(lambda: point_totals(om, ps, res), 1)
@@ -76,7 +78,10 @@ def main(argv=None):
               f"Campbell point, {t_total / max(n_tot, 1):.2f} s per parameter")
         print(f"  baseline: finite differences, {t_fd:.2f} s per parameter (two re-analyses) -> "
               f"{t_fd * n_par:.0f} s for all ({t_fd * n_par / t_sens:.0f}x the sensitivities)")
-        print(f"  target: sensitivities <= 2x the Campbell point -> {'met' if t_sens <= 2 * t_point else 'NOT met'}")
+        print(f"  target: sensitivities <= 2x the Campbell point -> steady state held: "
+              f"{'met' if t_sens <= 2 * t_point else 'NOT met'}; with the totals ({(t_sens + t_total) / t_point:.2f}x): "
+              f"{'met' if t_sens + t_total <= 2 * t_point else 'NOT met'}")
+        print(f"  machine load (1-min average) {os.getloadavg()[0]:.2f} on {os.cpu_count()} CPUs")
 
 
 if __name__ == "__main__":
