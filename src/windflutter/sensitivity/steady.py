@@ -11,10 +11,13 @@ Its sensitivity is ``dc/dp = -K_T^-1 dR/dp`` with the tangent ``K_T = K_mat + K_
 + K_aero``: the structural part (the equilibrium's own tangent with the dead aerodynamic loads,
 factorized once) and ``K_aero = -df_aero/dc``, the change of the nodal aerodynamic loads with the
 deflection -- strip geometry, angle of attack, the lever arms of the motion map and the BEM
-induction re-solved on the moved strips (induction *included*).  ``K_aero`` is applied without
-forming it (central differences of the loads along a vector), and ``K_T dc = -dR/dp`` is solved by
-GMRES preconditioned with the structural part (:func:`steady_derivative`); ``dR/dp`` is a central
-difference of the residual in ``p`` at the nominal configuration.
+induction re-solved on the moved strips (induction *included*).  ``K_aero`` is formed once per point
+by coloured central differences of the loads (:func:`whole_tangent`: a node's motion loads only the
+nodes of the strips it carries, except the end strips', whose radii are the Prandtl factors' tip and
+hub radius), checked against one product along a random direction, and ``K_T dc = -dR/dp`` is solved
+with the LU of ``K_T`` for every parameter; should the colouring's check fail, by GMRES on products of
+``K_aero`` along a vector, preconditioned with the structural part (:func:`steady_derivative`).
+``dR/dp`` is a central difference of the residual in ``p`` at the nominal configuration.
 
 The operating point's matrices are then differentiated along the path ``(p0 + s, c0 + s dc/dp)``:
 the point is rebuilt (:func:`point_at`: the changed blade, the strips and their BEM inflow and loads
@@ -42,6 +45,7 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -86,6 +90,9 @@ class SteadyBase:
     config: object
     stiffness: sp.csc_matrix
     factor: object
+    #: the LU of the whole tangent ``K_T`` (structure + coloured ``K_aero``, :func:`whole_tangent`), once
+    #: built; False when the colouring's check failed (GMRES then)
+    tangent_lu: object = None
 
 
 def steady_base(om, ps) -> SteadyBase:
@@ -164,6 +171,86 @@ def residual(base: SteadyBase, rb: RotorBlade, config, air_density: float | None
     return r if air_density is None else r - strip_state(base, config, air_density, rb)[1]
 
 
+def _column_nodes(T) -> np.ndarray | None:
+    """The node of each free DOF of the constraint map ``T`` (each column within one node's six DOFs:
+    a selection, turned by the pitch), else None."""
+    T = sp.csc_matrix(T)
+    T.eliminate_zeros()
+    nodes = T.indices // 6
+    first = nodes[T.indptr[:-1]]
+    if np.any(np.diff(T.indptr) == 0) or np.any(nodes != np.repeat(first, np.diff(T.indptr))):
+        return None
+    return first
+
+
+def aero_colours(sections, fe, T) -> tuple[list, np.ndarray] | None:
+    """The columns of ``K_aero`` grouped for coloured differences: ``(groups, rows)``, each group a list
+    of free columns whose loaded rows (the nodes tied to the strips their node is tied to, motion
+    map) do not overlap, ``rows[c]`` the boolean free rows column ``c`` reaches.  The nodes of the
+    outermost and innermost strips (the Prandtl factors' tip and hub radius, which every strip sees,
+    :func:`~windflutter.aero.induction.rotor_extent`) reach every row: their columns are alone."""
+    node_of = _column_nodes(T)
+    if node_of is None:
+        return None
+    mm = sp.coo_matrix(sections.motion_map)
+    pairs = np.unique(np.stack([mm.row // 6, mm.col // 6], axis=1), axis=0)
+    nn = fe.n_dof // 6
+    tied = sp.csr_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(sections.n_sections, nn))
+    reach = (tied.T @ tied).toarray() > 0  # node n's motion loads node m through a shared strip
+    r, dr = np.asarray(sections.radius, float), np.asarray(sections.width, float)
+    ends = [int(np.argmax(r + 0.5 * dr)), int(np.argmin(r - 0.5 * dr))]
+    whole = np.asarray(tied[ends].sum(axis=0)).ravel() > 0
+    rows = reach[node_of][:, node_of] | whole[node_of][:, None]
+    groups, used = [], []
+    for c in range(len(node_of)):
+        if whole[node_of[c]]:
+            groups.append([c])
+            used.append(np.ones(len(node_of), bool))
+            continue
+        for g, u in zip(groups, used):
+            if len(g) and not whole[node_of[g[0]]] and not np.any(u & rows[c]):
+                g.append(c)
+                u |= rows[c]
+                break
+        else:
+            groups.append([c])
+            used.append(rows[c].copy())
+    return groups, rows
+
+
+def whole_tangent(base: SteadyBase):
+    """The LU of ``K_T = K_s + K_aero`` (free DOFs, dense), ``K_aero`` by coloured central differences
+    of the nodal aerodynamic loads (:func:`aero_colours`; the step of :func:`steady_derivative`'s
+    products), checked against one product along a fixed random direction: None when the colouring
+    does not hold (relative mismatch above 1e-5)."""
+    T = base.rb.struct.T
+    col = aero_colours(base.rb.sections, base.rb.fe, T)
+    if col is None:
+        return None
+    groups, rows = col
+    rho = base.steady.air_density
+
+    def product(q):  # -T^T df_aero/du T q
+        v = np.asarray(T @ q)
+        e = LOAD_STEP / max(np.abs(v).max(), 1e-300)
+        fp, fm = (strip_state(base, displaced(base.config, s * e * v), rho)[1] for s in (1.0, -1.0))
+        return -np.asarray(T.T @ ((fp - fm) / (2.0 * e)))
+
+    n = T.shape[1]
+    KA = np.zeros((n, n))
+    for g in groups:
+        q = np.zeros(n)
+        q[g] = 1.0
+        y = product(q)
+        for c in g:
+            KA[rows[c], c] = y[rows[c]]
+    q = np.random.default_rng(31).standard_normal(n)
+    ref = product(q)
+    if np.linalg.norm(KA @ q - ref) > 1e-5 * np.linalg.norm(ref):
+        return None
+    return sla.lu_factor(base.stiffness.toarray() + KA)
+
+
 def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | None = None) -> np.ndarray:
     """(n_dof,) ``dc/dp`` of the equilibrium (node translations and spatial rotation increments,
     full numbering) for the parameter ``name`` (a blade property of ``elements`` or a global one):
@@ -185,6 +272,10 @@ def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | Non
         fm = strip_state(base, displaced(base.config, -e * v), rho)[1]
         return -np.asarray(T.T @ ((fp - fm) / (2.0 * e)))
 
+    if base.tangent_lu is None:
+        base.tangent_lu = whole_tangent(base) or False
+    if base.tangent_lu is not False:
+        return np.asarray(T @ sla.lu_solve(base.tangent_lu, rhs))
     n = rhs.size
     KT = spla.LinearOperator((n, n), matvec=lambda q: base.stiffness @ q + k_aero(q), dtype=float)
     pre = spla.LinearOperator((n, n), matvec=base.factor.solve, dtype=float)
