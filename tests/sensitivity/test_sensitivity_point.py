@@ -155,3 +155,22 @@ def test_total_columns(point):
         by = float(line.split(" by ")[1].split(" points")[0])
         held = float(line.split("points (")[1].split(" with")[0])
         assert abs(held) == pytest.approx(by, rel=2e-3, abs=1e-6)
+
+
+def test_one_eigen_solve_shared_with_point_modes(point):
+    """The point's eigen-solve with left vectors handed to ``point_modes`` and to the sensitivities
+    (``eig=``, one dense solve per point instead of two) gives the same named modes and bit-identical
+    derivatives as each solving its own."""
+    from windflutter.sensitivity.eigen import state_eig
+    from windflutter.sensitivity.point import point_sensitivities
+    from windflutter.system.modes import point_modes
+
+    om, ps, modes, res = point
+    eig = state_eig(ps.mbc)
+    shared = point_modes(ps, MAX_HZ, eig=eig)
+    assert [m.identity_name for m in shared] == res.names
+    assert np.array_equal([m.eigenvalue for m in shared], [m.eigenvalue for m in modes])
+    got = point_sensitivities(om, ps, shared, ["edge_stiffness"], ["air_density"], eig=eig)
+    assert np.array_equal(got.blade["edge_stiffness"], res.blade["edge_stiffness"])
+    assert np.array_equal(got.globals_["air_density"], res.globals_["air_density"])
+    assert len(got.vectors) == len(modes)
