@@ -1,7 +1,8 @@
 """`windflutter sensitivity TURBINE`: which blade property, at which station, buys damping -- the
 derivative of each named mode's frequency and damping ratio with respect to the blade's section
 properties per station and global parameters (:func:`windflutter.api.sensitivity`), printed as a
-ranked table, optionally written as NetCDF and plotted.
+ranked table, optionally written as NetCDF and plotted; with ``--model shell``, with respect to the ply
+thickness of each layup region (:func:`windflutter.api.shell_sensitivity`).
 """
 
 from __future__ import annotations
@@ -37,7 +38,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--regions", nargs="+", default=None, metavar="NAME",
                    help="with --model shell: the layup regions by name (quoted, e.g. 'spar caps'); default all")
     p.add_argument("--total", action="store_true", help="also the derivatives with the steady state's own change "
-                   "included (its sensitivity: whole blade and global parameters; ~1 s per parameter and wind speed)")
+                   "included (its sensitivity: whole blade and global parameters; ~0.3 s per parameter and ~1 s per wind speed)")
     p.add_argument("--onset", action="store_true", help="instead: the derivative of the first instability's onset "
                    "rotor speed at one wind speed (the operating curve's pitch held, the rotor speed raised; implicit "
                    "function theorem): of the mode of --modes (one) near --rpm, default the first flutter onset of "
