@@ -38,7 +38,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
     p.add_argument("--regions", nargs="+", default=None, metavar="NAME",
                    help="with --model shell: the layup regions by name (quoted, e.g. 'spar caps'); default all")
     p.add_argument("--total", action="store_true", help="also the derivatives with the steady state's own change "
-                   "included (its sensitivity: whole blade and global parameters; ~0.3 s per parameter and ~1 s per wind speed)")
+                   "included (its sensitivity: whole blade, each r/R segment of the table, global parameters; "
+                   "~15 s per wind speed)")
     p.add_argument("--onset", action="store_true", help="instead: the derivative of the first instability's onset "
                    "rotor speed at one wind speed (the operating curve's pitch held, the rotor speed raised; implicit "
                    "function theorem): of the mode of --modes (one) near --rpm, default the first flutter onset of "
@@ -91,7 +92,7 @@ def run(args: argparse.Namespace) -> int:
         print("  " + sentence(r))
     lines = total_table(ds, modes=args.modes)
     if lines:
-        print("with the steady state's own change (whole blade), largest first:")
+        print("with the steady state's own change (whole blade and r/R segments), largest first:")
         for line in lines[:args.top]:
             print("  " + line)
     return 0

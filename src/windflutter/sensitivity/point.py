@@ -74,6 +74,9 @@ class PointSensitivity:
     defined: dict = field(default_factory=dict)
     #: ``{name: (k,) dlambda/dp}`` by whole re-analyses (steady state recomputed), when asked for
     total: dict = field(default_factory=dict)
+    #: ``{property: (k, n_segments) dlambda/dp}`` with the steady state's own change, per spanwise
+    #: segment of r/R (:func:`~windflutter.sensitivity.steady.segment_totals`), when asked for
+    total_segments: dict = field(default_factory=dict)
     gap: np.ndarray | None = None
     condition: np.ndarray | None = None
     #: the modes' :class:`~windflutter.sensitivity.eigen.ModeVectors` (re-used by the total derivatives)

@@ -327,16 +327,50 @@ def total_derivatives(base: SteadyBase, mvs: list[ModeVectors], names, elements=
     return out
 
 
-def point_totals(om, ps, res) -> dict:
+def point_totals(om, ps, res, base: SteadyBase | None = None) -> dict:
     """``{name: (k,) dlambda/dp}`` with the steady state's own change included for the parameters of
     the point's sensitivities ``res`` (:class:`~windflutter.sensitivity.point.PointSensitivity`): the
     blade properties over the whole blade and the global parameters; those of :data:`HELD_EXACTLY`
-    are the held ones."""
+    are the held ones.  ``base``: the point's :func:`steady_base`, when already built."""
     names = list(res.blade) + list(res.globals_)
     if not res.modes or not names:
         return {}
-    base = steady_base(om, ps)
+    base = steady_base(om, ps) if base is None else base
     mvs = res.vectors if res.vectors is not None else mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
     out = {n: (res.blade[n].sum(axis=1) if n in res.blade else res.globals_[n]) for n in names if n in HELD_EXACTLY}
     out.update(total_derivatives(base, mvs, [n for n in names if n not in HELD_EXACTLY]))
     return {n: out[n] for n in names}
+
+
+def segment_elements(station: np.ndarray, segments) -> list[np.ndarray]:
+    """The blade elements (indices) of each spanwise segment ``[a, b)`` of ``segments`` (r/R edges; the
+    last one closed), by the elements' mid-span ``station``."""
+    st = np.asarray(station, float)
+    out = []
+    for a, b in zip(segments[:-1], segments[1:]):
+        sel = (st >= a) & (st < b) if b < segments[-1] else (st >= a)
+        out.append(np.flatnonzero(sel))
+    return out
+
+
+def segment_totals(om, ps, res, segments, base: SteadyBase | None = None) -> dict:
+    """``{property: (k, n_segments) dlambda/dp}`` with the steady state's own change included, for the
+    blade properties of ``res`` over each spanwise segment (:func:`segment_elements`; an empty
+    segment gives NaN); :data:`HELD_EXACTLY` ones (structural damping) are the held segment sums."""
+    if not res.modes or not res.blade:
+        return {}
+    base = steady_base(om, ps) if base is None else base
+    mvs = res.vectors if res.vectors is not None else mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
+    groups = segment_elements(res.station, segments)
+    out = {}
+    for name, held in res.blade.items():
+        cols = []
+        for el in groups:
+            if not el.size:
+                cols.append(np.full(len(mvs), np.nan + 0j))
+            elif name in HELD_EXACTLY:
+                cols.append(held[:, el].sum(axis=1))
+            else:
+                cols.append(total_derivatives(base, mvs, [name], elements=el)[name])
+        out[name] = np.stack(cols, axis=1)
+    return out
