@@ -30,7 +30,8 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                    "edge, torsion and axial stiffness, mass, mass and elastic centre, structural "
                                    "damping) and global parameters (tower and drivetrain stiffness, nacelle "
                                    "mass, air density); first-order eigenvalue perturbation about the point's "
-                                   "steady state (held fixed); with --model shell, the ply thickness of each layup region.")
+                                   "steady state (held fixed); with --model shell, the ply thickness of each "
+                                   "layup region.")
     p.add_argument("turbine", help="turbine file (windIO, OpenFAST .fst, HAWC2 .htc) or bundled name")
     add_flags(p, FLAGS)
     p.add_argument("--modes", nargs="+", default=None, metavar="NAME",
