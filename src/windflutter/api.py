@@ -46,6 +46,7 @@ from windflutter import methods  # module access: tests patch methods.stability_
 from windflutter.operating import campbell_model
 from windflutter.sensitivity import onset as onset_
 from windflutter.sensitivity.results import as_dataset, sensitivities
+from windflutter.sensitivity import shell_results
 from windflutter.simulate import onset as simulate_onset, run as simulate_run
 from windflutter.system.campbell import default_wind_speeds
 from windflutter.system.operational import missing_curve_error
@@ -472,3 +473,36 @@ def run(turbine, config: Any = None, outdir: str | Path | None = None, *, resume
 __all__ = ["load_turbine", "analysis_config", "modes", "stability", "campbell", "simulate", "confirm_onset", "run",
            "run_folder_name",
            "mesh_settings", "as_turbine", "MESH_OPTIONS", "MODES_OPTIONS", "DEFAULT_MODEL"]
+
+
+def shell_sensitivity(turbine, wind_speeds=None, *, modes=None, regions=None, max_hz: float | None = None,
+                      config: Any = None, progress=None, **options):
+    """Design sensitivities of a shell blade: the derivative of each named mode's frequency and damping
+    ratio with respect to the ply thickness of each layup region (spar caps, TE/LE reinforcement,
+    webs, panels, skin; relative), the steady state and the blade basis held --
+    ``windflutter sensitivity --model shell`` (:mod:`windflutter.sensitivity.shell_results`).
+
+    ``regions``: ``{name: layer names}``, or names of the default regions (default all of them: the
+    layup's layers grouped by name, :func:`~windflutter.sensitivity.shell_results.default_regions`); the model is
+    the shell one whatever ``config`` says; other keywords as :func:`sensitivity`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``frequency``, ``damping_ratio`` (mode x wind_speed); ``dfrequency_region``,
+        ``ddamping_region``, ``defined`` (mode x wind_speed x region); ``region_layers``.
+    """
+    extra = {"model.type": "shell"} if wind_speeds is None else {"model.type": "shell", "wind_speeds": wind_speeds}
+    if max_hz is not None:
+        extra["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, **extra}, "windflutter.shell_sensitivity() keywords")
+    methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))
+    t = as_turbine(turbine)
+    if getattr(t, "operating_curve", None) is None:
+        raise missing_curve_error(t)
+    om = campbell_model(t, cfg)
+    regs = shell_results.chosen_regions(t, regions)
+    winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
+    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    pts = shell_results.shell_sensitivities(om, winds, hz, modes=modes, regions=regs, progress=progress)
+    return shell_results.shell_dataset(pts, regs, str(getattr(t, "name", "")), om.describe())

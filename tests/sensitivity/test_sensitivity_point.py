@@ -155,3 +155,47 @@ def test_total_columns(point):
         by = float(line.split(" by ")[1].split(" points")[0])
         held = float(line.split("points (")[1].split(" with")[0])
         assert abs(held) == pytest.approx(by, rel=2e-3, abs=1e-6)
+
+
+def test_one_eigen_solve_shared_with_point_modes(point):
+    """The point's eigen-solve with left vectors handed to ``point_modes`` and to the sensitivities
+    (``eig=``, one dense solve per point instead of two) gives the same named modes and bit-identical
+    derivatives as each solving its own."""
+    from windflutter.sensitivity.eigen import state_eig
+    from windflutter.sensitivity.point import point_sensitivities
+    from windflutter.system.modes import point_modes
+
+    om, ps, modes, res = point
+    eig = state_eig(ps.mbc)
+    shared = point_modes(ps, MAX_HZ, eig=eig)
+    assert [m.identity_name for m in shared] == res.names
+    assert np.array_equal([m.eigenvalue for m in shared], [m.eigenvalue for m in modes])
+    got = point_sensitivities(om, ps, shared, ["edge_stiffness"], ["air_density"], eig=eig)
+    assert np.array_equal(got.blade["edge_stiffness"], res.blade["edge_stiffness"])
+    assert np.array_equal(got.globals_["air_density"], res.globals_["air_density"])
+    assert len(got.vectors) == len(modes)
+
+
+def test_segment_total_columns(point):
+    """``total_segments`` enter the dataset (mode x wind_speed x parameter x segment, units) and the
+    second table as one sentence per property and segment; plumbing only (the held segment sums stand
+    in for them: each sentence shows the same number twice)."""
+    import dataclasses
+
+    from windflutter.sensitivity.results import SEGMENTS, as_dataset, total_table
+    from windflutter.sensitivity.steady import segment_elements
+
+    om, ps, modes, res = point
+    groups = segment_elements(res.station, SEGMENTS)
+    segs = {k: np.stack([v[:, g].sum(axis=1) for g in groups], axis=1) for k, v in res.blade.items()}
+    ds = as_dataset([dataclasses.replace(res, total_segments=segs)])
+    assert dict(ds["ddamping_total_segment"].sizes) == {"mode": len(modes), "wind_speed": 1, "parameter": 9,
+                                                        "segment": 5}
+    assert ds["ddamping_total_segment"].attrs["units"] == "1" and list(ds["segment"].values)[1] == "0.2-0.4"
+    lines = total_table(ds, modes=["1st edge BW"])
+    seg_lines = [ln for ln in lines if " at r/R " in ln]
+    assert len(seg_lines) == 9 * 5
+    for line in seg_lines:
+        by = float(line.split(" by ")[1].split(" points")[0])
+        held = float(line.split("points (")[1].split(" with")[0])
+        assert abs(held) == pytest.approx(by, rel=2e-3, abs=1e-6)

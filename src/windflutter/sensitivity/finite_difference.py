@@ -29,6 +29,7 @@ from windflutter.structure.assembly import assemble_matrices
 from windflutter.system.blade import RotorBlade
 from windflutter.system.damping import blade_damping_matrix, blade_mu
 from windflutter.sensitivity.point import damping_sections
+from windflutter.sensitivity.steady import ROTOR_MASS, changed_rotor_blade
 from windflutter.system.operational import OperationalModel
 from windflutter.steady import SteadyOptions, steady_state
 from windflutter.system.deflected import deflected_blade
@@ -141,19 +142,35 @@ def changed_model(om, name: str, s: float) -> OperationalModel:
     return OperationalModel(blade_data(om.turbine, name, s), om.options)
 
 
-def steady_reanalysis(om, ps, names, name: str, h: float, max_hz: float = 2.5, tol: float = 1e-9) -> dict:
+def _segment_model(om, ps, name: str, s: float, elements):
+    """(model, undeformed blade at the point's pitch) with the blade property ``name`` of the beam
+    elements ``elements`` changed by ``s`` (the FE sections themselves: the turbine's data are per
+    station, not per element); the support's damping with the changed rotor mass."""
+    mu = blade_mu(om.turbine) if om.options.damping == "file" else None
+    mod = om
+    if name in ROTOR_MASS and om.options.part != "rotor":
+        mod = om.with_rotor_mass(om.rotor_rigid_mass(blade=changed_rotor_blade(om.blade(0.0), name, s, elements)))
+    return mod, changed_rotor_blade(om.blade(ps.pitch), name, s, elements, mu)
+
+
+def steady_reanalysis(om, ps, names, name: str, h: float, max_hz: float = 2.5, tol: float = 1e-9,
+                      elements=None) -> dict:
     """``{mode name: dlambda/dp}`` by re-analyses of the changed turbine (:func:`changed_model`) at the
     point's wind speed, rotor speed and pitch: the steady state iterated from the start to ``tol``
     (:func:`~windflutter.steady.steady_state`, co-rotational beam, BEM), the blade linearized about
     it (:func:`~windflutter.system.deflected.deflected_blade`) on the nominal point's blade basis.
     A parameter of the strips (the pitch axis) changes them by its own ``strips`` function (the
-    turbine data's pitch axis interpolates differently: by up to 3.5 % of the change at the tip)."""
+    turbine data's pitch axis interpolates differently: by up to 3.5 % of the change at the tip).
+    ``elements``: a blade property of those beam elements only (:func:`_segment_model`)."""
     out = []
     g = GLOBAL_PARAMETERS.get(name)
     for s in (h, -h):
-        mod = om if g is not None and g.part == "strips" else changed_model(om, name, s)
+        if elements is not None:
+            mod, rb = _segment_model(om, ps, name, s, elements)
+        else:
+            mod = om if g is not None and g.part == "strips" else changed_model(om, name, s)
+            rb = mod.blade(ps.pitch)
         o = mod.options
-        rb = mod.blade(ps.pitch)
         if g is not None and g.part == "strips":
             rb = RotorBlade(rb.fe, rb.struct, g.strips(rb.sections, s), rb.apex, rb.axis, damping=rb.damping)
         so = SteadyOptions(deflection=True, corotational=True, tol=tol, max_iterations=300,

@@ -74,8 +74,13 @@ class PointSensitivity:
     defined: dict = field(default_factory=dict)
     #: ``{name: (k,) dlambda/dp}`` by whole re-analyses (steady state recomputed), when asked for
     total: dict = field(default_factory=dict)
+    #: ``{property: (k, n_segments) dlambda/dp}`` with the steady state's own change, per spanwise
+    #: segment of r/R (:func:`~windflutter.sensitivity.steady.segment_totals`), when asked for
+    total_segments: dict = field(default_factory=dict)
     gap: np.ndarray | None = None
     condition: np.ndarray | None = None
+    #: the modes' :class:`~windflutter.sensitivity.eigen.ModeVectors` (re-used by the total derivatives)
+    vectors: list | None = None
 
     @property
     def names(self) -> list[str]:
@@ -241,21 +246,24 @@ def _fixed_derivative(mv: ModeVectors, ps, plus, minus, h: float) -> complex:
 
 
 def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=None,
-                        models: dict | None = None) -> PointSensitivity:
+                        models: dict | None = None, eig: tuple | None = None) -> PointSensitivity:
     """The sensitivities of ``modes`` (the point's named modes, :func:`~windflutter.system.modes.
     point_modes` of ``ps``) of the point system ``ps`` of the operating-point model ``om``.
 
     ``blade_properties``, ``global_parameters``: names (None: all of
     :data:`~windflutter.sensitivity.parameters.BLADE_PROPERTIES` / ``GLOBAL_PARAMETERS``).
+    ``eig``: the point's eigen-solve with left vectors, when already done
+    (:func:`~windflutter.sensitivity.eigen.state_eig`, shared with ``point_modes``).
     """
     props = check_parameters(blade_properties, BLADE_PROPERTIES, "blade_properties")
     globs = check_parameters(global_parameters, GLOBAL_PARAMETERS, "global_parameters")
     if len(ps.blade.fe.shell_conn):
 
         raise InputError("model", "shell", "beam blades (the sensitivities of shell blades are not built yet)")
-    mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in modes])
+    mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in modes], eig=eig)
     res = PointSensitivity(wind_speed=ps.wind_speed, omega=ps.omega, modes=list(modes), station=element_stations(om),
-                           gap=np.array([mv.gap for mv in mvs]), condition=np.array([mv.condition for mv in mvs]))
+                           gap=np.array([mv.gap for mv in mvs]), condition=np.array([mv.condition for mv in mvs]),
+                           vectors=mvs)
     if not mvs:
         return res
     pairs = [pair_vectors(mv) for mv in mvs]

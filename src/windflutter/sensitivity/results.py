@@ -13,12 +13,12 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.units import RPM
-from windflutter.sensitivity.eigen import frequency_damping
+from windflutter.sensitivity.eigen import frequency_damping, state_eig
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, change_words, is_relative, unit_change
 from windflutter.sensitivity.point import PAIR_LIMIT, PointSensitivity, point_sensitivities
 from windflutter.system.campbell import ambiguous
 from windflutter.system.modes import point_modes
-from windflutter.sensitivity.steady import point_totals
+from windflutter.sensitivity.steady import point_totals, segment_totals, steady_base
 
 #: the spanwise segments (r/R) the ranked table sums the stations over
 SEGMENTS = (0.0, 0.2, 0.4, 0.6, 0.8, 1.0)
@@ -33,31 +33,47 @@ def sensitivities(om, wind_speeds, max_hz: float, modes=None, blade_properties=N
     change included (:func:`~windflutter.sensitivity.steady.point_totals`) in
     ``PointSensitivity.total``."""
 
-    out, prev, models = [], None, {}
+    out, models = [], {}
+    for ps, eig, keep in named_points(om, wind_speeds, max_hz, modes, progress):
+        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models, eig=eig)
+        if total and keep:
+            base = steady_base(om, ps)
+            res.total = point_totals(om, ps, res, base)
+            res.total_segments = segment_totals(om, ps, res, SEGMENTS, base)
+        out.append(res)
+    check_found(modes, [r.names for r in out])
+    return out
+
+
+def named_points(om, wind_speeds, max_hz: float, modes=None, progress=None):
+    """Yield ``(point system, its eigen-solve with left vectors, kept named modes)`` of each wind speed
+    (m/s): the modes up to ``max_hz`` (Hz) named and carried along the wind speeds as
+    :func:`windflutter.system.campbell.campbell` does; ``modes`` (identity names) keeps only those."""
+    prev = None
     ws = [float(v) for v in np.atleast_1d(wind_speeds)]
     for i, v in enumerate(ws):
         if progress is not None:
             progress(i / len(ws), f"V = {v:g} m/s")
         ps = om.at(v)
-        named = point_modes(ps, max_hz=max_hz, previous=prev)
+        eig = state_eig(ps.mbc)  # one eigen-solve with left vectors for the names and the sensitivities
+        named = point_modes(ps, max_hz=max_hz, previous=prev, eig=eig)
         if prev is not None and ambiguous(prev, named):
             mid = point_modes(om.at(0.5 * (ws[i - 1] + v)), max_hz=max_hz, previous=prev)
-            named = point_modes(ps, max_hz=max_hz, previous=mid)
+            named = point_modes(ps, max_hz=max_hz, previous=mid, eig=eig)
         prev = named
-        keep = named if modes is None else [m for m in named if m.identity_name in set(modes)]
-        res = point_sensitivities(om, ps, keep, blade_properties, global_parameters, models=models)
-        if total and keep:
-            res.total = point_totals(om, ps, res)
-        out.append(res)
+        yield ps, eig, (named if modes is None else [m for m in named if m.identity_name in set(modes)])
+    if progress is not None:
+        progress(1.0, "done")
+
+
+def check_found(modes, found: list[list[str]]) -> None:
+    """InputError naming the first of the asked ``modes`` that no point's named modes ``found`` has."""
     if modes is not None:
-        seen = {n for r in out for n in r.names}
+        seen = {n for names in found for n in names}
         missing = [n for n in modes if n not in seen]
         if missing:
             raise InputError("modes", missing[0], "a mode name of the point (e.g. '1st edge BW'; "
                              "`windflutter campbell` lists them), below the frequency limit")
-    if progress is not None:
-        progress(1.0, "done")
-    return out
 
 
 def _unit(name: str) -> float:
@@ -133,11 +149,38 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
         ds["ddamping_total"] = (("mode", "wind_speed", "any_parameter"), dz_t, {
             "units": "1", "long_name": "d damping ratio / d parameter with the steady state's own change "
             "included (its sensitivity; blade properties over the whole blade; blade basis held) " + per})
+    if any(p.total_segments for p in points):
+        _segment_totals(ds, points, names, props)
     ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
     ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
     for k, v in (assumptions or {}).items():
         ds.attrs[f"model_{k}"] = str(v)
     return ds
+
+
+def _segment_totals(ds, points, names, props, segments=SEGMENTS) -> None:
+    """``dfrequency_total_segment``, ``ddamping_total_segment`` (mode x wind_speed x parameter x
+    segment) into ``ds``: the blade properties over each spanwise segment, steady state included."""
+    ns = len(segments) - 1
+    df, dz = np.full((len(names), len(points), len(props), ns), np.nan), np.full((len(names), len(points),
+                                                                               len(props), ns), np.nan)
+    for j, p in enumerate(points):
+        for k, m in enumerate(p.modes):
+            i = names.index(m.identity_name)
+            for a, name in enumerate(props):
+                if name in p.total_segments:
+                    df[i, j, a], dz[i, j, a] = frequency_damping(complex(m.eigenvalue), p.total_segments[name][k])
+    per = "per unit of the parameter over the segment (relative ones: per +100 %; offsets: per m)"
+    dims = ("mode", "wind_speed", "parameter", "segment")
+    ds.coords["segment"] = [f"{a:.1f}-{b:.1f}" for a, b in zip(segments[:-1], segments[1:])]
+    ds.coords["segment_start"] = ("segment", list(segments[:-1]), {"units": "1", "long_name": "r/R"})
+    ds.coords["segment_end"] = ("segment", list(segments[1:]), {"units": "1", "long_name": "r/R"})
+    ds["dfrequency_total_segment"] = (dims, df, {"units": "Hz", "long_name": "d frequency / d parameter of the "
+                                                 "blade elements of the segment, with the steady state's own change "
+                                                 "included (blade basis held) " + per})
+    ds["ddamping_total_segment"] = (dims, dz, {"units": "1", "long_name": "d damping ratio / d parameter of the "
+                                               "blade elements of the segment, with the steady state's own change "
+                                               "included (blade basis held) " + per})
 
 
 def segment_table(ds, segments=SEGMENTS, modes=None, least: int = 3) -> list[dict]:
@@ -183,15 +226,17 @@ def _chosen(ds, j: int, modes, least: int) -> list[str]:
 
 
 def total_table(ds, modes=None, least: int = 3) -> list[str]:
-    """Sentences of the total derivatives (``ddamping_total``, when the dataset has them): the unit
-    change of each parameter (blade properties over the whole blade) with the steady state's own
-    change included, beside the derivative with it held; largest first."""
-    if "ddamping_total" not in ds:
+    """Sentences of the total derivatives (``ddamping_total``, ``ddamping_total_segment``, when the
+    dataset has them): the unit change of each parameter (blade properties over the whole blade and
+    over each r/R segment) with the steady state's own change included, beside the derivative with it
+    held; largest first."""
+    if "ddamping_total" not in ds and "ddamping_total_segment" not in ds:
         return []
     rows = []
+    whole = ds["any_parameter"].values if "ddamping_total" in ds else []
     for j, v in enumerate(ds["wind_speed"].values):
         for mode in _chosen(ds, j, modes, least):
-            for a, p in enumerate(ds["any_parameter"].values):
+            for p in whole:
                 p = str(p)
                 u = _unit(p)
                 tot = 100 * u * float(ds["ddamping_total"].sel(mode=mode, any_parameter=p).values[j])
@@ -205,7 +250,30 @@ def total_table(ds, modes=None, least: int = 3) -> list[str]:
                     rows.append((abs(tot), f"{words} {'raises' if tot >= 0 else 'lowers'} the {mode} damping at "
                                            f"{v:g} m/s by {abs(tot):.3g} points ({100 * u * held:+.3g} with the "
                                            "steady state held)"))
+            rows += _segment_rows(ds, j, mode, v)
     return [r[1] for r in sorted(rows, key=lambda r: -r[0])]
+
+
+def _segment_rows(ds, j: int, mode: str, v: float) -> list[tuple]:
+    """``(|change|, sentence)`` of the segment totals (``ddamping_total_segment``) of a mode at the
+    ``j``-th wind speed ``v``: the unit change over each segment, beside the held segment sum."""
+    if "ddamping_total_segment" not in ds:
+        return []
+    st = np.asarray(ds["station"].values, float)
+    rows = []
+    for p in ds["parameter"].values:
+        p = str(p)
+        u = _unit(p)
+        held_el = ds["ddamping"].sel(mode=mode, parameter=p).values[j]
+        for g, a, b in zip(ds["segment"].values, ds["segment_start"].values, ds["segment_end"].values):
+            tot = 100 * u * float(ds["ddamping_total_segment"].sel(mode=mode, parameter=p, segment=g).values[j])
+            sel = (st >= a) & (st < b) if b < ds["segment_end"].values[-1] else (st >= a)
+            held = 100 * u * float(held_el[sel].sum())
+            if np.isfinite(tot):
+                rows.append((abs(tot), f"{change_words(p)} at r/R {a:.1f}-{b:.1f} {'raises' if tot >= 0 else 'lowers'} "
+                                       f"the {mode} damping at {v:g} m/s by {abs(tot):.3g} points ({held:+.3g} with "
+                                       "the steady state held)"))
+    return rows
 
 
 def sentence(row: dict) -> str:

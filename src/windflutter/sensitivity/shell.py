@@ -59,6 +59,11 @@ def _checked(turbine, layers) -> tuple[str, ...]:
     return out
 
 
+def layer_thickness_check(turbine, layers) -> tuple[str, ...]:
+    """The layer names ``layers`` checked against the turbine's layup (InputError naming ``layers``)."""
+    return _checked(turbine, layers)
+
+
 def layer_thickness(turbine, layers, p: float):
     """``turbine`` with the thickness of the layup layers ``layers`` (names) times ``1 + p``."""
     chosen = set(_checked(turbine, layers))

@@ -11,10 +11,13 @@ Its sensitivity is ``dc/dp = -K_T^-1 dR/dp`` with the tangent ``K_T = K_mat + K_
 + K_aero``: the structural part (the equilibrium's own tangent with the dead aerodynamic loads,
 factorized once) and ``K_aero = -df_aero/dc``, the change of the nodal aerodynamic loads with the
 deflection -- strip geometry, angle of attack, the lever arms of the motion map and the BEM
-induction re-solved on the moved strips (induction *included*).  ``K_aero`` is applied without
-forming it (central differences of the loads along a vector), and ``K_T dc = -dR/dp`` is solved by
-GMRES preconditioned with the structural part (:func:`steady_derivative`); ``dR/dp`` is a central
-difference of the residual in ``p`` at the nominal configuration.
+induction re-solved on the moved strips (induction *included*).  ``K_aero`` is formed once per point
+by coloured central differences of the loads (:func:`whole_tangent`: a node's motion loads only the
+nodes of the strips it carries, except the end strips', whose radii are the Prandtl factors' tip and
+hub radius), checked against one product along a random direction, and ``K_T dc = -dR/dp`` is solved
+with the LU of ``K_T`` for every parameter; should the colouring's check fail, by GMRES on products of
+``K_aero`` along a vector, preconditioned with the structural part (:func:`steady_derivative`).
+``dR/dp`` is a central difference of the residual in ``p`` at the nominal configuration.
 
 The operating point's matrices are then differentiated along the path ``(p0 + s, c0 + s dc/dp)``:
 the point is rebuilt (:func:`point_at`: the changed blade, the strips and their BEM inflow and loads
@@ -42,6 +45,7 @@ import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
+import scipy.linalg as sla
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
@@ -65,6 +69,10 @@ GMRES_TOL = 1e-7
 #: step of the directional differences of the aerodynamic loads along a configuration change: the
 #: largest nodal translation (m) / rotation (rad) of the step
 LOAD_STEP = 1e-6
+#: the equilibrium of a point along the path ``c0 + s dc/dp`` is confirmed by ONE Newton step (this
+#: tolerance stops after it): the path's residual is of order ``s^2`` and one step leaves ``s^4``, far
+#: below the central difference's own ``h^2`` error
+NEWTON_TOL = np.inf
 
 
 @dataclass
@@ -82,6 +90,9 @@ class SteadyBase:
     config: object
     stiffness: sp.csc_matrix
     factor: object
+    #: the LU of the whole tangent ``K_T`` (structure + coloured ``K_aero``, :func:`whole_tangent`), once
+    #: built; False when the colouring's check failed (GMRES then)
+    tangent_lu: object = None
 
 
 def steady_base(om, ps) -> SteadyBase:
@@ -151,12 +162,93 @@ def strip_state(base: SteadyBase, config, air_density: float, rb: RotorBlade | N
     return aero, np.asarray(f, float)
 
 
-def residual(base: SteadyBase, rb: RotorBlade, config, air_density: float | None) -> np.ndarray:
+def residual(base: SteadyBase, rb: RotorBlade, config, air_density: float | None, fe=None) -> np.ndarray:
     """(n_dof,) ``f_int - f_cf - f_aero`` of the blade ``rb`` at the configuration; ``air_density``
-    None: without ``f_aero`` (the structure's part)."""
-    f_cf, _ = centrifugal_loads(rb.fe, base.steady.omega, rb.apex, rb.axis)(config)
-    r = internal_forces(rb.fe, config) - f_cf
+    None: without ``f_aero`` (the structure's part); ``fe`` the blade's FE model (default ``rb.fe``)."""
+    fe = rb.fe if fe is None else fe
+    f_cf, _ = centrifugal_loads(fe, base.steady.omega, rb.apex, rb.axis)(config)
+    r = internal_forces(fe, config) - f_cf
     return r if air_density is None else r - strip_state(base, config, air_density, rb)[1]
+
+
+def _column_nodes(T) -> np.ndarray | None:
+    """The node of each free DOF of the constraint map ``T`` (each column within one node's six DOFs:
+    a selection, turned by the pitch), else None."""
+    T = sp.csc_matrix(T)
+    T.eliminate_zeros()
+    nodes = T.indices // 6
+    first = nodes[T.indptr[:-1]]
+    if np.any(np.diff(T.indptr) == 0) or np.any(nodes != np.repeat(first, np.diff(T.indptr))):
+        return None
+    return first
+
+
+def aero_colours(sections, fe, T) -> tuple[list, np.ndarray] | None:
+    """The columns of ``K_aero`` grouped for coloured differences: ``(groups, rows)``, each group a list
+    of free columns whose loaded rows (the nodes tied to the strips their node is tied to, motion
+    map) do not overlap, ``rows[c]`` the boolean free rows column ``c`` reaches.  The nodes of the
+    outermost and innermost strips (the Prandtl factors' tip and hub radius, which every strip sees,
+    :func:`~windflutter.aero.induction.rotor_extent`) reach every row: their columns are alone."""
+    node_of = _column_nodes(T)
+    if node_of is None:
+        return None
+    mm = sp.coo_matrix(sections.motion_map)
+    pairs = np.unique(np.stack([mm.row // 6, mm.col // 6], axis=1), axis=0)
+    nn = fe.n_dof // 6
+    tied = sp.csr_matrix((np.ones(len(pairs)), (pairs[:, 0], pairs[:, 1])), shape=(sections.n_sections, nn))
+    reach = (tied.T @ tied).toarray() > 0  # node n's motion loads node m through a shared strip
+    r, dr = np.asarray(sections.radius, float), np.asarray(sections.width, float)
+    ends = [int(np.argmax(r + 0.5 * dr)), int(np.argmin(r - 0.5 * dr))]
+    whole = np.asarray(tied[ends].sum(axis=0)).ravel() > 0
+    rows = reach[node_of][:, node_of] | whole[node_of][:, None]
+    groups, used = [], []
+    for c in range(len(node_of)):
+        if whole[node_of[c]]:
+            groups.append([c])
+            used.append(np.ones(len(node_of), bool))
+            continue
+        for g, u in zip(groups, used):
+            if len(g) and not whole[node_of[g[0]]] and not np.any(u & rows[c]):
+                g.append(c)
+                u |= rows[c]
+                break
+        else:
+            groups.append([c])
+            used.append(rows[c].copy())
+    return groups, rows
+
+
+def whole_tangent(base: SteadyBase):
+    """The LU of ``K_T = K_s + K_aero`` (free DOFs, dense), ``K_aero`` by coloured central differences
+    of the nodal aerodynamic loads (:func:`aero_colours`; the step of :func:`steady_derivative`'s
+    products), checked against one product along a fixed random direction: None when the colouring
+    does not hold (relative mismatch above 1e-5)."""
+    T = base.rb.struct.T
+    col = aero_colours(base.rb.sections, base.rb.fe, T)
+    if col is None:
+        return None
+    groups, rows = col
+    rho = base.steady.air_density
+
+    def product(q):  # -T^T df_aero/du T q
+        v = np.asarray(T @ q)
+        e = LOAD_STEP / max(np.abs(v).max(), 1e-300)
+        fp, fm = (strip_state(base, displaced(base.config, s * e * v), rho)[1] for s in (1.0, -1.0))
+        return -np.asarray(T.T @ ((fp - fm) / (2.0 * e)))
+
+    n = T.shape[1]
+    KA = np.zeros((n, n))
+    for g in groups:
+        q = np.zeros(n)
+        q[g] = 1.0
+        y = product(q)
+        for c in g:
+            KA[rows[c], c] = y[rows[c]]
+    q = np.random.default_rng(31).standard_normal(n)
+    ref = product(q)
+    if np.linalg.norm(KA @ q - ref) > 1e-5 * np.linalg.norm(ref):
+        return None
+    return sla.lu_factor(base.stiffness.toarray() + KA)
 
 
 def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | None = None) -> np.ndarray:
@@ -180,6 +272,10 @@ def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | Non
         fm = strip_state(base, displaced(base.config, -e * v), rho)[1]
         return -np.asarray(T.T @ ((fp - fm) / (2.0 * e)))
 
+    if base.tangent_lu is None:
+        base.tangent_lu = whole_tangent(base) or False
+    if base.tangent_lu is not False:
+        return np.asarray(T @ sla.lu_solve(base.tangent_lu, rhs))
     n = rhs.size
     KT = spla.LinearOperator((n, n), matvec=lambda q: base.stiffness @ q + k_aero(q), dtype=float)
     pre = spla.LinearOperator((n, n), matvec=base.factor.solve, dtype=float)
@@ -192,8 +288,10 @@ def steady_derivative(base: SteadyBase, name: str, elements=None, h: float | Non
 def _residual_of(base: SteadyBase, name: str, s: float, elements) -> np.ndarray:
     """The residual at the nominal configuration with the parameter changed by ``s`` (a blade
     property leaves the aerodynamic loads of a configuration as they are: the structure's part)."""
+    if name in BLADE_PROPERTIES:  # the changed sections alone (the residual needs no assembled matrix)
+        return residual(base, base.rb, base.config, None, fe=blade_sections(base.rb.fe, name, s, elements))
     rb, rho, _ = _variant(base, name, s, elements)
-    return residual(base, rb, base.config, None if name in BLADE_PROPERTIES else rho)
+    return residual(base, rb, base.config, rho)
 
 
 def point_at(base: SteadyBase, name: str, s: float, dc: np.ndarray, elements=None):
@@ -205,7 +303,7 @@ def point_at(base: SteadyBase, name: str, s: float, dc: np.ndarray, elements=Non
     aero, _ = strip_state(base, config, rho, rb)
     steady = dataclasses.replace(st, u=configuration_displacement(rb.fe, config), configuration=config,
                                  air_density=rho, **aero)
-    d = deflected_blade(rb, steady, ps.omega, base.mu)
+    d = deflected_blade(rb, steady, ps.omega, base.mu, tol=NEWTON_TOL)
     return om.assemble_point(d.blade, d.steady, d.ksigma, d.klink, ps.wind_speed, ps.omega, ps.pitch,
                              tip_frame=ps.tip_frame, Phi=ps.Phi)
 
@@ -229,16 +327,50 @@ def total_derivatives(base: SteadyBase, mvs: list[ModeVectors], names, elements=
     return out
 
 
-def point_totals(om, ps, res) -> dict:
+def point_totals(om, ps, res, base: SteadyBase | None = None) -> dict:
     """``{name: (k,) dlambda/dp}`` with the steady state's own change included for the parameters of
     the point's sensitivities ``res`` (:class:`~windflutter.sensitivity.point.PointSensitivity`): the
     blade properties over the whole blade and the global parameters; those of :data:`HELD_EXACTLY`
-    are the held ones."""
+    are the held ones.  ``base``: the point's :func:`steady_base`, when already built."""
     names = list(res.blade) + list(res.globals_)
     if not res.modes or not names:
         return {}
-    base = steady_base(om, ps)
-    mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
+    base = steady_base(om, ps) if base is None else base
+    mvs = res.vectors if res.vectors is not None else mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
     out = {n: (res.blade[n].sum(axis=1) if n in res.blade else res.globals_[n]) for n in names if n in HELD_EXACTLY}
     out.update(total_derivatives(base, mvs, [n for n in names if n not in HELD_EXACTLY]))
     return {n: out[n] for n in names}
+
+
+def segment_elements(station: np.ndarray, segments) -> list[np.ndarray]:
+    """The blade elements (indices) of each spanwise segment ``[a, b)`` of ``segments`` (r/R edges; the
+    last one closed), by the elements' mid-span ``station``."""
+    st = np.asarray(station, float)
+    out = []
+    for a, b in zip(segments[:-1], segments[1:]):
+        sel = (st >= a) & (st < b) if b < segments[-1] else (st >= a)
+        out.append(np.flatnonzero(sel))
+    return out
+
+
+def segment_totals(om, ps, res, segments, base: SteadyBase | None = None) -> dict:
+    """``{property: (k, n_segments) dlambda/dp}`` with the steady state's own change included, for the
+    blade properties of ``res`` over each spanwise segment (:func:`segment_elements`; an empty
+    segment gives NaN); :data:`HELD_EXACTLY` ones (structural damping) are the held segment sums."""
+    if not res.modes or not res.blade:
+        return {}
+    base = steady_base(om, ps) if base is None else base
+    mvs = res.vectors if res.vectors is not None else mode_vectors(ps.mbc, [m.eigenvalue for m in res.modes])
+    groups = segment_elements(res.station, segments)
+    out = {}
+    for name, held in res.blade.items():
+        cols = []
+        for el in groups:
+            if not el.size:
+                cols.append(np.full(len(mvs), np.nan + 0j))
+            elif name in HELD_EXACTLY:
+                cols.append(held[:, el].sum(axis=1))
+            else:
+                cols.append(total_derivatives(base, mvs, [name], elements=el)[name])
+        out[name] = np.stack(cols, axis=1)
+    return out

@@ -229,7 +229,7 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
 
 
 def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8,
-                previous: list[ModeRecord] | None = None) -> list[ModeRecord]:
+                previous: list[ModeRecord] | None = None, eig: tuple | None = None) -> list[ModeRecord]:
     """Every oscillatory structural mode of the point up to ``max_hz`` (undamped frequency), named by
     its participation in the turbine's own structural modes (:mod:`windflutter.system.identity`).
 
@@ -241,12 +241,16 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
     frequency is not within 10 % of the rotor speed's multiples (heavily damped flap modes in
     operation share much of themselves with the lag states).  ``previous``: the named modes of the
     previous point of a sweep (wind or rotor speed), whose identities this point continues by the
-    similarity of the mode signatures (:func:`windflutter.system.identity.assign`).
+    similarity of the mode signatures (:func:`windflutter.system.identity.assign`).  ``eig``: the
+    ``(eigenvalues, left, right)`` of ``ps.mbc.state_matrix()`` already solved
+    (``scipy.linalg.eig(S, left=True, right=True)``, e.g. by the design sensitivities, which need the
+    left vectors too); default solved here.
     """
     import scipy.linalg as sla
 
-    S = ps.mbc.state_matrix()
-    lam, UL, X = sla.eig(S, left=True, right=True)
+    if eig is None:
+        eig = sla.eig(ps.mbc.state_matrix(), left=True, right=True)
+    lam, UL, X = eig
     n2 = 2 * ps.mbc.M.shape[0]
     part = np.abs(UL.conj() * X)
     share = part[:n2].sum(axis=0) / np.maximum(part.sum(axis=0), 1e-300)
