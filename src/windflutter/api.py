@@ -339,11 +339,11 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
     methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     t = as_turbine(turbine)
     if getattr(t, "operating_curve", None) is None:
-
         raise missing_curve_error(t)
     om = campbell_model(t, cfg)
     if om.options.model != "beam":
-        raise InputError("model.type", om.options.model, "beam (the sensitivities of shell blades are not built yet)")
+        raise InputError("model.type", om.options.model, "beam (a shell blade's sensitivities, to the ply thickness "
+                         "of its layup regions: windflutter.shell_sensitivity)")
     winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
     hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
     pts = sensitivities(om, winds, hz, modes=modes, blade_properties=blade_properties,

@@ -259,7 +259,7 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
     globs = check_parameters(global_parameters, GLOBAL_PARAMETERS, "global_parameters")
     if len(ps.blade.fe.shell_conn):
 
-        raise InputError("model", "shell", "beam blades (the sensitivities of shell blades are not built yet)")
+        raise InputError("model", "shell", "beam blades (shell blades: windflutter.sensitivity.shell_results)")
     mvs = mode_vectors(ps.mbc, [m.eigenvalue for m in modes], eig=eig)
     res = PointSensitivity(wind_speed=ps.wind_speed, omega=ps.omega, modes=list(modes), station=element_stations(om),
                            gap=np.array([mv.gap for mv in mvs]), condition=np.array([mv.condition for mv in mvs]),
