@@ -112,14 +112,20 @@ class ModalDamping:
         return ModalDamping(U2, self.c, self.zeta, self.freq_hz, self.shares)
 
 
-def mode_direction_shares(fe, M, Phi: np.ndarray, sections) -> np.ndarray:
-    """(k, 4) shares of the :data:`DIRECTIONS` in the kinetic energy of each full-numbering mode of
-    ``Phi`` (n_dof, k), mass ``M``: each strip's rigid-section motion (``sections.motion_map``)
-    split in its frame (span ``s``, chord ``c``, flapwise ``n = c x s``) into axial ``(u.s) s``,
-    torsion ``(theta.s) s x d``, edge ``(u.c) c + (theta.n) n x d`` and flap ``(u.n) n + (theta.c)
-    c x d`` displacements of the nodes (``d`` from the strip's point; each node on the strip
-    nearest along the span), each part's energy ``part^T M phi``; negative parts are set to zero
-    and the rest normalised."""
+#: cross terms only between modes whose kinetic energy the strips' rigid-section motion carries
+#: to within this fraction (the section's own deformation modes have no beam directions)
+RIGID_CAPTURE = 0.1
+
+
+def mode_direction_energies(fe, M, Phi: np.ndarray, sections) -> np.ndarray:
+    """(4, k, k) direction terms of the kinetic-energy products of the full-numbering modes ``Phi``
+    (n_dof, k), mass ``M``: ``E[d, i, j] = sym(part_d(phi_i)^T M phi_j)``.  ``part_d`` splits each
+    strip's rigid-section motion (``sections.motion_map``) in its frame (span ``s``, chord ``c``,
+    flapwise ``n = c x s``) into the :data:`DIRECTIONS`: axial ``(u.s) s``, torsion ``(theta.s) s x
+    d``, edge ``(u.c) c + (theta.n) n x d`` and flap ``(u.n) n + (theta.c) c x d`` displacements of
+    the nodes (``d`` from the strip's point; each node on the strip nearest along the span).  Their
+    sum over ``d`` is ``sym(rigid(phi_i)^T M phi_j)``, the identity for modes the strips follow
+    rigidly."""
     x = np.asarray(fe.nodes, float)
     p = np.asarray(sections.origin, float)
     s = np.asarray(sections.e_span, float)
@@ -143,15 +149,30 @@ def mode_direction_shares(fe, M, Phi: np.ndarray, sections) -> np.ndarray:
 
     S, C, N = s[j], c[j], n[j]
     parts = (along(S, u), moved(S, th), along(C, u) + moved(N, th), along(N, u) + moved(C, th))
-    E = np.maximum(np.stack([np.einsum("ndk,ndk->k", a, g) for a in parts], axis=1), 0.0)
+    E = np.stack([np.einsum("ndk,ndl->kl", a, g) for a in parts])
+    return 0.5 * (E + np.swapaxes(E, 1, 2))
+
+
+def mode_direction_shares(energies: np.ndarray) -> np.ndarray:
+    """(k, 4) shares of the :data:`DIRECTIONS` in each mode's kinetic energy (the diagonal of
+    :func:`mode_direction_energies`), negative parts set to zero and the rest normalised."""
+    E = np.maximum(np.einsum("dkk->kd", energies), 0.0)
     return E / np.maximum(E.sum(axis=1, keepdims=True), 1e-300)
 
 
 def shell_modal_damping(fe, struct, sections, mu: np.ndarray | None,
                         n_modes: int = SHELL_DAMPED_MODES) -> ModalDamping | None:
     """The files' per-direction damping ``mu`` on a shell blade (``fe``, its clamped assembly
-    ``struct``, its strips): modal damping of its lowest ``n_modes`` fixed-interface modes (module
-    docstring); None without coefficients."""
+    ``struct``, its strips) on its lowest ``n_modes`` fixed-interface modes; None without
+    coefficients.  In the modes' coordinates ``D = W S W``, ``W = diag(omega)``: on the diagonal
+    ``S_ii = sum_d e_id mu_d`` (the shares, :func:`mode_direction_shares`), so that mode ``i`` gets
+    ``zeta_i = omega_i S_ii / 2``; off it the direction terms ``S_ij = sum_d mu_d E_dij /
+    sqrt(n_i n_j)`` (:func:`mode_direction_energies`, ``n_i`` the sum of mode ``i``'s kept parts),
+    less ``(S_ii + S_jj)/2`` times their sum (which vanishes for modes the strips follow rigidly):
+    they vanish when every ``mu_d`` is equal (then ``D = mu W^2``, stiffness-proportional damping
+    on the modes) and couple two modes that share directions of different ``mu``, as the beam's
+    ``mu`` per direction does; kept only between modes the strips carry (:data:`RIGID_CAPTURE`).
+    ``D``'s negative eigenvalues are set to zero."""
     if mu is None:
         return None
     mu = np.asarray(mu, float)
@@ -161,9 +182,20 @@ def shell_modal_damping(fe, struct, sections, mu: np.ndarray | None,
     X = X / np.sqrt(np.einsum("im,im->m", X, Mr @ X))
     Phi = np.asarray(struct.T @ X)
     w = np.sqrt(np.maximum(w2, 0.0))
-    shares = mode_direction_shares(fe, struct.M, Phi, sections)
-    zeta = 0.5 * w * (shares @ mu[list(DIRECTION_MU)])
-    return ModalDamping(np.asarray(struct.M @ Phi), 2.0 * zeta * w, zeta=zeta, freq_hz=w / (2 * np.pi),
+    E = mode_direction_energies(fe, struct.M, Phi, sections)
+    shares = mode_direction_shares(E)
+    m = mu[list(DIRECTION_MU)]
+    norm = np.sqrt(np.maximum(np.einsum("dkk->kd", E), 0.0).sum(axis=1))
+    Eh = E / np.maximum(np.outer(norm, norm), 1e-300)[None]
+    diag = shares @ m
+    ref = 0.5 * (diag[:, None] + diag[None, :])
+    S = np.einsum("d,dkl->kl", m, Eh) - ref * Eh.sum(axis=0)
+    rigid = np.abs(norm**2 - 1.0) <= RIGID_CAPTURE  # the strips carry the mode: its direction terms hold
+    S *= np.outer(rigid, rigid)
+    S[np.diag_indices_from(S)] = diag
+    lam, V = np.linalg.eigh(w[:, None] * S * w[None, :])
+    zeta = 0.5 * w * np.diag(S)
+    return ModalDamping(np.asarray(struct.M @ Phi) @ V, np.maximum(lam, 0.0), zeta=zeta, freq_hz=w / (2 * np.pi),
                         shares=shares)
 
 
