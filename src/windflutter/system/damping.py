@@ -193,7 +193,7 @@ def shell_modal_damping(fe, struct, sections, mu: np.ndarray | None,
     rigid = np.abs(norm**2 - 1.0) <= RIGID_CAPTURE  # the strips carry the mode: its direction terms hold
     S *= np.outer(rigid, rigid)
     S[np.diag_indices_from(S)] = diag
-    lam, V = np.linalg.eigh(w[:, None] * S * w[None, :])
+    lam, V = symmetric_eigs(w[:, None] * S * w[None, :], np.eye(len(w)))  # D = V diag(lam) V^T
     zeta = 0.5 * w * np.diag(S)
     return ModalDamping(np.asarray(struct.M @ Phi) @ V, np.maximum(lam, 0.0), zeta=zeta, freq_hz=w / (2 * np.pi),
                         shares=shares)
