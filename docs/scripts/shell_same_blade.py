@@ -25,8 +25,8 @@ from windflutter.system.operational import OperationalModel, OperationalOptions
 
 
 def shell_damping(turbine):
-    """``turbine`` whose beam blade gets the shell's structural damping (beta K, beta the larger
-    bending coefficient, in every direction)."""
+    """``turbine`` whose beam blade gets the shell's earlier structural damping (until 4 Dec 2026:
+    beta K, beta the larger bending coefficient, in every direction)."""
     d = turbine.blade.damping
     mu = np.full(6, float(max(d.mu[4], d.mu[5])))
     return dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, damping=dataclasses.replace(d, mu=mu)))

@@ -34,7 +34,6 @@ from windflutter.sensitivity.eigen import ModeVectors, mbc_derivative
 from windflutter.structure.assembly import assemble_matrices
 from windflutter.structure.modal import symmetric_eigs
 from windflutter.system.blade import RotorBlade
-from windflutter.system.damping import blade_damping_matrix, blade_mu
 from windflutter.system.operational import OperationalModel
 
 #: the relative step of the layers' thickness (the mesh merges laminates closer than 1e-6 m: a
@@ -123,14 +122,14 @@ def clamped_modes(K, M, T, n_modes: int) -> tuple[np.ndarray, np.ndarray]:
 def changed_shell_blade(om, ps, layers, s: float) -> RotorBlade:
     """The point's (deflected) shell blade with the layers' thickness times ``1 + s``: the changed
     laminates on its elements; its stiffness the nominal one plus the change of the assembled elastic
-    stiffness (the initial stress held), its damping reassembled."""
+    stiffness (the initial stress held), its structural damping held (the modal damping of the
+    point's blade modes, :func:`windflutter.system.damping.shell_modal_damping`)."""
     rb = ps.blade
     fe2 = with_properties(rb.fe, layered_properties(om, layers, s))
     M0, K0 = assemble_matrices(rb.fe)
     M2, K2 = assemble_matrices(fe2)
     st = dataclasses.replace(rb.struct, fe=fe2, M=sp.csr_matrix(M2), K=(rb.struct.K + (K2 - K0)).tocsr())
-    mu = blade_mu(om.turbine) if om.options.damping == "file" else None
-    return RotorBlade(fe2, st, rb.sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe2, mu))
+    return RotorBlade(fe2, st, rb.sections, rb.apex, rb.axis, damping=rb.damping)
 
 
 def changed_point(om, ps, layers, s: float, Phi="nominal"):

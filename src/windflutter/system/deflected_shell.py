@@ -15,7 +15,8 @@ linearized about the deflected shape in three steps (docs/steady_state.md, "Shel
    deformation (a few mm) is left out of the geometry; the span's bending, shortening and
    elastic twist are in it.
 2. **The deformed structure**: the shell FE model re-assembled on that geometry (elastic stiffness
-   ``K_d``, mass, Coriolis and spin softening of the deformed blade, the files' damping), and the
+   ``K_d``, mass, Coriolis and spin softening of the deformed blade; the files' damping, the
+   undeformed blade's modal damping turned with the nodes), and the
    strips' motion map with its lever arms turned by the nodal rotations.
 3. **The steady stress** is the shell's own, that of its steady state: the membrane resultants
    ``(Nxx, Nyy, Nxy)`` of each element in its material frame, carried with the element to the
@@ -48,7 +49,7 @@ from windflutter.structure.assembly import assemble
 from windflutter.structure.prestress import membrane_geometric_stiffness
 from windflutter.structure.shell import shell_membrane_resultants
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
-from windflutter.system.damping import blade_damping_matrix
+from windflutter.system.damping import ModalDamping, shell_modal_damping
 
 __all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade"]
 
@@ -141,6 +142,16 @@ def _deformed_fe(fe, x: np.ndarray, Rn: np.ndarray):
     return dataclasses.replace(fe, nodes=x, shell_matdir=matdir, diaphragms=dia, masses=masses)
 
 
+def _carried_damping(rb: RotorBlade, mu, Rn: np.ndarray):
+    """The blade's structural damping carried with its nodes to the deflected shape: the undeformed
+    blade's modal damping (:func:`windflutter.system.damping.shell_modal_damping`, built for ``rb``
+    if it has none of that form) turned by the nodal rotations ``Rn``; None without ``mu``."""
+    if mu is None:
+        return None
+    D = rb.damping if isinstance(rb.damping, ModalDamping) else shell_modal_damping(rb.fe, rb.struct, rb.sections, mu)
+    return D.rotated(Rn)
+
+
 def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None) -> DeflectedShell:
     """The shell blade ``rb`` linearized about its deflected steady state (module docstring).
 
@@ -167,7 +178,7 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     x, Rn = carried_nodes(fe.nodes, station_frames(rb.sections, defl), fixed)
     fe_d = _deformed_fe(fe, x, Rn)
     st_d = assemble(fe_d, check=False)
-    blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=blade_damping_matrix(fe_d, mu, K=st_d.K))
+    blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=_carried_damping(rb, mu, Rn))
     mm = deformed_motion_map(rb.sections.motion_map, Rn)
     # the steady stress: the membrane resultants of the shell's own steady state, carried with their
     # elements; the root reaction turned with its nodes for the hub links

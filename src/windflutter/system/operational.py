@@ -38,7 +38,8 @@ from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 from windflutter.system.blade_aero import blade_system, project_blade_aero, quasi_steady_blocks
 from windflutter.system.blade_basis import BladeBasis
-from windflutter.system.damping import blade_damping_matrix, blade_mu, support_modal_damping, tower_ratios
+from windflutter.system.damping import (blade_damping_matrix, blade_mu, shell_modal_damping, support_modal_damping,
+                                        tower_ratios)
 from windflutter.system.deflected import deflected_blade
 from windflutter.system.deflected_shell import deflected_shell_blade
 from windflutter.system.identity import structural_reference
@@ -130,12 +131,20 @@ class OperationalModel:
         key = round(float(pitch), 8)
         if key not in self._blades:
             fe, st, sec = self._blade0()
+            mu = blade_mu(self.turbine) if self.options.damping == "file" else None
+            shell = len(fe.shell_conn) > 0
+            if shell and getattr(self, "_shell_damping0", False) is False:  # built once, turned with the pitch
+                self._shell_damping0 = shell_modal_damping(fe, st, sec, mu)
+            R = None
             if key != 0.0:
                 R, root = pitch_rotation(self.turbine, pitch)
                 fe, st, sec = rotate_blade(fe, st, sec, R, root, self.rotor.hub_center, self.rotor.shaft_axis)
-            mu = blade_mu(self.turbine) if self.options.damping == "file" else None
-            self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis,
-                                           damping=blade_damping_matrix(fe, mu, K=st.K))
+            if shell:
+                D = self._shell_damping0
+                D = D.rotated(R) if D is not None and R is not None else D
+            else:
+                D = blade_damping_matrix(fe, mu, K=st.K)
+            self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis, damping=D)
         return self._blades[key]
 
     def _blade0(self):
@@ -265,7 +274,9 @@ class OperationalModel:
                                "linearized about the deflected shape (co-rotational beam, all stress resultants)")
                               if o.structure == "deflected" else "undeformed axis, axial-force geometric stiffness"),
                 "induction": f"steady BEM ({o.high_thrust} thrust-induction relation)" if o.induction else "none",
-                "blade_damping": "none" if mu is None else "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
+                "blade_damping": "none" if mu is None else (
+                    "modal, each fixed-interface mode by its direction shares of " if o.model == "shell" else
+                    "") + "stiffness-proportional mu " + ", ".join(f"{x:.3g}" for x in mu),
                 "tower_damping": ("modal: fore-aft " + ", ".join(f"{100 * x:.2g} %" for x in fa) + "; side-side "
                                   + ", ".join(f"{100 * x:.2g} %" for x in ss)) if (fa.size or ss.size) else "none",
                 "blade_basis": "full order" if o.basis_modes is None else f"{o.basis_modes} fixed-interface modes"
