@@ -169,10 +169,9 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
         raise InputError("model", "beam", "a shell blade (beam blades: windflutter.system.deflected)")
     omega = float(omega)
     if steady is not None:
-        u, strip_loads, sections = np.asarray(steady.u, float), np.asarray(steady.strip_loads, float), steady.sections
+        u, sections = np.asarray(steady.u, float), steady.sections
     else:
-        u = rb.unit_prestress()[2] * omega**2
-        strip_loads, sections = np.zeros((rb.sections.n_sections, 6)), rb.sections
+        u, sections = rb.unit_prestress()[2] * omega**2, rb.sections
     defl = deflection(rb.sections, strip_motion(rb.sections, u), finite=True)
     fixed = np.array(sorted(n for n, c in fe.spc.items() if len(c) == 6), dtype=np.int64)
     x, Rn = carried_nodes(fe.nodes, station_frames(rb.sections, defl), fixed)
