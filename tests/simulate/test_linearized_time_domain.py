@@ -42,7 +42,7 @@ def test_strip_loads_are_the_virtual_work_of_the_strip_kinematics():
     strip forces F_j equal the gradient of their virtual work sum_j F_j . x_j(q), x_j the strip
     points carried by the nodes (``BladeAero.strips``, central differences in the nodal
     translations and spins): 1e-6 of the largest load.  With the steady configuration's lever
-    arms (the former transfer) the moments are off by (R_n - R_n,steady) a x F (a 20 % error here).
+    arms (the former transfer) the moments are off by (R_n - R_n,steady) a x F (more than 5 %).
     And strip moments go to the nodes with the strips' weights (their sum is kept)."""
     dyn = wind_blade_dynamics(_turbine("nrel5mw"), 8.0, 9.0, n_span=6)
     aero, fe = dyn.external, dyn.fe
