@@ -41,3 +41,23 @@ def assert_checks_agree(res) -> None:
         assert c.residual < 1e-2 and c.sigma_spread < 0.2 * abs(c.sigma_sim)
         assert abs(c.zeta_sim - c.zeta_eig) <= max(0.1 * abs(c.zeta_eig), 2e-3)
         assert c.frequency_sim_hz == pytest.approx(c.frequency_eig_hz, rel=5e-3)
+
+
+def method_p_blade_modes(turbine, wind, n_span, **options):
+    """Method p's rotating-frame eigenvalues of the blade modes on a clamped hub (``model.part:
+    rotor``, no structural damping): the mean of each BW/FW pair, ``lambda_BW,FW = lambda_r -+ i
+    Omega``; ``({(family, order): eigenvalue}, rotor speed (RPM), pitch (deg))``.  ``options``:
+    more config overrides (e.g. ``solver={"reduction": "none"}``)."""
+    from windflutter import api
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        res = api.campbell(turbine, [wind], model={"part": "rotor", "n_aero_sections": n_span},
+                           damping={"model": "none"}, **options)
+    p = res.points[0]
+    pairs = {}
+    for m in p.modes:
+        if m.whirl in ("BW", "FW"):
+            pairs.setdefault((m.family, m.order), {})[m.whirl] = complex(m.eigenvalue)
+    lam = {k: 0.5 * (v["BW"] + v["FW"]) for k, v in pairs.items() if len(v) == 2}
+    return lam, p.rotor_speed_rpm, p.pitch_deg

@@ -21,6 +21,7 @@ import pytest
 
 from windflutter import api
 from windflutter.simulate.blade import blade_in_wind
+from method_p_reference import method_p_blade_modes
 
 
 @pytest.fixture(scope="module")
@@ -28,21 +29,6 @@ def nrel5mw():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         return api.load_turbine("nrel5mw")
-
-
-def method_p_blade_modes(turbine, wind, n_span):
-    """Rotating-frame eigenvalues of the blade modes (mean of each BW/FW pair), rotor speed, pitch."""
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        res = api.campbell(turbine, [wind], model={"part": "rotor", "n_aero_sections": n_span},
-                           damping={"model": "none"})
-    p = res.points[0]
-    pairs = {}
-    for m in p.modes:
-        if m.whirl in ("BW", "FW"):
-            pairs.setdefault((m.family, m.order), {})[m.whirl] = complex(m.eigenvalue)
-    lam = {k: 0.5 * (v["BW"] + v["FW"]) for k, v in pairs.items() if len(v) == 2}
-    return lam, p.rotor_speed_rpm, p.pitch_deg
 
 
 def _compare(turbine, wind, n_span, duration, keys):

@@ -130,6 +130,24 @@ def test_short_run(nrel5mw):
     assert ch.shape[1] <= 6 + 3 * 6 * len(run.nodes) and np.allclose(np.abs(ch).max(axis=0), 1.0)
 
 
+
+def test_whole_turbine_edge_damping_short_record(nrel5mw):
+    """The reduced operating-damping check of the default suite: NREL 5 MW at 8 m/s (8.97 RPM), 6
+    elements, the whole turbine started in method p's 1st edge BW (``kick_mode``), a 6 s record
+    (5 periods): the identified mode carries > 0.9 of the response, its growth rate is the same on
+    both halves of the record (spread < 1 % of it), its damping ratio within 10 % or 0.2 points of
+    method p's and its frequency within 0.5 % (issue 30's band).  Measured: 0.645 % against 0.720 %
+    (the 30 s, 10-element runs: 0.650 % against 0.717 %, so the short record costs nothing here),
+    0.8800 against 0.8812 Hz, share 0.99, spread 2e-3 of sigma.  4 elements and 4 s are not
+    enough (0.31 % against 0.44 %, fit residual 0.09)."""
+    ref, rpm, pitch = method_p_in_wind(nrel5mw, 8.0, 6)
+    run = simulate_turbine(nrel5mw, rpm, 8.0, pitch_deg=pitch, duration=6.0, n_span=6, f_max_hz=2.5,
+                           kick_mode="1st edge BW")
+    lam = ref["1st edge BW"]
+    m = min(run.modes, key=lambda x: abs(x.lam - lam))
+    assert m.share > 0.9 and m.sigma_spread < 1e-2 * abs(m.sigma)
+    assert_identified_like(run, ref, ("1st edge BW",))
+
 @pytest.mark.slow
 @pytest.mark.parametrize("rpm", [0.0, 12.1])
 def test_turbine_frequencies_in_vacuum_fine(nrel5mw, rpm):

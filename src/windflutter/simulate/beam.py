@@ -102,6 +102,10 @@ class SpinningBeams:
         #: ~1e-15 of the model size in displacement
         self.atol = 1e-12 * max(float(np.ptp(np.asarray(fe.nodes, float), axis=0).max()), 1.0)
 
+    def set_outputs(self, outputs: Callable | None) -> None:
+        """The recorded channels: ``outputs(config, u, udot) -> (k,)`` (None: all displacements)."""
+        self._outputs = outputs
+
     def configuration(self, q) -> BeamConfiguration:
         return displaced(self.base, np.asarray(self.T @ q).reshape(-1))
 

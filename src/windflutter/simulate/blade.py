@@ -31,7 +31,8 @@ from windflutter.structure.assembly import assemble
 from windflutter.structure.corotational import beam_tangent, deformed_model
 from windflutter.units import DEG, RPM
 
-__all__ = ["BladeRun", "blade_in_vacuum", "blade_in_wind", "corrected_modes", "blade_model", "wind_setup"]
+__all__ = ["BladeRun", "blade_in_vacuum", "blade_in_wind", "corrected_modes", "blade_model", "wind_setup",
+           "wind_blade_dynamics"]
 
 
 @dataclass
@@ -133,26 +134,10 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
     own equilibrium (found from the co-rotational steady state) and is kicked as in
     :func:`blade_in_vacuum`.  ``pitch_deg`` defaults to the operating curve's at the wind speed."""
 
-    if not (np.isfinite(wind_speed) and wind_speed > 0):
-        raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s)")
-    if not (np.isfinite(rpm) and rpm > 0):
-        raise InputError("rpm", rpm, "a positive rotor speed (rev/min)")
-    setup = wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
-    fe, struct, sections, apex, axis, st = setup
-
-    omega = rpm * RPM
-    inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
-    circ = make_circulation(circulation)
-    aero = BladeAero(fe, sections, st.configuration, wind_speed, omega, axis, apex, axis, air_density,
-                     (st.bem.a, st.bem.ap), st.sections.origin, circ)
-    base = spin_equilibrium(fe, struct.T, inertia, start=st.configuration, external=aero.static_loads)
-    M = assemble(deformed_model(fe, base)).M + aero.mass_added
+    dyn = wind_blade_dynamics(turbine, wind_speed, rpm, pitch_deg, n_span, circulation, air_density)
+    fe, aero, base = dyn.fe, dyn.external, dyn.base
     nodes = np.unique(np.linspace(1, fe.n_nodes - 1, n_record).astype(int))
-
-    def outputs(cfg, u, ud):
-        return u.reshape(-1, 6)[nodes].reshape(-1)
-
-    dyn = SpinningBeams(fe, struct.T, M, base, inertia, external=aero, n_states=aero.ns * aero.n_lag, outputs=outputs)
+    dyn.set_outputs(lambda cfg, u, ud: u.reshape(-1, 6)[nodes].reshape(-1))
     dt = step_for_frequency(f_max_hz, points_per_period)
     q0, v0 = _kick(dyn, fe, nodes, amplitude)
     tr = integrate(dyn, q0, v0, aero.steady_lags(base), dt, duration, rho_inf=rho_inf, progress=progress)
@@ -160,6 +145,25 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
     ident = identify(tr.t, y, sv_tol=1e-7)
     return BladeRun(rpm=float(rpm), nodes=nodes, trajectory=tr, identification=ident,
                     modes=corrected_modes(ident, dt, rho_inf))
+
+
+def wind_blade_dynamics(turbine, wind_speed: float, rpm: float, pitch_deg: float | None = None, n_span: int = 30,
+                        circulation: str = "jones", air_density: float = 1.225) -> SpinningBeams:
+    """The equations of :func:`blade_in_wind` (one blade on a rigid hub in the wind, strips with lag
+    states, frozen BEM induction) about the blade's own equilibrium: a :class:`SpinningBeams` whose
+    ``external`` is the :class:`BladeAero` and whose ``base`` the equilibrium."""
+    if not (np.isfinite(wind_speed) and wind_speed > 0):
+        raise InputError("wind_speed", wind_speed, "a positive wind speed (m/s)")
+    if not (np.isfinite(rpm) and rpm > 0):
+        raise InputError("rpm", rpm, "a positive rotor speed (rev/min)")
+    fe, struct, sections, apex, axis, st = wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
+    omega = rpm * RPM
+    inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
+    aero = BladeAero(fe, sections, st.configuration, wind_speed, omega, axis, apex, axis, air_density,
+                     (st.bem.a, st.bem.ap), st.sections.origin, make_circulation(circulation))
+    base = spin_equilibrium(fe, struct.T, inertia, start=st.configuration, external=aero.static_loads)
+    M = assemble(deformed_model(fe, base)).M + aero.mass_added
+    return SpinningBeams(fe, struct.T, M, base, inertia, external=aero, n_states=aero.ns * aero.n_lag)
 
 
 def wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density):
