@@ -215,7 +215,7 @@ def integrate(model, q0, v0, z0, dt: float, duration: float, rho_inf: float = 0.
     s = AlphaScheme(rho_inf)
     atol = max(float(atol), float(getattr(model, "atol", 0.0)))
     q, v, z = (np.array(x, float).reshape(-1) for x in (q0, v0, z0))
-    n, m = q.size, z.size
+    n = q.size
     stepper = _Stepper(model, s, dt, fd_step)
     stepper.built = 0.0
     #: a mass that turns with time: the iteration matrix renewed at the model's interval (s)
