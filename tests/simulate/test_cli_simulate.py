@@ -20,6 +20,7 @@ from windflutter.cli import main
     (["simulate", "nrel5mw", "--rpm", "10", "--part", "blade", "--kick", "1st edge BW"], ["--kick", "--part blade"]),
     (["simulate", "nrel5mw", "--wind-speed", "8", "--confirm-onset", "--bracket", "0.7"], ["--bracket"]),
     (["simulate", "nrel5mw", "--rpm", "10", "--dynamic-stall"], ["dynamic_stall", "wind speed"]),
+    (["simulate", "nrel5mw", "--wind-speed", "8", "--confirm-onset", "--dynamic-stall"], ["--dynamic-stall"]),
 ])
 def test_bad_input_is_one_line(argv, words, capsys):
     assert main(argv) == 2

@@ -91,6 +91,9 @@ def run(args: argparse.Namespace) -> int:
 
     v = command_values(args, FLAGS)
     if args.confirm_onset:
+        if args.dynamic_stall:
+            raise InputError("--dynamic-stall", True, "not with --confirm-onset (its reference, method p, runs "
+                             "without dynamic stall)")
         return _confirm(args, v)
     if v["rpm"] is None:
         raise InputError("--rpm", None, "a rotor speed (RPM)")
