@@ -19,6 +19,8 @@ from windflutter.cli import main
     (["simulate", "nrel5mw", "--rpm", "10", "--part", "tower"], ["--part"]),
     (["simulate", "nrel5mw", "--rpm", "10", "--part", "blade", "--kick", "1st edge BW"], ["--kick", "--part blade"]),
     (["simulate", "nrel5mw", "--wind-speed", "8", "--confirm-onset", "--bracket", "0.7"], ["--bracket"]),
+    (["simulate", "nrel5mw", "--rpm", "10", "--dynamic-stall"], ["dynamic_stall", "wind speed"]),
+    (["simulate", "nrel5mw", "--wind-speed", "8", "--confirm-onset", "--dynamic-stall"], ["--dynamic-stall"]),
 ])
 def test_bad_input_is_one_line(argv, words, capsys):
     assert main(argv) == 2
@@ -39,6 +41,16 @@ def test_short_run_json_and_csv(tmp_path, capsys):
     # modes above --f-max are in the response but under-resolved: the fit residual says so (~0.08)
     assert not d["interrupted"] and d["residual"] < 0.2
     assert out.read_text().startswith("t,node")
+
+
+def test_dynamic_stall_run_says_so(capsys):
+    """One blade in the wind with --dynamic-stall (4 elements, 0.3 s): it runs and its line of what
+    is included names dynamic stall (the model itself: test_dynamic_stall_time_domain.py)."""
+    rc = main(["simulate", "nrel5mw", "--part", "blade", "--rpm", "12.1", "--wind-speed", "20", "--n-span", "4",
+               "--duration", "0.3", "--f-max", "5", "--json", "--dynamic-stall"])
+    assert rc == 0
+    d = json.loads(capsys.readouterr().out)
+    assert "dynamic stall" in d["included"] and not d["interrupted"]
 
 
 def test_onset_plot(tmp_path):

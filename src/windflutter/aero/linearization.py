@@ -56,7 +56,7 @@ from windflutter.aero.sections import AeroSections, Polar
 from windflutter.errors import InputError
 
 __all__ = ["Separation", "StripLinearization", "polar_linearization", "flat_plate_linearization",
-           "centred_slope", "kirchhoff_separation"]
+           "centred_slope", "kirchhoff_separation", "kirchhoff_curves"]
 
 #: Default half-width of the centred difference of the polar tables (rad): 1 degree.
 SLOPE_STEP = np.radians(1.0)
@@ -134,16 +134,18 @@ def _check_polar(p: Polar, k: int) -> tuple[np.ndarray, ...]:
     return (a, *cols)
 
 
-def kirchhoff_separation(polar: Polar, alpha: np.ndarray, delta: float = SLOPE_STEP) -> Separation:
-    """Steady separation state of one polar at angles ``alpha`` (rad), see the module docstring."""
+def kirchhoff_curves(polar: Polar):
+    """``curves(alpha) -> (f_st, Cl_fs, Cl_att)`` of one polar at angles ``alpha`` (rad): the steady
+    separation point, the fully separated lift and the attached (inviscid) lift ``Cl_a (alpha -
+    alpha_z)`` of the Kirchhoff decomposition (module docstring), so that ``Cl = f_st Cl_att + (1 -
+    f_st) Cl_fs``; None for a polar without lift slope (cylinder: nothing separates)."""
     fit = fit_polar(polar)
     a, cl = np.asarray(polar.alpha, float), np.asarray(polar.cl, float)
-    alpha = np.asarray(alpha, float)
-    if fit.cl_alpha <= 0:  # no lift slope (cylinder): nothing separates, no lift lag
-        z = np.zeros_like(alpha)
-        return Separation(f=z, df=z, dcl_df=z)
+    if fit.cl_alpha <= 0:
+        return None
 
-    def f_and_fs(x):
+    def curves(x):
+        x = np.asarray(x, float)
         c = np.interp(x, a, cl)
         inv = fit.cl_alpha * (x - fit.alpha_zero_lift)
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -153,8 +155,18 @@ def kirchhoff_separation(polar: Polar, alpha: np.ndarray, delta: float = SLOPE_S
         fs = np.where(one, 0.5 * c, (c - inv * f) / np.where(one, 1.0, 1.0 - f))
         return f, fs, inv
 
-    f, fs, inv = f_and_fs(alpha)
-    df = (f_and_fs(alpha + delta)[0] - f_and_fs(alpha - delta)[0]) / (2.0 * delta)
+    return curves
+
+
+def kirchhoff_separation(polar: Polar, alpha: np.ndarray, delta: float = SLOPE_STEP) -> Separation:
+    """Steady separation state of one polar at angles ``alpha`` (rad), see the module docstring."""
+    alpha = np.asarray(alpha, float)
+    curves = kirchhoff_curves(polar)
+    if curves is None:  # no lift slope (cylinder): nothing separates, no lift lag
+        z = np.zeros_like(alpha)
+        return Separation(f=z, df=z, dcl_df=z)
+    f, fs, inv = curves(alpha)
+    df = (curves(alpha + delta)[0] - curves(alpha - delta)[0]) / (2.0 * delta)
     return Separation(f=f, df=df, dcl_df=inv - fs)
 
 

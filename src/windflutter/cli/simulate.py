@@ -63,6 +63,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                         "turbine, --part blade: the rotor on a clamped hub against one blade) at --wind-speed, "
                         "simulated at the operating speed and at 0.97x and 1.03x its rotor speed (--bracket): "
                         "decay/growth beside the eigenvalue's (--rpm not used)")
+    p.add_argument("--dynamic-stall", action="store_true",
+                   help="Oye's dynamic stall: a separation-point state per strip on the Kirchhoff decomposition "
+                        "of its polar (the nonlinear form of method p's solver.dynamic_stall)")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.add_argument("--output", metavar="FILE.csv", help="write the recorded response (time, node displacements)")
     p.add_argument("--plot", metavar="FILE.png", help="with --confirm-onset: the tip response at each rotor speed")
@@ -88,6 +91,9 @@ def run(args: argparse.Namespace) -> int:
 
     v = command_values(args, FLAGS)
     if args.confirm_onset:
+        if args.dynamic_stall:
+            raise InputError("--dynamic-stall", True, "not with --confirm-onset (its reference, method p, runs "
+                             "without dynamic stall)")
         return _confirm(args, v)
     if v["rpm"] is None:
         raise InputError("--rpm", None, "a rotor speed (RPM)")
@@ -96,20 +102,21 @@ def run(args: argparse.Namespace) -> int:
     turbine = load_turbine(args.turbine)
     res = simulate(turbine, v["rpm"], v["wind_speed"], duration=v["duration"], pitch_deg=v["pitch"],
                    n_span=v["n_span"], f_max_hz=v["f_max"], circulation=v["circulation"], part=v["part"],
-                   damping=v["damping"], kick=args.kick, progress=None if args.json else _progress(args.quiet))
+                   damping=v["damping"], kick=args.kick, progress=None if args.json else _progress(args.quiet),
+                   dynamic_stall=args.dynamic_stall)
     tr = res.trajectory
     if args.output:
         _write_csv(args.output, res, v["part"])
     modes = [{"frequency_hz": m.frequency_hz, "damping_ratio": m.zeta, "share": m.share,
               "sigma_spread": m.sigma_spread} for m in res.modes if m.frequency_hz <= v["f_max"]]
     if args.json:
-        print(json.dumps({"included": included(v["part"], v["damping"]), "part": v["part"], "rpm": v["rpm"],
+        print(json.dumps({"included": included(v["part"], v["damping"], args.dynamic_stall), "part": v["part"], "rpm": v["rpm"],
                           "wind_speed": v["wind_speed"],
                           "simulated_s": float(tr.t[-1]), "interrupted": tr.interrupted,
                           "residual": res.identification.residual, "modes": modes,
                           "kicked": _kicked(res)}))
         return 0
-    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {included(v['part'], v['damping'])}")
+    print(f"{turbine.name}: {v['rpm']:g} rpm, {v['wind_speed']:g} m/s; {included(v['part'], v['damping'], args.dynamic_stall)}")
     print(f"simulated {tr.t[-1]:.2f} s in {tr.wall_time:.0f} s, step {tr.info['dt'] * 1e3:.2f} ms"
           + (" (INTERRUPTED: identified from the partial record)" if tr.interrupted else ""))
     print(f"identification residual {res.identification.residual:.2e} (matrix pencil; spread = growth-rate "

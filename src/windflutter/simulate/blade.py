@@ -127,14 +127,15 @@ def blade_in_vacuum(turbine, rpm: float, duration: float = 8.0, n_span: int = 30
 def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0, pitch_deg: float | None = None,
                   n_span: int = 30, f_max_hz: float = 8.0, points_per_period: float = 30.0, rho_inf: float = 0.9,
                   amplitude: float = 1e-3, n_record: int = 6, circulation: str = "jones", air_density: float = 1.225,
-                  progress=None) -> BladeRun:
+                  progress=None, dynamic_stall: bool = False) -> BladeRun:
     """Free response of one blade on a rigid hub spinning at ``rpm`` in the wind ``wind_speed``
     (m/s, along the shaft as in method p), strip aerodynamics with lag states and the steady
     state's BEM induction frozen (:mod:`windflutter.simulate.rotor_aero`).  The blade starts at its
     own equilibrium (found from the co-rotational steady state) and is kicked as in
-    :func:`blade_in_vacuum`.  ``pitch_deg`` defaults to the operating curve's at the wind speed."""
+    :func:`blade_in_vacuum`.  ``pitch_deg`` defaults to the operating curve's at the wind speed;
+    ``dynamic_stall``: Oye's separation-point state per strip (:mod:`windflutter.simulate.strips`)."""
 
-    dyn = wind_blade_dynamics(turbine, wind_speed, rpm, pitch_deg, n_span, circulation, air_density)
+    dyn = wind_blade_dynamics(turbine, wind_speed, rpm, pitch_deg, n_span, circulation, air_density, dynamic_stall)
     fe, aero, base = dyn.fe, dyn.external, dyn.base
     nodes = np.unique(np.linspace(1, fe.n_nodes - 1, n_record).astype(int))
     dyn.set_outputs(lambda cfg, u, ud: u.reshape(-1, 6)[nodes].reshape(-1))
@@ -148,7 +149,8 @@ def blade_in_wind(turbine, wind_speed: float, rpm: float, duration: float = 20.0
 
 
 def wind_blade_dynamics(turbine, wind_speed: float, rpm: float, pitch_deg: float | None = None, n_span: int = 30,
-                        circulation: str = "jones", air_density: float = 1.225) -> SpinningBeams:
+                        circulation: str = "jones", air_density: float = 1.225,
+                        dynamic_stall: bool = False) -> SpinningBeams:
     """The equations of :func:`blade_in_wind` (one blade on a rigid hub in the wind, strips with lag
     states, frozen BEM induction) about the blade's own equilibrium: a :class:`SpinningBeams` whose
     ``external`` is the :class:`BladeAero` and whose ``base`` the equilibrium."""
@@ -160,7 +162,8 @@ def wind_blade_dynamics(turbine, wind_speed: float, rpm: float, pitch_deg: float
     omega = rpm * RPM
     inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
     aero = BladeAero(fe, sections, st.configuration, wind_speed, omega, axis, apex, axis, air_density,
-                     (st.bem.a, st.bem.ap), st.sections.origin, make_circulation(circulation))
+                     (st.bem.a, st.bem.ap), st.sections.origin, make_circulation(circulation),
+                     dynamic_stall=dynamic_stall)
     base = spin_equilibrium(fe, struct.T, inertia, start=st.configuration, external=aero.static_loads)
     M = assemble(deformed_model(fe, base)).M + aero.mass_added
     return SpinningBeams(fe, struct.T, M, base, inertia, external=aero, n_states=aero.ns * aero.n_lag)

@@ -66,8 +66,10 @@ def linearized_system(dyn, step: float = 1e-6) -> Linearization:
 
 
 def linearize_blade_in_wind(turbine, wind_speed: float, rpm: float, pitch_deg: float | None = None, n_span: int = 30,
-                            circulation: str = "jones", air_density: float = 1.225) -> Linearization:
+                            circulation: str = "jones", air_density: float = 1.225,
+                            dynamic_stall: bool = False) -> Linearization:
     """The equations of :func:`~windflutter.simulate.blade.blade_in_wind` linearized about the
-    blade's equilibrium (module docstring): its rotating-frame eigenvalues."""
-    dyn = wind_blade_dynamics(turbine, wind_speed, rpm, pitch_deg, n_span, circulation, air_density)
+    blade's equilibrium (module docstring): its rotating-frame eigenvalues (``dynamic_stall``: with
+    Oye's separation point per strip, the lags' settled values include it)."""
+    dyn = wind_blade_dynamics(turbine, wind_speed, rpm, pitch_deg, n_span, circulation, air_density, dynamic_stall)
     return linearized_system(dyn)

@@ -25,13 +25,16 @@ elements, put the 1st edge frequency 1 % above method p's (docs/notes/iea22mw_ed
 velocities are carried by the steady configuration's motion map (second order).  The polar
 is the strips' table, linearly interpolated (:func:`windflutter.aero.strip.mean_coefficients`).
 The apparent mass (Theodorsen's, on the plunge along ``n_j`` and the pitch) joins the mass
-matrix; its velocity terms are evaluated with the current relative speed.
+matrix; its velocity terms are evaluated with the current relative speed.  With ``dynamic_stall``
+each strip has one more state, Oye's separation point (:mod:`windflutter.simulate.strips`), on the
+Kirchhoff decomposition of its polar (:class:`StallCurves`).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
+from windflutter.aero.linearization import kirchhoff_curves
 from windflutter.aero.strip import apparent_mass, mean_coefficients
 from windflutter.aero.unsteady import Circulation
 from windflutter.errors import InputError
@@ -80,6 +83,22 @@ class PolarTable:
         return v[0], v[1], v[2]
 
 
+class StallCurves:
+    """``(f_st, Cl_fs, Cl_att)`` of every strip at its angle (:func:`kirchhoff_curves` of its
+    polar, one call per airfoil); zeros for a polar without lift slope (as method p: no lag)."""
+
+    def __init__(self, sections):
+        self.idx = np.asarray(sections.airfoil, dtype=np.int64)
+        self.groups = [(self.idx == k, kirchhoff_curves(sections.polars[int(k)])) for k in np.unique(self.idx)]
+
+    def __call__(self, alpha):
+        out = np.zeros((3, self.idx.size))
+        for sel, curves in self.groups:
+            if curves is not None:
+                out[:, sel] = curves(alpha[sel])
+        return out[0], out[1], out[2]
+
+
 class BladeAero:
     """The strip loads of a blade (module docstring).
 
@@ -90,14 +109,23 @@ class BladeAero:
     wind_speed (m/s), omega (rad/s), axis (unit), apex (3,), wind_direction (unit), rho.
     induction : ``(a, a')`` per strip (frozen).  x_steady : (ns, 3) strip points of the steady state.
     circ : the lag realisation.  apparent : factor on the apparent mass (1 = flat plate).
+    dynamic_stall : Oye's separation-point state per strip (polar tables needed), ``separation_time``
+        its ``T_f`` (units of ``b / |W|``, method p's 6).  ``n_lag``: the states per strip (the
+        circulation's lags, plus the separation point last).
     """
 
     def __init__(self, fe, sections, base, wind_speed, omega, axis, apex, wind_direction, rho, induction, x_steady,
-                 circ: Circulation, apparent: float = 1.0):
+                 circ: Circulation, apparent: float = 1.0, dynamic_stall: bool = False, separation_time: float = 6.0):
         self.fe, self.sections, self.circ = fe, sections, circ
         ns = sections.n_sections
         self._table = PolarTable(sections) if sections.polars else None
-        self.ns, self.n_lag = ns, circ.n_lag
+        if dynamic_stall and self._table is None:
+            raise InputError("dynamic_stall", True, "polar tables for the separation point")
+        if not (np.isfinite(separation_time) and separation_time > 0):
+            raise InputError("separation_time", separation_time, "a positive T_f (semi-chords)")
+        self.stall = StallCurves(sections) if dynamic_stall else None
+        self.separation_time = float(separation_time)
+        self.ns, self.n_lag = ns, circ.n_lag + (1 if dynamic_stall else 0)
         self.width = np.asarray(sections.width, float)
         b = 0.5 * np.asarray(sections.chord, float)
         self.geo = StripGeometry(b=b, a=np.asarray(sections.elastic_axis, float), rho=float(rho))
@@ -156,8 +184,11 @@ class BladeAero:
 
     def steady_lags(self, config):
         """(ns * n_lag,) lag states settled at the configuration at rest (``z_j = alpha34``)."""
-        _, _, _, aE = self._evaluate(config, np.zeros(self.fe.n_dof), np.zeros((self.ns, self.n_lag)), settled=True)
-        return np.repeat(aE, self.n_lag)
+        _, _, _, aE = self._evaluate(config, np.zeros(self.fe.n_dof), None, settled=True)
+        z = np.repeat(aE[:, None], self.n_lag, axis=1)
+        if self.stall is not None:
+            z[:, -1] = self.stall(aE)[0]
+        return z.reshape(-1)
 
     def _evaluate(self, config, udot, z, settled=False):
         origin, Rs = self.strips(config)
@@ -169,10 +200,13 @@ class BladeAero:
         V2 = np.stack([np.sum(W3 * t, 1), np.sum(W3 * n, 1)], axis=1)
         v2 = np.stack([np.sum(vs[:, :3] * t, 1), np.sum(vs[:, :3] * n, 1)], axis=1)
         adot = np.sum(vs[:, 3:] * s, axis=1)
-        if settled:  # z = alpha34 at rest
+        if settled:  # z = alpha34 at rest (= alpha_E), the separation point at its steady value there
             phi = np.arctan2(V2[:, 1], V2[:, 0])
             z = np.repeat(phi[:, None], self.n_lag, axis=1)
-        F, M, zdot, aE = strip_forces(self.geo, self.circ, self._coefficients, V2, v2, np.zeros(self.ns), adot, z)
+            if self.stall is not None:
+                z[:, -1] = self.stall(self.circ.A0 * phi)[0]
+        F, M, zdot, aE = strip_forces(self.geo, self.circ, self._coefficients, V2, v2, np.zeros(self.ns), adot, z,
+                                      stall=self.stall, separation_time=self.separation_time)
         _, Da = apparent_mass(self.geo.b, self.geo.a, np.hypot(V2[:, 0], V2[:, 1]), self.geo.rho, self.apparent)
         F = F.copy()
         F[:, 1] += Da[:, 0, 1] * adot

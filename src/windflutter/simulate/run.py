@@ -14,9 +14,11 @@ What is simulated (``part``):
 
 Both: co-rotational beams (the blades' own motion kept whole; the hub's small motion to first
 order in the blades' kinematics), strip aerodynamics with lag states (Jones' or the Roger fit's)
-and the BEM induction of the steady state frozen.  Structural damping: none, or (the turbine)
-the files' blade and tower damping as method p defines it.  Not included: gravity, dynamic
-inflow, dynamic stall, a controller.
+and the BEM induction of the steady state frozen; with ``dynamic_stall``, Oye's separation point
+per strip on the Kirchhoff decomposition of its polar (the nonlinear form of method p's
+``solver.dynamic_stall``, :mod:`windflutter.simulate.strips`).  Structural damping: none, or (the
+turbine) the files' blade and tower damping as method p defines it.  Not included: gravity,
+dynamic inflow, a controller.
 """
 
 from __future__ import annotations
@@ -42,18 +44,20 @@ LEFT_OUT = {"turbine": ("gravity", "dynamic inflow"),
             "blade": ("tower", "drivetrain", "other blades", "gravity", "dynamic inflow")}
 
 
-def included(part: str, damping: str = "none") -> str:
+def included(part: str, damping: str = "none", dynamic_stall: bool = False) -> str:
     """The line on what the simulation of ``part`` holds and leaves out, with the structural damping
-    it runs with (``file``: the turbine files' blade and tower damping)."""
+    it runs with (``file``: the turbine files' blade and tower damping) and dynamic stall if on."""
     out = list(LEFT_OUT[part]) + (["structural damping"] if damping != "file" else [])
     line = f"{INCLUDED[part]}; no {', '.join(out[:-1])} or {out[-1]}"
-    return line + ("; with the turbine files' structural damping" if damping == "file" else "")
+    line += "; with the turbine files' structural damping" if damping == "file" else ""
+    return line + ("; with Oye's dynamic stall (separation-point lag)" if dynamic_stall else "")
 
 
 def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 20.0, pitch_deg: float | None = None,
              n_span: int = 30, f_max_hz: float = 8.0, points_per_period: float = 30.0, rho_inf: float = 0.9,
              amplitude: float | None = None, circulation: str = "jones", air_density: float = 1.225,
-             part: str = "turbine", damping: str = "none", kick: str | None = None, progress=None):
+             part: str = "turbine", damping: str = "none", kick: str | None = None, progress=None,
+             dynamic_stall: bool = False):
     """Free response of a turbine's blade (module docstring) kicked by impulses, and the
     frequency and damping of its modes identified from it.
 
@@ -71,7 +75,8 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         modes at the point (``"1st edge BW"``; ``part="turbine"``): the run starts in that mode,
         its largest translation ``amplitude`` (:mod:`windflutter.simulate.mode_kick`); None: the
         default kick (unit loads at blade 1's recorded nodes and the tower top).
-        progress : ``progress(step, n_steps, t)``.
+        progress : ``progress(step, n_steps, t)``.  dynamic_stall : Oye's separation-point lag
+        per strip (in the wind; method p's ``solver.dynamic_stall``, its ``T_f = 6``).
 
     Returns
     -------
@@ -97,6 +102,10 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         raise InputError("damping", damping, "none, or file with part turbine")
     if kick is not None and (part != "turbine" or not isinstance(kick, str) or not kick.strip()):
         raise InputError("kick", kick, "the name of one of method p's modes, with part turbine")
+    if not isinstance(dynamic_stall, (bool, np.bool_)):
+        raise InputError("dynamic_stall", dynamic_stall, "true or false")
+    if dynamic_stall and wind_speed == 0.0:
+        raise InputError("dynamic_stall", True, "a wind speed above 0 (the strips' separation points)")
     if wind_speed > 0.0 and rpm == 0.0:
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     if part == "turbine":
@@ -104,11 +113,12 @@ def simulate(turbine, rpm: float, wind_speed: float = 0.0, *, duration: float = 
         return simulate_turbine(turbine, rpm, wind_speed, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
                                 f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,
                                 amplitude=amplitude, circulation=circulation, air_density=air_density,
-                                damping=damping, kick_mode=kick, progress=progress)
+                                damping=damping, kick_mode=kick, progress=progress, dynamic_stall=dynamic_stall)
     if wind_speed == 0.0:
         return blade_in_vacuum(turbine, rpm, duration=duration, n_span=int(n_span), f_max_hz=f_max_hz,
                                points_per_period=points_per_period, rho_inf=rho_inf, amplitude=amplitude,
                                progress=progress)
     return blade_in_wind(turbine, wind_speed, rpm, duration=duration, pitch_deg=pitch_deg, n_span=int(n_span),
                          f_max_hz=f_max_hz, points_per_period=points_per_period, rho_inf=rho_inf,
-                         amplitude=amplitude, circulation=circulation, air_density=air_density, progress=progress)
+                         amplitude=amplitude, circulation=circulation, air_density=air_density, progress=progress,
+                         dynamic_stall=dynamic_stall)

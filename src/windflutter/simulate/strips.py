@@ -17,6 +17,21 @@ nose-up about the elastic axis, which lies ``a b`` aft of mid-chord)::
     D = q c Cd(alpha_E)   along W
     M = q c^2 Cm(alpha_E) + the moment of L and D at the quarter chord (d14 = b (a + 1/2) ahead)
 
+With dynamic stall (``stall`` given: Oye's separation-point lag, the nonlinear form of
+:mod:`windflutter.aero.unsteady`'s linearized one) one more state per strip, the separation point
+``f`` (the last column of ``z``), and the lift blended between the attached and fully separated
+curves of the Kirchhoff decomposition (:func:`windflutter.aero.linearization.kirchhoff_curves`:
+``f_st``, ``Cl_fs``, ``Cl_att`` at ``alpha_E``)::
+
+    f' = (f_st(alpha_E) - f) / tau,   tau = T_f b / |W|
+    Cl = Cl(alpha_E) + (f - f_st(alpha_E)) (Cl_att(alpha_E) - Cl_fs(alpha_E))
+
+which is ``f Cl_att + (1 - f) Cl_fs`` wherever the decomposition holds (``f_st < 1``) and the
+polar's own ``Cl`` at every angle when ``f = f_st`` (steady state).  Linearized about a steady state
+it is method p's model: the lift per ``alpha_E`` at fixed ``f`` is ``dCl/dalpha - dCl/df f_st'``,
+the lift per ``f`` is ``dCl/df = Cl_att - Cl_fs`` (acting like the rest of the lift), and ``f' =
+(U / (T_f b)) (f_st' alpha_E - f)``.  Drag and moment stay the polar's at ``alpha_E``.
+
 The non-circulatory (apparent-mass) forces are linear by definition (Theodorsen): the caller
 adds :func:`windflutter.aero.strip.apparent_mass` on the section's (h, alpha, s) motion.
 """
@@ -54,7 +69,8 @@ def flat_plate(slope: float = 2.0 * np.pi) -> Callable:
     return coefficients
 
 
-def strip_forces(geo: StripGeometry, circ: Circulation, coefficients: Callable, V_air, v_ea, alpha, alpha_dot, z):
+def strip_forces(geo: StripGeometry, circ: Circulation, coefficients: Callable, V_air, v_ea, alpha, alpha_dot, z,
+                 stall: Callable | None = None, separation_time: float = 6.0):
     """Circulatory strip loads and lag-state rates (module docstring), vectorized over strips.
 
     Parameters
@@ -62,13 +78,15 @@ def strip_forces(geo: StripGeometry, circ: Circulation, coefficients: Callable, 
     V_air : (ns, 2) air velocity in the section's rest axes (m/s).
     v_ea : (ns, 2) elastic-axis velocity, rest axes (m/s).
     alpha, alpha_dot : (ns,) pitch (rad, nose-up from rest) and its rate (rad/s).
-    z : (ns, n_lag) lag states (rad).
+    z : (ns, n_lag) lag states (rad); with ``stall`` (ns, n_lag + 1): the separation point last.
     coefficients : ``coefficients(alpha_E) -> (Cl, Cd, Cm)`` (ns,) each.
+    stall : ``stall(alpha_E) -> (f_st, Cl_fs, Cl_att)`` (ns,) each, or None (no dynamic stall).
+    separation_time : ``T_f`` of the separation lag (semi-chords travelled, ``b / |W|`` units).
 
     Returns
     -------
     ``(F (ns, 2) force per unit span in rest axes (N/m), M (ns,) nose-up moment about the
-    elastic axis (N m/m), zdot (ns, n_lag), alpha_E (ns,))``.
+    elastic axis (N m/m), zdot (ns, n_lag [+ 1]), alpha_E (ns,))``.
     """
     b, a = geo.b, geo.a
     c, d34, d14 = 2.0 * b, b * (0.5 - a), b * (a + 0.5)
@@ -78,10 +96,16 @@ def strip_forces(geo: StripGeometry, circ: Circulation, coefficients: Callable, 
     speed = np.hypot(W[:, 0], W[:, 1])
     phi = np.arctan2(W[:, 1], W[:, 0])
     a34 = alpha + phi
+    nl = circ.n_lag
     rate = circ.poles[None, :] * (speed / b)[:, None]
-    zdot = rate * (a34[:, None] - z)
-    aE = circ.c_inf * a34 - z @ circ.gains
+    zdot = rate * (a34[:, None] - z[:, :nl])
+    aE = circ.c_inf * a34 - z[:, :nl] @ circ.gains
     cl, cd, cm = coefficients(aE)
+    if stall is not None:
+        f = z[:, nl]
+        f_st, cl_fs, cl_att = stall(aE)
+        cl = cl + (f - f_st) * (cl_att - cl_fs)
+        zdot = np.concatenate([zdot, ((f_st - f) * speed / (separation_time * b))[:, None]], axis=1)
     q = 0.5 * geo.rho * speed**2
     lift_angle = (aE - alpha) if geo.lift_direction == "effective" else phi
     e_w = W / speed[:, None]

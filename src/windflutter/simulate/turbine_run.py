@@ -145,7 +145,8 @@ def skew3(v):
     return np.array([[0.0, -v[2], v[1]], [v[2], 0.0, -v[0]], [-v[1], v[0], 0.0]])
 
 
-def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_density, damping="none"):
+def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_density, damping="none",
+                dynamic_stall=False):
     """The blade at its spinning equilibrium (in the wind: with the strips), and its pitch (deg)."""
 
     omega = rpm * RPM
@@ -162,7 +163,8 @@ def _blade_part(turbine, rpm, wind_speed, pitch_deg, n_span, circulation, air_de
     fe, struct, sections, apex, axis, st = wind_setup(turbine, wind_speed, rpm, pitch_deg, n_span, air_density)
     inertia = SpinningMass(fe, fe.node_groups["rotor"], omega, axis, apex)
     aero = BladeAero(fe, sections, st.configuration, wind_speed, omega, axis, apex, axis, air_density,
-                     (st.bem.a, st.bem.ap), st.sections.origin, make_circulation(circulation))
+                     (st.bem.a, st.bem.ap), st.sections.origin, make_circulation(circulation),
+                     dynamic_stall=dynamic_stall)
     base = spin_equilibrium(fe, struct.T, inertia, start=st.configuration, external=aero.static_loads)
     M = np.asarray(assemble(deformed_model(fe, base)).M.todense()) + np.asarray(aero.mass_added)
     a = np.broadcast_to(np.asarray(st.bem.a, float), (aero.ns,))
@@ -189,14 +191,14 @@ def _blade_damping(turbine, fe, damping):
 
 def turbine_dynamics(turbine, rpm: float, wind_speed: float = 0.0, pitch_deg: float | None = None,
                      n_span: int = 30, n_record: int = 3, circulation: str = "jones", air_density: float = 1.225,
-                     drivetrain: str = "flexible", damping: str = "none") -> TurbineDynamics:
+                     drivetrain: str = "flexible", damping: str = "none", dynamic_stall: bool = False) -> TurbineDynamics:
     """The :class:`TurbineDynamics` of ``turbine`` at ``rpm`` in ``wind_speed`` (0: vacuum),
     recording ``n_record`` blade nodes (the tip last); the mean rotor load on the hub at the
     start is the support's preload.  ``damping``: ``none`` or ``file`` (the turbine files' blade
-    and tower damping, defined as method p's)."""
+    and tower damping, defined as method p's); ``dynamic_stall``: Oye's separation point per strip."""
     N = check_blades(turbine.n_blades)
     blade, apex, axis = _blade_part(turbine, float(rpm), float(wind_speed), pitch_deg, int(n_span), circulation,
-                                    air_density, damping)
+                                    air_density, damping, dynamic_stall)
     rotor = None
     if damping == "file":  # the rotor's rigid-body mass at the apex: the blades turned to their azimuths + hub
 
@@ -287,7 +289,7 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
                      circulation: str = "jones", air_density: float = 1.225, drivetrain: str = "flexible",
                      sv_tol: float = 1e-7, tol: float = 1e-7, kick_loads=KICK_LOADS, tower_kick: float = 2e-3,
                      kick_blades=None, damping: str = "none", kick_mode: str | None = None,
-                     progress=None) -> TurbineRun:
+                     progress=None, dynamic_stall: bool = False) -> TurbineRun:
     """Free response of the whole turbine (module docstring) and its identified modes.
 
     ``amplitude``, ``kick_loads`` and ``kick_blades``: the blades' kick (:func:`kick`);
@@ -303,7 +305,8 @@ def simulate_turbine(turbine, rpm: float, wind_speed: float = 0.0, *, duration: 
     if wind_speed > 0 and rpm <= 0:
         raise InputError("rpm", rpm, "a positive rotor speed in the wind")
     dyn = turbine_dynamics(turbine, rpm, wind_speed, pitch_deg, n_span, circulation=circulation,
-                           air_density=air_density, drivetrain=drivetrain, damping=damping)
+                           air_density=air_density, drivetrain=drivetrain, damping=damping,
+                           dynamic_stall=dynamic_stall)
     mode = None
     if kick_mode is None:
         q0 = kick(dyn, amplitude, tower_kick, kick_loads, kick_blades)
