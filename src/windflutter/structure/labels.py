@@ -86,7 +86,6 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
     blade_nodes = [groups[k] for k in sorted(groups) if k.startswith("blade")]
     nbl = len(blade_nodes)
     e_bl = sum((e[dofs(g)].sum(axis=0) for g in blade_nodes), np.zeros(n))
-    e_tw = e[dofs(groups["tower"])].sum(axis=0) if "tower" in groups else np.zeros(n)
     comps = blade_motion_components(sections, shapes) if (sections is not None and sections.n_sections) else None
     counts: dict[str, int] = {}
     labels = []
