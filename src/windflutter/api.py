@@ -31,19 +31,18 @@ from __future__ import annotations
 
 import dataclasses
 import inspect
-import re
 from pathlib import Path
 from typing import Any
 
 from windflutter.config import AnalysisConfig, MAX_MODES, MAX_RPM, check_config, config_from_dict, field_spec, load_config
 from windflutter.errors import InputError
 from windflutter.mesh.settings import MeshSettings
-from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
 from windflutter.model.turbine import Turbine
 from windflutter import operating
 from windflutter.schema import Spec
 from windflutter import methods  # module access: tests patch methods.stability_analysis
 from windflutter.operating import campbell_model
+from windflutter.post.runfolder import run_folder_name
 from windflutter.sensitivity import onset as onset_
 from windflutter.sensitivity.results import as_dataset, sensitivities
 from windflutter.sensitivity import shell_results
@@ -307,6 +306,23 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
     return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
 
 
+def _operating_study(turbine, wind_speeds, max_hz, config, options: dict[str, Any], function: str):
+    """``(turbine, model, wind speeds, max_hz)`` of a study along the operating curve (the
+    sensitivities): the config from ``config`` and the keywords, checked before the turbine is read;
+    the wind speeds given or the curve's; the Campbell's frequency limit."""
+    extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
+    if max_hz is not None:
+        extra["campbell.max_hz"] = max_hz
+    cfg = _config(config, {**options, **extra}, f"windflutter.{function}() keywords")
+    methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
+    t = as_turbine(turbine)
+    if getattr(t, "operating_curve", None) is None:
+        raise missing_curve_error(t)
+    om = campbell_model(t, cfg)
+    winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
+    return t, om, winds, operating.campbell_max_hz(cfg, om)
+
+
 def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None, global_parameters=None,
                 total: bool = False, max_hz: float | None = None, config: Any = None, progress=None, **options):
     """Design sensitivities: the derivative of each named mode's frequency and damping ratio with
@@ -332,20 +348,10 @@ def sensitivity(turbine, wind_speeds=None, *, modes=None, blade_properties=None,
         wind_speed x parameter x station); ``dfrequency_global``, ``ddamping_global``; ``defined``.
     """
 
-    extra = {} if wind_speeds is None else {"wind_speeds": wind_speeds}
-    if max_hz is not None:
-        extra["campbell.max_hz"] = max_hz
-    cfg = _config(config, {**options, **extra}, "windflutter.sensitivity() keywords")
-    methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
-    t = as_turbine(turbine)
-    if getattr(t, "operating_curve", None) is None:
-        raise missing_curve_error(t)
-    om = campbell_model(t, cfg)
+    t, om, winds, hz = _operating_study(turbine, wind_speeds, max_hz, config, options, "sensitivity")
     if om.options.model != "beam":
         raise InputError("model.type", om.options.model, "beam (a shell blade's sensitivities, to the ply thickness "
-                         "of its layup regions: windflutter.shell_sensitivity)")
-    winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
-    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+                         "of its layup regions: windflutter.api.shell_sensitivity)")
     pts = sensitivities(om, winds, hz, modes=modes, blade_properties=blade_properties,
                         global_parameters=global_parameters, progress=progress, total=bool(total))
     return as_dataset(pts, str(getattr(t, "name", "")), om.describe())
@@ -383,11 +389,35 @@ def onset_sensitivity(turbine, wind_speed: float, *, mode: str | None = None, rp
         rpm = float(found.flutter_rpm) if rpm is None else rpm
     om = campbell_model(t, cfg)
     _, pitch = om.operating_point(float(wind_speed))
-    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
+    hz = operating.campbell_max_hz(cfg, om)
     r0 = onset_.onset(lambda r: om.at(float(wind_speed), rpm=r, pitch=pitch), mode, float(rpm) - 0.1,
                       float(rpm) + 0.1, hz)
     return onset_.onset_sensitivity(om, float(wind_speed), mode, r0, pitch, hz, blade_properties=blade_properties,
                                     global_parameters=global_parameters, total=bool(total))
+
+
+def shell_sensitivity(turbine, wind_speeds=None, *, modes=None, regions=None, max_hz: float | None = None,
+                      config: Any = None, progress=None, **options):
+    """Design sensitivities of a shell blade: the derivative of each named mode's frequency and damping
+    ratio with respect to the ply thickness of each layup region (spar caps, TE/LE reinforcement,
+    webs, panels, skin; relative), the steady state and the blade basis held --
+    ``windflutter sensitivity --model shell`` (:mod:`windflutter.sensitivity.shell_results`).
+
+    ``regions``: ``{name: layer names}``, or names of the default regions (default all of them: the
+    layup's layers grouped by name, :func:`~windflutter.sensitivity.shell_results.default_regions`); the model is
+    the shell one whatever ``config`` says; other keywords as :func:`sensitivity`.
+
+    Returns
+    -------
+    xarray.Dataset
+        ``frequency``, ``damping_ratio`` (mode x wind_speed); ``dfrequency_region``,
+        ``ddamping_region``, ``defined`` (mode x wind_speed x region); ``region_layers``.
+    """
+    t, om, winds, hz = _operating_study(turbine, wind_speeds, max_hz, config, {**options, "model.type": "shell"},
+                                        "shell_sensitivity")
+    regs = shell_results.chosen_regions(t, regions)
+    pts = shell_results.shell_sensitivities(om, winds, hz, modes=modes, regions=regs, progress=progress)
+    return shell_results.shell_dataset(pts, regs, str(getattr(t, "name", "")), om.describe())
 
 
 # --------------------------------------------------------------------------------------------
@@ -426,24 +456,6 @@ def confirm_onset(turbine, wind_speed: float, **options):
 # --------------------------------------------------------------------------------------------
 # the whole analysis
 # --------------------------------------------------------------------------------------------
-def run_folder_name(turbine: Any) -> str:
-    """The default output folder name of a run (``out/<this>``): a bundled name as given in its
-    canonical spelling (``"nrel5mw"``), else the turbine file's name without its suffix; for a
-    :class:`~windflutter.model.Turbine`, of the file it was read from."""
-    src = turbine if isinstance(turbine, (str, Path)) else (getattr(turbine, "source", "") or "")
-    bundled = {path: name for name, path in bundled_turbines().items()}
-    if isinstance(src, str) and src and not Path(src).exists():
-        try:
-            src = resolve_turbine_path(src)
-        except InputError:
-            pass
-    stem = bundled.get(Path(src), Path(str(src)).stem) if str(src) else ""
-    if not stem and not isinstance(turbine, (str, Path)):
-        stem = str(getattr(turbine, "name", ""))
-    safe = re.sub(r"[^A-Za-z0-9._+-]+", "_", stem).strip("._")
-    return safe or "turbine"
-
-
 def run(turbine, config: Any = None, outdir: str | Path | None = None, *, resume: bool = False,
         progress: bool = True, workers: int | None = 1, scheduler: Any = None, **options):
     """The whole analysis: ``windflutter run`` (results.nc, figures, report.html in ``outdir``).
@@ -452,7 +464,8 @@ def run(turbine, config: Any = None, outdir: str | Path | None = None, *, resume
     ----------
     turbine : a :class:`~windflutter.model.Turbine`, a turbine file or a bundled name.
     config : the analysis (see :func:`analysis_config`: ``None`` for the defaults, a YAML file...).
-    outdir : output folder; default ``out/<name>`` (:func:`run_folder_name`), as ``windflutter run``.
+    outdir : output folder; default ``out/<name>`` (:func:`windflutter.post.runfolder.run_folder_name`), as
+        ``windflutter run``.
     resume, progress, workers, scheduler : as :func:`windflutter.workflow.run` (``workers=1``:
         serial, in this process).
     **options : analysis-config overrides (module docstring), e.g. ``wind_speeds=[8, 12]``.
@@ -470,39 +483,6 @@ def run(turbine, config: Any = None, outdir: str | Path | None = None, *, resume
     return run_workflow(tb, cfg, folder, resume=resume, progress=progress, workers=workers, scheduler=scheduler)
 
 
-__all__ = ["load_turbine", "analysis_config", "modes", "stability", "campbell", "simulate", "confirm_onset", "run",
-           "run_folder_name",
+__all__ = ["load_turbine", "analysis_config", "modes", "stability", "campbell", "sensitivity", "onset_sensitivity",
+           "shell_sensitivity", "simulate", "confirm_onset", "run", "run_folder_name",
            "mesh_settings", "as_turbine", "MESH_OPTIONS", "MODES_OPTIONS", "DEFAULT_MODEL"]
-
-
-def shell_sensitivity(turbine, wind_speeds=None, *, modes=None, regions=None, max_hz: float | None = None,
-                      config: Any = None, progress=None, **options):
-    """Design sensitivities of a shell blade: the derivative of each named mode's frequency and damping
-    ratio with respect to the ply thickness of each layup region (spar caps, TE/LE reinforcement,
-    webs, panels, skin; relative), the steady state and the blade basis held --
-    ``windflutter sensitivity --model shell`` (:mod:`windflutter.sensitivity.shell_results`).
-
-    ``regions``: ``{name: layer names}``, or names of the default regions (default all of them: the
-    layup's layers grouped by name, :func:`~windflutter.sensitivity.shell_results.default_regions`); the model is
-    the shell one whatever ``config`` says; other keywords as :func:`sensitivity`.
-
-    Returns
-    -------
-    xarray.Dataset
-        ``frequency``, ``damping_ratio`` (mode x wind_speed); ``dfrequency_region``,
-        ``ddamping_region``, ``defined`` (mode x wind_speed x region); ``region_layers``.
-    """
-    extra = {"model.type": "shell"} if wind_speeds is None else {"model.type": "shell", "wind_speeds": wind_speeds}
-    if max_hz is not None:
-        extra["campbell.max_hz"] = max_hz
-    cfg = _config(config, {**options, **extra}, "windflutter.shell_sensitivity() keywords")
-    methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))
-    t = as_turbine(turbine)
-    if getattr(t, "operating_curve", None) is None:
-        raise missing_curve_error(t)
-    om = campbell_model(t, cfg)
-    regs = shell_results.chosen_regions(t, regions)
-    winds = cfg.wind_speeds if wind_speeds is not None else default_wind_speeds(t)
-    hz = cfg.campbell.max_hz if cfg.campbell.max_hz is not None else om.reference().default_max_hz()
-    pts = shell_results.shell_sensitivities(om, winds, hz, modes=modes, regions=regs, progress=progress)
-    return shell_results.shell_dataset(pts, regs, str(getattr(t, "name", "")), om.describe())

@@ -26,6 +26,12 @@ def campbell_model(turbine: Any, config: AnalysisConfig):
     return OperationalModel(turbine, operational_options(config, aero))
 
 
+def campbell_max_hz(config: AnalysisConfig, model) -> float:
+    """The Campbell's frequency limit (Hz): the config's ``campbell.max_hz``, else the default of
+    ``model``'s identities (1.25 x the blade's 1st torsion frequency)."""
+    return config.campbell.max_hz if config.campbell.max_hz is not None else model.reference().default_max_hz()
+
+
 def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *, model=None, progress=None):
     """The operating-point Campbell diagram of ``turbine`` with the analysis ``config``.
 
@@ -45,5 +51,4 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
     if getattr(turbine, "operating_curve", None) is None:
         raise missing_curve_error(turbine)
     om = model if model is not None else campbell_model(turbine, config)
-    max_hz = config.campbell.max_hz if config.campbell.max_hz is not None else om.reference().default_max_hz()
-    return campbell(om.turbine, wind_speeds, max_hz=max_hz, model=om, progress=progress)
+    return campbell(om.turbine, wind_speeds, max_hz=campbell_max_hz(config, om), model=om, progress=progress)

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import dataclasses
 import hashlib
+import re
 from pathlib import Path
 from typing import Any
 
@@ -25,6 +26,7 @@ import numpy as np
 from windflutter.version import __version__
 from windflutter.errors import InputError
 from windflutter.files import check_output_folder, dump_yaml, load_yaml
+from windflutter.model.bundled import bundled_turbines, resolve_turbine_path
 from windflutter.post import store
 
 RUN_FILE = "analysis.yaml"
@@ -181,3 +183,21 @@ def check_resume(outdir: str | Path, record: dict[str, Any]) -> None:
         if old != new:
             raise InputError("--resume", str(outdir), f"the same {what} as the interrupted run (stored "
                              f"{old}, now {new}){_HINT}")
+
+
+def run_folder_name(turbine: Any) -> str:
+    """The default output folder name of a run (``out/<this>``): a bundled name as given in its
+    canonical spelling (``"nrel5mw"``), else the turbine file's name without its suffix; for a
+    :class:`~windflutter.model.Turbine`, of the file it was read from."""
+    src = turbine if isinstance(turbine, (str, Path)) else (getattr(turbine, "source", "") or "")
+    bundled = {path: name for name, path in bundled_turbines().items()}
+    if isinstance(src, str) and src and not Path(src).exists():
+        try:
+            src = resolve_turbine_path(src)
+        except InputError:
+            pass
+    stem = bundled.get(Path(src), Path(str(src)).stem) if str(src) else ""
+    if not stem and not isinstance(turbine, (str, Path)):
+        stem = str(getattr(turbine, "name", ""))
+    safe = re.sub(r"[^A-Za-z0-9._+-]+", "_", stem).strip("._")
+    return safe or "turbine"
