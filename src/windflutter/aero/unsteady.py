@@ -131,6 +131,10 @@ def _roger(n_lag: int) -> Circulation:
     return Circulation.from_rfa(theodorsen_rfa(n_lag))
 
 
+#: ``T_f`` of Oye's separation lag (semi-chords travelled): method p's and the time domain's default
+SEPARATION_TIME = 6.0
+
+
 @dataclass(frozen=True)
 class UnsteadyOptions:
     """Choices of the state-space / quasi-steady strip operator (module docstring).
@@ -157,7 +161,7 @@ class UnsteadyOptions:
     lift_direction: str = "effective"
     apparent_mass: float = 1.0
     dynamic_stall: bool = False
-    separation_time: float = 6.0
+    separation_time: float = SEPARATION_TIME
     slope_step: float = SLOPE_STEP
 
     def __post_init__(self):

@@ -36,7 +36,7 @@ import numpy as np
 
 from windflutter.aero.linearization import kirchhoff_curves
 from windflutter.aero.strip import apparent_mass, mean_coefficients
-from windflutter.aero.unsteady import Circulation
+from windflutter.aero.unsteady import SEPARATION_TIME, Circulation
 from windflutter.errors import InputError
 from windflutter.simulate.inertia import cross
 from windflutter.simulate.strips import StripGeometry, strip_forces
@@ -115,7 +115,7 @@ class BladeAero:
     """
 
     def __init__(self, fe, sections, base, wind_speed, omega, axis, apex, wind_direction, rho, induction, x_steady,
-                 circ: Circulation, apparent: float = 1.0, dynamic_stall: bool = False, separation_time: float = 6.0):
+                 circ: Circulation, apparent: float = 1.0, dynamic_stall: bool = False, separation_time: float = SEPARATION_TIME):
         self.fe, self.sections, self.circ = fe, sections, circ
         ns = sections.n_sections
         self._table = PolarTable(sections) if sections.polars else None

@@ -43,7 +43,7 @@ from typing import Callable
 
 import numpy as np
 
-from windflutter.aero.unsteady import Circulation
+from windflutter.aero.unsteady import SEPARATION_TIME, Circulation
 
 __all__ = ["StripGeometry", "strip_forces", "flat_plate"]
 
@@ -70,7 +70,7 @@ def flat_plate(slope: float = 2.0 * np.pi) -> Callable:
 
 
 def strip_forces(geo: StripGeometry, circ: Circulation, coefficients: Callable, V_air, v_ea, alpha, alpha_dot, z,
-                 stall: Callable | None = None, separation_time: float = 6.0):
+                 stall: Callable | None = None, separation_time: float = SEPARATION_TIME):
     """Circulatory strip loads and lag-state rates (module docstring), vectorized over strips.
 
     Parameters
