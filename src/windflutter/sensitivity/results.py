@@ -80,13 +80,19 @@ def _unit(name: str) -> float:
     return unit_change(name)
 
 
+def mode_names(points) -> list[str]:
+    """The identity names of the points' modes, each once, in the order they first appear."""
+    names: list[str] = []
+    for p in points:
+        names += [n for n in p.names if n not in names]
+    return names
+
+
 def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: dict | None = None):
     """The :class:`xarray.Dataset` of the sensitivities (module docstring)."""
     import xarray as xr
 
-    names = []
-    for p in points:
-        names += [n for n in p.names if n not in names]
+    names = mode_names(points)
     props = list(points[0].blade) if points else []
     globs = list(points[0].globals_) if points else []
     nm, nw, ne = len(names), len(points), len(points[0].station) if points else 0
@@ -191,7 +197,7 @@ def segment_table(ds, segments=SEGMENTS, modes=None, least: int = 3) -> list[dic
     rows = []
     st = np.asarray(ds["station"].values, float)
     for j, v in enumerate(ds["wind_speed"].values):
-        for mode in _chosen(ds, j, modes, least):
+        for mode in chosen_modes(ds, j, modes, least):
             if not np.isfinite(ds["damping_ratio"].sel(mode=mode).values[j]):
                 continue
             for p in ds["parameter"].values:
@@ -216,7 +222,7 @@ def segment_table(ds, segments=SEGMENTS, modes=None, least: int = 3) -> list[dic
     return rows
 
 
-def _chosen(ds, j: int, modes, least: int) -> list[str]:
+def chosen_modes(ds, j: int, modes, least: int) -> list[str]:
     """The mode names a table covers at the ``j``-th wind speed: ``modes``, or the ``least`` least damped."""
     if modes is not None:
         return [str(m) for m in modes]
@@ -235,7 +241,7 @@ def total_table(ds, modes=None, least: int = 3) -> list[str]:
     rows = []
     whole = ds["any_parameter"].values if "ddamping_total" in ds else []
     for j, v in enumerate(ds["wind_speed"].values):
-        for mode in _chosen(ds, j, modes, least):
+        for mode in chosen_modes(ds, j, modes, least):
             for p in whole:
                 p = str(p)
                 u = _unit(p)

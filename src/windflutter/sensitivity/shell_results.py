@@ -20,7 +20,7 @@ from windflutter.errors import InputError
 from windflutter.sensitivity.eigen import frequency_damping, mode_vectors, pair_ratio, pair_vectors
 from windflutter.sensitivity.parameters import UNIT_RELATIVE
 from windflutter.sensitivity.point import PAIR_LIMIT
-from windflutter.sensitivity.results import check_found, named_points
+from windflutter.sensitivity.results import check_found, chosen_modes, mode_names, named_points
 from windflutter.sensitivity.shell import layer_derivatives, layer_names, layer_thickness_check
 from windflutter.units import RPM
 
@@ -113,9 +113,7 @@ def shell_dataset(points: list[ShellPointSensitivity], regions: dict, turbine: s
     """The :class:`xarray.Dataset` (``mode`` x ``wind_speed`` x ``region``) of the sensitivities."""
     import xarray as xr
 
-    names = []
-    for p in points:
-        names += [n for n in p.names if n not in names]
+    names = mode_names(points)
     regs = list(regions)
     shape = (len(names), len(points))
     f, z = np.full(shape, np.nan), np.full(shape, np.nan)
@@ -163,13 +161,7 @@ def shell_table(ds, modes=None, least: int = 3) -> list[str]:
     names (default: the ``least`` least damped at each wind speed)."""
     rows = []
     for j, v in enumerate(ds["wind_speed"].values):
-        z = ds["damping_ratio"].values[:, j]
-        if modes is None:
-            order = [i for i in np.argsort(np.where(np.isfinite(z), z, np.inf)) if np.isfinite(z[i])][:least]
-            chosen = [str(ds["mode"].values[i]) for i in order]
-        else:
-            chosen = [str(m) for m in modes]
-        for mode in chosen:
+        for mode in chosen_modes(ds, j, modes, least):
             for r, layers in zip(ds["region"].values, ds["region_layers"].values):
                 sel = {"mode": mode, "region": r}
                 x = 100 * UNIT_RELATIVE * float(ds["ddamping_region"].sel(**sel).values[j])
