@@ -118,6 +118,7 @@ class OperationalModel:
         self._blades: dict = {}
         self._support = None
         self._last_steady: dict = {}
+        self._rotor_mass: np.ndarray | None = None  # :meth:`with_rotor_mass`
         o = self.options
         self._basis = BladeBasis(o.basis_modes, corrections=o.corrections, correction_tol=o.correction_tol)
 
@@ -199,8 +200,7 @@ class OperationalModel:
         fa, ss = tower_ratios(self.turbine)
         if self.options.tower_damping is not None:
             fa = ss = np.array([float(self.options.tower_damping)])
-        rotor = getattr(self, "_rotor_mass", None)
-        Mr = sm.H.T @ (self.rotor_rigid_mass() if rotor is None else rotor) @ sm.H
+        Mr = sm.H.T @ (self.rotor_rigid_mass() if self._rotor_mass is None else self._rotor_mass) @ sm.H
         md = np.asarray(sm.struct.M.diagonal())
 
         def direction(v):
