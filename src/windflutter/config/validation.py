@@ -193,10 +193,12 @@ def bundled_config() -> AnalysisConfig:
                             "analysis_default.yaml")
 
 
+@functools.lru_cache(maxsize=1)
 def default_config() -> AnalysisConfig:
     """The default analysis: the declared defaults, which the bundled, commented YAML lists
     (:func:`bundled_config`; the test suite checks that the two agree and that the defaults pass
-    every field check and rule, so a run does not parse and check the file again)."""
+    every field check and rule, so a run does not parse and check the file again; made once: the
+    config is immutable)."""
     cfg = AnalysisConfig()
     _VALIDATED[cfg] = None
     return cfg
