@@ -88,16 +88,43 @@ def mode_names(points) -> list[str]:
     return names
 
 
-def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: dict | None = None):
-    """The :class:`xarray.Dataset` of the sensitivities (module docstring)."""
+def modal_dataset(points, names: list[str], turbine: str, method: str, held_fixed: str):
+    """The :class:`xarray.Dataset` both sensitivity datasets start from: each named mode's
+    ``frequency`` and ``damping_ratio`` at each point (mode x wind_speed), the ``mode``,
+    ``wind_speed`` and ``rotor_speed`` coordinates, and the title, method and what is held."""
     import xarray as xr
 
+    f, z = np.full((len(names), len(points)), np.nan), np.full((len(names), len(points)), np.nan)
+    for j, p in enumerate(points):
+        for m in p.modes:
+            i = names.index(m.identity_name)
+            f[i, j], z[i, j] = m.frequency_hz, m.damping_ratio
+    return xr.Dataset(
+        {"frequency": (("mode", "wind_speed"), f, {"units": "Hz", "long_name": "undamped natural frequency"}),
+         "damping_ratio": (("mode", "wind_speed"), z, {"units": "1", "long_name": "damping ratio"})},
+        coords={"mode": names, "wind_speed": ("wind_speed", [p.wind_speed for p in points], {"units": "m/s"}),
+                "rotor_speed": ("wind_speed", [p.omega / RPM for p in points], {"units": "rpm"})},
+        attrs={"title": f"windflutter design sensitivities {turbine}".strip(), "method": method,
+               "held_fixed": held_fixed})
+
+
+def finish_dataset(ds, assumptions: dict | None):
+    """``ds`` with ``defined`` (the pair ratio below :data:`PAIR_LIMIT`) and the model's assumptions
+    as ``model_*`` attributes."""
+    ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
+    ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
+    for k, v in (assumptions or {}).items():
+        ds.attrs[f"model_{k}"] = str(v)
+    return ds
+
+
+def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: dict | None = None):
+    """The :class:`xarray.Dataset` of the sensitivities (module docstring)."""
     names = mode_names(points)
     props = list(points[0].blade) if points else []
     globs = list(points[0].globals_) if points else []
     nm, nw, ne = len(names), len(points), len(points[0].station) if points else 0
     shape = (nm, nw)
-    f, z = np.full(shape, np.nan), np.full(shape, np.nan)
     df_b, dz_b = np.full(shape + (len(props), ne), np.nan), np.full(shape + (len(props), ne), np.nan)
     df_g, dz_g = np.full(shape + (len(globs),), np.nan), np.full(shape + (len(globs),), np.nan)
     allp = props + globs
@@ -106,7 +133,6 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
     for j, p in enumerate(points):
         for k, m in enumerate(p.modes):
             i = names.index(m.identity_name)
-            f[i, j], z[i, j] = m.frequency_hz, m.damping_ratio
             lam = complex(m.eigenvalue)
             for a, name in enumerate(props):
                 df_b[i, j, a], dz_b[i, j, a] = frequency_damping(lam, p.blade[name][k])
@@ -118,10 +144,13 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
                     df_t[i, j, a], dz_t[i, j, a] = frequency_damping(lam, p.total[name][k])
     per = "per unit of the parameter (relative ones: per +100 %, i.e. 100 x the change for +1 %; offsets: per m)"
     dims_b, dims_g = ("mode", "wind_speed", "parameter", "station"), ("mode", "wind_speed", "global_parameter")
-    ds = xr.Dataset(
-        {"frequency": (("mode", "wind_speed"), f, {"units": "Hz", "long_name": "undamped natural frequency"}),
-         "damping_ratio": (("mode", "wind_speed"), z, {"units": "1", "long_name": "damping ratio"}),
-         "dfrequency": (dims_b, df_b, {"units": "Hz", "long_name": "d frequency / d parameter of each blade "
+    ds = modal_dataset(points, names, turbine, "first-order eigenvalue perturbation of the operating point's "
+                       "linear system (left and right eigenvectors); element matrices and assembled global "
+                       "matrices differentiated by central differences",
+                       "the steady state (deflected shape, its stress, inflow, strip linearization) and the "
+                       "blade's reduction basis")
+    ds = ds.assign(
+        {"dfrequency": (dims_b, df_b, {"units": "Hz", "long_name": "d frequency / d parameter of each blade "
                                        "element (the three blades alike) " + per}),
          "ddamping": (dims_b, dz_b, {"units": "1", "long_name": "d damping ratio / d parameter of each blade "
                                      "element (the three blades alike) " + per}),
@@ -130,24 +159,17 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
          "pair_ratio": (("mode", "wind_speed", "any_parameter"), ratio, {
              "units": "1", "long_name": "coupling of the mode to its nearest eigenvalue by the unit change of the "
              "parameter over the whole blade, over half their distance; >= " f"{PAIR_LIMIT:g}" ": the derivative is "
-             "not defined (a veering or crossing)"})},
-        coords={"mode": names, "wind_speed": ("wind_speed", [p.wind_speed for p in points], {"units": "m/s"}),
-                "rotor_speed": ("wind_speed", [p.omega / RPM for p in points], {"units": "rpm"}),
-                "parameter": props, "global_parameter": globs, "any_parameter": allp,
-                "station": ("station", points[0].station if points else [], {
-                    "units": "1", "long_name": "blade element mid-point radius over the tip radius (r/R)"}),
-                "global_parameter_unit": ("global_parameter", ["1" if is_relative(n) else "m" for n in globs], {
-                    "long_name": "unit of the parameter: 1 relative (d/d ln p), m an offset along the chord "
-                                 "(towards the trailing edge)"}),
-                "parameter_unit": ("parameter", [BLADE_PROPERTIES[n].unit for n in props], {
-                    "long_name": "unit of the parameter: 1 relative (d/d ln p), m an offset along the chord "
-                                 "(towards the trailing edge)"})},
-        attrs={"title": f"windflutter design sensitivities {turbine}".strip(),
-               "method": "first-order eigenvalue perturbation of the operating point's linear system (left and "
-                         "right eigenvectors); element matrices and assembled global matrices differentiated by "
-                         "central differences",
-               "held_fixed": "the steady state (deflected shape, its stress, inflow, strip linearization) and the "
-                             "blade's reduction basis"})
+             "not defined (a veering or crossing)"})})
+    ds = ds.assign_coords(
+        {"parameter": props, "global_parameter": globs, "any_parameter": allp,
+         "station": ("station", points[0].station if points else [], {
+             "units": "1", "long_name": "blade element mid-point radius over the tip radius (r/R)"}),
+         "global_parameter_unit": ("global_parameter", ["1" if is_relative(n) else "m" for n in globs], {
+             "long_name": "unit of the parameter: 1 relative (d/d ln p), m an offset along the chord "
+                          "(towards the trailing edge)"}),
+         "parameter_unit": ("parameter", [BLADE_PROPERTIES[n].unit for n in props], {
+             "long_name": "unit of the parameter: 1 relative (d/d ln p), m an offset along the chord "
+                          "(towards the trailing edge)"})})
     if any(p.total for p in points):
         ds["dfrequency_total"] = (("mode", "wind_speed", "any_parameter"), df_t, {
             "units": "Hz", "long_name": "d frequency / d parameter with the steady state's own change included "
@@ -157,11 +179,7 @@ def as_dataset(points: list[PointSensitivity], turbine: str = "", assumptions: d
             "included (its sensitivity; blade properties over the whole blade; blade basis held) " + per})
     if any(p.total_segments for p in points):
         _segment_totals(ds, points, names, props)
-    ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
-    ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
-    for k, v in (assumptions or {}).items():
-        ds.attrs[f"model_{k}"] = str(v)
-    return ds
+    return finish_dataset(ds, assumptions)
 
 
 def _segment_totals(ds, points, names, props, segments=SEGMENTS) -> None:

@@ -20,9 +20,9 @@ from windflutter.errors import InputError
 from windflutter.sensitivity.eigen import frequency_damping, mode_vectors, pair_ratio, pair_vectors
 from windflutter.sensitivity.parameters import UNIT_RELATIVE
 from windflutter.sensitivity.point import PAIR_LIMIT
-from windflutter.sensitivity.results import check_found, chosen_modes, mode_names, named_points
+from windflutter.sensitivity.results import (check_found, chosen_modes, finish_dataset, modal_dataset, mode_names,
+                                             named_points)
 from windflutter.sensitivity.shell import layer_derivatives, layer_names, layer_thickness_check
-from windflutter.units import RPM
 
 #: the default regions: ``(name, test of a lower-case layer name)``, in this order; a layer goes to
 #: the first region whose test it passes, and layers of no region (e.g. a UV coating) are left out
@@ -111,48 +111,36 @@ def shell_sensitivities(om, wind_speeds, max_hz: float, modes=None, regions=None
 def shell_dataset(points: list[ShellPointSensitivity], regions: dict, turbine: str = "",
                   assumptions: dict | None = None):
     """The :class:`xarray.Dataset` (``mode`` x ``wind_speed`` x ``region``) of the sensitivities."""
-    import xarray as xr
-
     names = mode_names(points)
     regs = list(regions)
     shape = (len(names), len(points))
-    f, z = np.full(shape, np.nan), np.full(shape, np.nan)
     df, dz, ratio = (np.full(shape + (len(regs),), np.nan) for _ in range(3))
     for j, p in enumerate(points):
         for k, m in enumerate(p.modes):
             i = names.index(m.identity_name)
-            f[i, j], z[i, j] = m.frequency_hz, m.damping_ratio
             for a, r in enumerate(regs):
                 df[i, j, a], dz[i, j, a] = frequency_damping(complex(m.eigenvalue), p.region[r][k])
                 ratio[i, j, a] = p.pair_ratio[r][k]
     per = "per unit of the region's relative ply thickness (per +100 %, i.e. 100 x the change for +1 %)"
     dims = ("mode", "wind_speed", "region")
-    ds = xr.Dataset(
-        {"frequency": (("mode", "wind_speed"), f, {"units": "Hz", "long_name": "undamped natural frequency"}),
-         "damping_ratio": (("mode", "wind_speed"), z, {"units": "1", "long_name": "damping ratio"}),
-         "dfrequency_region": (dims, df, {"units": "Hz", "long_name": "d frequency / d thickness " + per}),
+    ds = modal_dataset(points, names, turbine, "first-order eigenvalue perturbation of the operating point's "
+                       "linear system (left and right eigenvectors); the point reassembled with the region's "
+                       "layers at +-1 % thickness (the blade meshed again, its laminates on the nominal elements), "
+                       "central differences",
+                       "the steady state (deflected shape, its stress, inflow, strip linearization), the blade's "
+                       "reduction basis and the shell's reference surface")
+    ds = ds.assign(
+        {"dfrequency_region": (dims, df, {"units": "Hz", "long_name": "d frequency / d thickness " + per}),
          "ddamping_region": (dims, dz, {"units": "1", "long_name": "d damping ratio / d thickness " + per}),
          "pair_ratio": (dims, ratio, {"units": "1", "long_name": "coupling of the mode to its nearest eigenvalue by "
                                       "+1 % of the region's thickness, over half their distance; >= "
-                                      f"{PAIR_LIMIT:g}: the derivative is not defined (a veering or crossing)"})},
-        coords={"mode": names, "wind_speed": ("wind_speed", [p.wind_speed for p in points], {"units": "m/s"}),
-                "rotor_speed": ("wind_speed", [p.omega / RPM for p in points], {"units": "rpm"}),
-                "region": regs,
-                "region_layers": ("region", [", ".join(regions[r]) for r in regs],
-                                  {"long_name": "the layup layers of the region (all their thicknesses scaled)"}),
-                "region_unit": ("region", ["1"] * len(regs), {"long_name": "unit of the parameter: 1 relative "
-                                                               "(d/d ln t)"})},
-        attrs={"title": f"windflutter design sensitivities {turbine}".strip(),
-               "method": "first-order eigenvalue perturbation of the operating point's linear system (left and "
-                         "right eigenvectors); the point reassembled with the region's layers at +-1 % thickness "
-                         "(the blade meshed again, its laminates on the nominal elements), central differences",
-               "held_fixed": "the steady state (deflected shape, its stress, inflow, strip linearization), the "
-                             "blade's reduction basis and the shell's reference surface"})
-    ds["defined"] = ds["pair_ratio"] < PAIR_LIMIT
-    ds["defined"].attrs["long_name"] = "the first-order derivative is defined (not at a veering or crossing)"
-    for k, v in (assumptions or {}).items():
-        ds.attrs[f"model_{k}"] = str(v)
-    return ds
+                                      f"{PAIR_LIMIT:g}: the derivative is not defined (a veering or crossing)"})})
+    ds = ds.assign_coords(
+        {"region": regs,
+         "region_layers": ("region", [", ".join(regions[r]) for r in regs],
+                           {"long_name": "the layup layers of the region (all their thicknesses scaled)"}),
+         "region_unit": ("region", ["1"] * len(regs), {"long_name": "unit of the parameter: 1 relative (d/d ln t)"})})
+    return finish_dataset(ds, assumptions)
 
 
 def shell_table(ds, modes=None, least: int = 3) -> list[str]:
