@@ -17,6 +17,10 @@ FLAGS = (
                                            "length / 100)"), default=None),
     Flag("--reference-surface", spec=Spec("choice", choices=("midsurface", "outer"), nullable=True,
                                           doc="the skin's reference surface (default midsurface)"), default=None),
+    Flag("--extraction", spec=Spec("choice", choices=("segment", "section"),
+                                   doc="segment: a blade segment loaded through rigid end rings (the 3-D blade's "
+                                       "behaviour around the station); section: the station's own section on a "
+                                       "periodic prism (Saint-Venant, as a cross-section code)"), default="segment"),
 )
 
 
@@ -25,7 +29,7 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                        "shell model, beside the file's 6x6",
                        description="Mass, mass centre, tension and shear centres and the 6x6 stiffness of the "
                                    "shell blade at stations along the span, extracted from the shell model by "
-                                   "unit loads on segments, printed beside the turbine file's 6x6 (docs/mesh.md).")
+                                   "unit loads on segments or on periodic prisms of the sections, printed beside the turbine file's 6x6 (docs/mesh.md).")
     p.add_argument("turbine", help="turbine file (windIO with a layup) or bundled name (e.g. iea22mw)")
     p.add_argument("--csv", metavar="FILE.csv", help="write the station table to this CSV file")
     p.add_argument("--beamdyn", metavar="FILE.dat", help="write a BeamDyn blade file (stations whose segment is "
@@ -53,7 +57,7 @@ def run(args: argparse.Namespace) -> int:
     turbine = load(args.turbine)
     if turbine.blade.layup is None:
         raise InputError("blade.layup", None, "a composite layup: the beam properties come from the shell model")
-    table = shell_beam_table(turbine, n_stations=v["stations"], settings=settings)
+    table = shell_beam_table(turbine, n_stations=v["stations"], settings=settings, extraction=v["extraction"])
     rows = table_rows(table, turbine.blade.beam)
     print(f"{turbine.name}: shell blade ({table.beam.source}); ratios to the file's 6x6 where it has one")
     print("     s   mass/kg/m    EA/N   GJ/Nm2  EIflap  EIedge   sc_flap sc_edge (m)   vs file: mass  EA   GJ  flap "

@@ -28,6 +28,7 @@ from windflutter.errors import InputError
 from windflutter.mesh.settings import MeshSettings
 from windflutter.model.blade import PERM_BEAMDYN_TO_SECTION
 from windflutter.model.turbine import BeamProperties
+from windflutter.mesh.shell_section import station_section
 from windflutter.structure.equivalent_beam import section_properties
 from windflutter.structure.fem import FEModel
 
@@ -81,15 +82,25 @@ def shell_segment(fe, st, on, k0: int, k1: int):
     return seg, (lambda k: mp[np.flatnonzero(on & (st == k) & (mp >= 0))])
 
 
-def shell_beam_table(turbine, n_stations: int = 20, settings: MeshSettings | None = None) -> ShellBeamTable:
+#: how a station's section is read: ``"segment"`` (a segment of the blade loaded through rigid end
+#: rings, module docstring) or ``"section"`` (the station's ring extruded into a prism with periodic
+#: ends, :mod:`windflutter.mesh.shell_section`: no end restraint, no taper)
+EXTRACTIONS = ("segment", "section")
+
+
+def shell_beam_table(turbine, n_stations: int = 20, settings: MeshSettings | None = None,
+                     extraction: str = "segment") -> ShellBeamTable:
     """The beam properties of ``turbine``'s shell blade at ``n_stations`` stations (module docstring).
 
-    ``settings``: the shell mesh (default: the default shell mesh of a blade clamped at the root).
+    ``settings``: the shell mesh (default: the default shell mesh of a blade clamped at the root);
+    ``extraction``: one of :data:`EXTRACTIONS`.
     """
     from windflutter.mesh.turbine import build_model
 
     if not isinstance(n_stations, (int, np.integer)) or not 2 <= n_stations <= 200:
         raise InputError("n_stations", n_stations, "a whole number of stations in [2, 200]")
+    if extraction not in EXTRACTIONS:
+        raise InputError("extraction", extraction, f"one of {', '.join(EXTRACTIONS)}")
     st0 = settings or MeshSettings(model="shell", part="blade")
     if st0.model != "shell" or st0.part != "blade":
         raise InputError("settings", (st0.model, st0.part), "a shell model of the blade (part blade)")
@@ -102,6 +113,12 @@ def shell_beam_table(turbine, n_stations: int = 20, settings: MeshSettings | Non
     js = np.unique(np.round(np.linspace(1, ns - 1, n_stations)).astype(int))
     rows = []
     for j in js:
+        if extraction == "section":
+            t = P0[min(j + 1, ns)] - P0[max(j - 1, 0)]
+            t /= np.linalg.norm(t)
+            r = station_section(fe, st, on, j, P0[j], t, np.cross(ec[j], t), chord[j])
+            rows.append((float(np.sum(row[:j])), r, False))
+            continue
         half = max(1, int(np.ceil(0.5 * RING_CHORDS * chord[j] / row[min(j, ns - 1)])))
         gap = max(2, int(np.ceil(END_CHORDS * chord[j] / row[min(j, ns - 1)])))
         ka, kb = max(1, j - half), min(ns - 1, j + half)
@@ -120,7 +137,8 @@ def shell_beam_table(turbine, n_stations: int = 20, settings: MeshSettings | Non
     M = np.array([x[1].mass for x in rows])
     tw = np.interp(s, turbine.blade.s, turbine.blade.twist)
     bp = BeamProperties(s=s, stiffness=0.5 * (K + K.transpose(0, 2, 1)), mass=M, twist=tw, length=L,
-                        source=f"the shell model ({ns} x {fe_chord_count(fe, st)} elements), unit loads on segments")
+                        source=f"the shell model ({ns} x {fe_chord_count(fe, st)} elements), " +
+                        ("unit loads on segments" if extraction == "segment" else "periodic prisms of the stations"))
     return ShellBeamTable(s=s, beam=bp, tension_centre=np.array([x[1].tension_centre for x in rows]),
                           shear_centre=np.array([x[1].shear_centre for x in rows]),
                           mass_centre=np.array([x[1].mass_centre for x in rows]),
@@ -140,13 +158,14 @@ def usable_stations(table: ShellBeamTable) -> np.ndarray:
     return pd & (np.asarray(table.asymmetry) <= ASYMMETRY_LIMIT)
 
 
-def shell_blade_properties(turbine, n_stations: int = 40, settings: MeshSettings | None = None) -> BeamProperties:
+def shell_blade_properties(turbine, n_stations: int = 40, settings: MeshSettings | None = None,
+                           extraction: str = "segment") -> BeamProperties:
     """The 6 x 6 stiffness and mass of ``turbine``'s shell blade (:func:`shell_beam_table`) as the beam
     model's blade properties: the usable stations (:func:`usable_stations`), constant beyond the end
     ones (as any :class:`BeamProperties`).  The stations cut by a blade end are kept (the root's and
     the tip's stiffness, read on a shorter segment).  Use it through
     :func:`with_shell_blade_properties`: the beam of the same blade as the shell model."""
-    tab = shell_beam_table(turbine, n_stations, settings)
+    tab = shell_beam_table(turbine, n_stations, settings, extraction)
     ok = usable_stations(tab)
     if ok.sum() < 2:
         raise InputError("n_stations", n_stations, "more stations: fewer than two gave a usable section")
@@ -155,12 +174,13 @@ def shell_blade_properties(turbine, n_stations: int = 40, settings: MeshSettings
                           source=f"{b.source}; {int(ok.sum())} of {len(ok)} stations usable")
 
 
-def with_shell_blade_properties(turbine, n_stations: int = 40, settings: MeshSettings | None = None):
+def with_shell_blade_properties(turbine, n_stations: int = 40, settings: MeshSettings | None = None,
+                                extraction: str = "segment"):
     """``turbine`` whose blade's 6 x 6 properties (``blade.beam``, what the beam model reads) are those
     of its own shell blade (:func:`shell_blade_properties`) instead of the file's: a beam model of the
     blade the shell model describes (the layup, meshed as ``settings``), for comparing the two models
     on the same blade (docs/mesh.md).  Everything else is ``turbine``'s."""
-    bp = shell_blade_properties(turbine, n_stations, settings)
+    bp = shell_blade_properties(turbine, n_stations, settings, extraction)
     return dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, beam=bp))
 
 

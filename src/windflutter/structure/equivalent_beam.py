@@ -44,9 +44,11 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 
 import numpy as np
+import scipy.sparse as sp
+import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError
-from windflutter.structure.assembly import assemble
+from windflutter.structure.assembly import assemble, assemble_matrices
 from windflutter.structure.fem import FEModel, RigidLink
 from windflutter.structure.prestress import static_solve
 
@@ -308,11 +310,6 @@ def periodic_compliance(fe: FEModel, rings, refs, E: np.ndarray) -> np.ndarray:
     columns of ``N, T, M2, M3`` -- and by the compliance's symmetry the rows of the transverse forces,
     so the shear centre (the torque's lateral motion of the reference point) and every coupling.  The
     shear block needs a moment varying along the beam, which periodic ends cannot carry."""
-    import scipy.sparse as sp
-    import scipy.sparse.linalg as spla
-
-    from windflutter.structure.assembly import assemble_matrices
-
     refs = [np.asarray(r, float) for r in refs]
     e1 = E[0]
     length = float((refs[1] - refs[0]) @ e1)
@@ -384,8 +381,6 @@ def _supports(r: np.ndarray, e1: np.ndarray, dofs: list, n: int):
     the in-plane tangential (about the axis) translation of the node farthest from it, the axial one
     of the node farthest from their line.  Statically determinate: no reaction under the
     self-equilibrated cell loads."""
-    import scipy.sparse as sp
-
     d1 = np.linalg.norm(r - r[0], axis=1)
     p1 = int(np.argmax(d1))
     line = (r[p1] - r[0]) / d1[p1]
