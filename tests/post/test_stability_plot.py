@@ -66,3 +66,32 @@ def test_real_roots_are_not_drawn_as_zero_frequency_and_divergence_is_a_line():
     # the mask itself: the sweep's real roots only
     f = plots.oscillating(np.array([[1.0, 0.0], [2.0, 1e-9]]))
     assert np.isnan(f[:, 1]).all() and np.array_equal(f[:, 0], [1.0, 2.0])
+
+
+def test_heavily_damped_points_have_no_line_and_no_label():
+    # a heavily damped mode's damped frequency moves fast with the rotor speed and means little (the
+    # NREL 5 MW's aerodynamically damped flap modes, 80-90 % at overspeed, rose from 0.5 to 3 Hz across
+    # the diagram): its points are open circles, lines join lightly damped neighbours only, and a
+    # track is labelled at its last lightly damped point (none: no label)
+    from windflutter.post import plots, store
+    from windflutter.system.campbell import HEAVILY_DAMPED
+    from windflutter.workflow import OperatingPoint
+
+    s = summary()
+    s.damping_ratio = np.array([[0.02, 0.01], [0.5, 0.0], [0.8, -0.01]])
+    res = point_result(s)
+    ds = store.combine({0: store.point_dataset(OperatingPoint(0, 10.0, "viscous", "p", 10.0, 14.0, 0.01,
+                                                              tuple(s.sweep_rpm)), res)}, {"turbine": "toy"})
+    ax = plots.campbell(ds, 0).axes[0]
+    tracks = [ln.get_ydata() for ln in ax.lines if len(ln.get_ydata()) == 3 and ln.get_linestyle() == "-"]
+    flap = next(y for y in tracks if np.isclose(y[0], 0.7))
+    assert np.isnan(flap[1:]).all() and 0.5 > HEAVILY_DAMPED
+    edge = next(y for y in tracks if np.isclose(y[0], 1.1))
+    assert np.isfinite(edge).all()
+    texts = [t.get_text() for t in ax.texts]
+    assert "1st edge BW" in texts and "1st flap BW" in texts  # the flap's label at its first, light point
+    s.damping_ratio[0, 0] = 0.9  # heavily damped everywhere: no label
+    res = point_result(s)
+    ds = store.combine({0: store.point_dataset(OperatingPoint(0, 10.0, "viscous", "p", 10.0, 14.0, 0.01,
+                                                              tuple(s.sweep_rpm)), res)}, {"turbine": "toy"})
+    assert "1st flap BW" not in [t.get_text() for t in plots.campbell(ds, 0).axes[0].texts]

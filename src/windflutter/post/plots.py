@@ -24,6 +24,7 @@ from matplotlib.colors import TwoSlopeNorm
 from matplotlib.figure import Figure
 
 from windflutter.post import figstyle as fs
+from windflutter.system.campbell import HEAVILY_DAMPED
 from windflutter.post.fmt import field_label
 from windflutter.post.store import flutter_shape
 
@@ -151,7 +152,9 @@ def oscillating(freq: np.ndarray) -> np.ndarray:
 
 def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
     """Campbell diagram of point ``i``: frequency vs rotor speed coloured by damping ratio; real
-    roots are not drawn (:func:`oscillating`), the flutter and divergence onsets are lines."""
+    roots are not drawn (:func:`oscillating`), heavily damped points (above
+    :data:`~windflutter.system.campbell.HEAVILY_DAMPED`) are small open circles without lines or labels,
+    the flutter and divergence onsets are lines."""
     fig = Figure(figsize=_SWEEP_FIG)
     ax = fig.add_axes((_SWEEP_X[0], 0.2, _SWEEP_X[1], 0.72))
     rpm, freq, zeta, labels = _sweep(ds, i)
@@ -162,11 +165,17 @@ def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
     zmax = min(max(zmax, 1e-3), 0.1)
     norm = TwoSlopeNorm(vcenter=0.0, vmin=-zmax, vmax=zmax)
     sc = None
+    heavy = np.abs(zeta) > HEAVILY_DAMPED  # NaN: False
     for j in range(freq.shape[1]):
         bold = j == jf
-        ax.plot(rpm, freq[:, j], "-", color="k" if bold else "0.7", lw=2.2 if bold else 1, zorder=1)
-        sc = ax.scatter(rpm, freq[:, j], c=np.clip(zeta[:, j], -zmax, zmax), cmap="RdBu", norm=norm, s=26, zorder=2,
-                        edgecolors="k", linewidths=0.3)
+        # lines join lightly damped neighbours only: a heavily damped mode's damped frequency moves
+        # fast with the rotor speed and means little, and its line would cross the diagram
+        light = np.where(heavy[:, j], np.nan, freq[:, j])
+        ax.plot(rpm, light, "-", color="k" if bold else "0.7", lw=2.2 if bold else 1, zorder=1)
+        ax.scatter(rpm[heavy[:, j]], freq[heavy[:, j], j], s=14, facecolors="none", edgecolors="0.6", linewidths=0.6,
+                   zorder=2)
+        sc = ax.scatter(rpm[~heavy[:, j]], freq[~heavy[:, j], j], c=np.clip(zeta[~heavy[:, j], j], -zmax, zmax),
+                        cmap="RdBu", norm=norm, s=26, zorder=2, edgecolors="k", linewidths=0.3)
     fmax = float(np.nanmax(freq)) * 1.15 if np.any(np.isfinite(freq)) else 1.0
     for n in harmonics:
         ax.plot(rpm, n * rpm / 60.0, "--", color="0.3", lw=0.8)
@@ -182,8 +191,9 @@ def campbell(ds: xr.Dataset, i: int, harmonics=(1, 3, 6)) -> Figure:
         ax.axvline(dv, color="m", lw=1.2, ls="--", label=f"divergence {dv:.2f} RPM")
     ax.set_ylim(0, fmax)
     ax.set_xlim(rpm[0], rpm[-1] if rpm.size else 1)
-    if freq.size:
-        last = np.array([f[np.isfinite(f)][-1] if np.any(np.isfinite(f)) else np.nan for f in freq.T])
+    if freq.size:  # a track is labelled at its last lightly damped point
+        lit = np.where(heavy, np.nan, freq)
+        last = np.array([f[np.isfinite(f)][-1] if np.any(np.isfinite(f)) else np.nan for f in lit.T])
         ok = np.isfinite(last)
         fs.label_ends(ax, rpm[-1], last[ok], [labels[j] for j in np.where(ok)[0]],
                       ["k" if j == jf else "0.25" for j in np.where(ok)[0]], x_text=1.012)

@@ -151,8 +151,11 @@ def track_modes(points: list[CampbellPoint], min_mac: float = 0.5) -> list[Track
 
 
 #: a named mode whose natural frequency moves more than this between neighbouring points (both damped
-#: below 30 %) makes the step ambiguous: it is refined
+#: below :data:`HEAVILY_DAMPED`) makes the step ambiguous: it is refined
 JUMP = 0.12
+#: a mode damped above this ratio is heavily damped: its names are not checked for jumps (its damped
+#: frequency moves fast and means little), and the rotor-speed Campbell draws it without lines
+HEAVILY_DAMPED = 0.3
 
 
 def ambiguous(before: list[ModeRecord], after: list[ModeRecord]) -> bool:
@@ -161,7 +164,7 @@ def ambiguous(before: list[ModeRecord], after: list[ModeRecord]) -> bool:
     was = {m.identity: m for m in before if m.identity is not None}
     for m in after:
         q = was.get(m.identity)
-        light = q is not None and max(m.damping_ratio, q.damping_ratio) < 0.3
+        light = q is not None and max(m.damping_ratio, q.damping_ratio) < HEAVILY_DAMPED
         if light and abs(m.frequency_hz / q.frequency_hz - 1) > JUMP:
             return True
     return False
