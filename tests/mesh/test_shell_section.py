@@ -52,7 +52,7 @@ def test_unknown_extraction_is_refused():
 
 
 def test_iea22mw_sections_against_the_file_6x6():
-    """The IEA 22 MW shell blade's sections (default mesh, 12 stations, ``extraction="section"``)
+    """The IEA 22 MW shell blade's sections (default mesh, 8 stations, ``extraction="section"``)
     against the windIO file's 6x6 -- PreComp-like sectional analysis of the same layup, so the
     like-for-like comparison -- over 15-92 % span, the root transition's far side included: mass 3 %,
     EA 6 %, GJ 10 %, flapwise EI 13 %, edgewise EI 8 % (measured 4 Dec 2026: mass -1 ... -3 %, EA -1
@@ -66,8 +66,8 @@ def test_iea22mw_sections_against_the_file_6x6():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         t = load_turbine("iea22mw")
-    rows = [r for r in table_rows(shell_beam_table(t, 12, extraction="section"), t.blade.beam) if 0.15 <= r["s"] <= 0.92]
-    assert len(rows) >= 8
+    rows = [r for r in table_rows(shell_beam_table(t, 8, extraction="section"), t.blade.beam) if 0.15 <= r["s"] <= 0.92]
+    assert len(rows) >= 5
     for r in rows:
         got = [r[a] / r[b] - 1 for a, b in (("mass", "file_mass"), ("EA", "file_EA"), ("GJ", "file_GJ"),
                                             ("EI_flap", "file_EI_flap"), ("EI_edge", "file_EI_edge"))]
