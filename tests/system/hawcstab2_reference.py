@@ -199,18 +199,24 @@ def phase_misfit(h, w, conjugate, flip, azimuth, min_share=0.05):
     eigenvector carries its own phase (its time origin): a factor exp(i theta) on our eigenvector
     turns the conjugated groups by -theta and the others by +theta, and HAWCStab2's own factor turns
     all alike, so both are fitted.  Over the components above ``min_share`` of the largest in both,
-    returns (weighted rms phase difference in deg, number of components); weights the smaller share."""
+    returns (weighted rms phase difference in deg, number of components); weights the smaller share.
+    ``azimuth`` may be an array: the differences are then an array of the same shape."""
     keys = list(PHASE_COMPONENTS)
     sh, sw = np.abs(h) / np.abs(h).max(), np.abs(w) / np.abs(w).max()
     use = (sh > min_share) & (sw > min_share)
     weight = np.minimum(sh, sw)[use]
     group = [k.split("_")[0] if k[:3] in ("sym", "bw_", "fw_") else "tower" for k, u in zip(keys, use) if u]
     kind = [k.split("_")[1] if k[:3] in ("sym", "bw_", "fw_") else k for k, u in zip(keys, use) if u]
-    x = w[use] * np.exp(1j * azimuth * np.array([{"bw": -1, "fw": 1}.get(g, 0) for g in group]))
+    az = np.asarray(azimuth, float)
+    x = w[use] * np.exp(1j * az[..., None] * np.array([{"bw": -1, "fw": 1}.get(g, 0) for g in group]))
     x = x * np.where([k in flip for k in kind], -1.0, 1.0)
     sign = np.where([g in conjugate for g in group], -1.0, 1.0)
-    pred = np.where(sign < 0, np.conj(x), x)
-    d = np.angle(h[use])[None, :] - np.angle(pred)[None, :] - sign[None, :] * np.radians(np.arange(0, 360, 2))[:, None]
-    psi = np.angle(np.sum(weight * np.exp(1j * d), axis=1))
-    r = np.sum(weight * (1 - np.cos(d - psi[:, None])), axis=1).min() / weight.sum()
-    return float(np.degrees(np.sqrt(2 * r))), int(use.sum())
+    pred = np.where(sign < 0, np.conj(x), x)  # (..., n)
+    # d = a - sign theta - psi: the two factors enter the unconjugated components as theta + psi and
+    # the conjugated ones as psi - theta, two independent angles, each fitted in closed form
+    # (the weighted mean direction): min sum w (1 - cos d) = sum w - |sum_+ w e^ia| - |sum_- w e^ia|
+    e = weight * np.exp(1j * (np.angle(h[use]) - np.angle(pred)))
+    r = (weight.sum() - np.abs(np.sum(np.where(sign > 0, e, 0), axis=-1))
+         - np.abs(np.sum(np.where(sign < 0, e, 0), axis=-1))) / weight.sum()
+    out = np.degrees(np.sqrt(2 * np.maximum(r, 0.0)))
+    return (float(out) if out.ndim == 0 else out), int(use.sum())

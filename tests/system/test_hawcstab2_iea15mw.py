@@ -422,8 +422,9 @@ def test_mode_shape_phases_as_hawcstab2s(hawcstab2_configuration_points):
     found = []
     for conj in ({"fw"}, {"bw"}, set()):
         for flip in ({k for k, on in zip(("flap", "edge", "tors"), bits) if on} for bits in np.ndindex(2, 2, 2)):
-            mean, az = min((np.mean([phase_misfit(h, w, conj, flip, np.radians(a))[0] for _, h, w, _ in pairs]), a)
-                           for a in range(0, 360, 3))
+            grid = np.arange(0, 360, 3)  # the mean misfit of the pairs at every azimuth origin, at once
+            means = np.mean([phase_misfit(h, w, conj, flip, np.radians(grid))[0] for _, h, w, _ in pairs], axis=0)
+            mean, az = float(means.min()), int(grid[np.argmin(means)])
             found.append((mean, az, sorted(conj), sorted(flip)))
     found.sort()
     (mean, az, conj, flip), others = found[0], found[1:]
