@@ -34,7 +34,7 @@ def run_case(turbine: str, winds: list, structure: str, cold: bool) -> dict:
     """One Campbell run (in the child): wall time of the model build and of the points, sizes, modes."""
     from windflutter.config import config_from_dict
     from windflutter.model import load_turbine
-    from windflutter.api import operational_options
+    from windflutter.methods import operational_options
     from windflutter.system.blade_basis import BladeBasis
     from windflutter.system.campbell import campbell
     from windflutter.system.operational import OperationalModel
