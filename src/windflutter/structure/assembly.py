@@ -254,12 +254,12 @@ def symmetric_csr(r: np.ndarray, c: np.ndarray, v: np.ndarray, n: int) -> sp.csr
             out = sp.csr_matrix((data, indices.copy(), indptr.copy()), shape=(n, n))
             out.eliminate_zeros()
             return out
-    # the pattern of A + A^T with sorted indices, and each triplet's place in it (keys row * n + col
-    # are sorted in CSR order)
-    rr, cc = np.concatenate([r, c]).astype(np.int64), np.concatenate([c, r]).astype(np.int64)
-    keys = np.unique(rr * n + cc)
-    indices = (keys % n).astype(np.int32 if n < 2**31 else np.int64)
-    indptr = np.searchsorted(keys // n, np.arange(n + 1)).astype(indices.dtype)
+    # the pattern of A + A^T (SciPy's conversion: sorted indices, duplicates summed), and each
+    # triplet's place in it (the keys row * n + col are sorted in CSR order)
+    P = sp.coo_matrix((np.ones(2 * r.size), (np.concatenate([r, c]), np.concatenate([c, r]))), shape=(n, n)).tocsr()
+    P.sum_duplicates()
+    indptr, indices = P.indptr, P.indices
+    keys = np.repeat(np.arange(n, dtype=np.int64), np.diff(indptr)) * n + indices
     slot = np.searchsorted(keys, r.astype(np.int64) * n + c).astype(indices.dtype)
     tslot = np.searchsorted(keys, c.astype(np.int64) * n + r).astype(indices.dtype)
     _PATTERNS.insert(0, (r.copy(), c.copy(), n, slot, tslot, indptr, indices))
