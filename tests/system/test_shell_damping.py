@@ -106,3 +106,42 @@ def test_the_operational_shell_blade_carries_its_damping_to_the_pitch(tube):
     R, _ = pitch_rotation(tb, 0.3)  # a motion of the pitch-0 blade, turned with it: u1 = Q u0
     Q = sp.kron(sp.identity(b0.fe.n_nodes), sp.block_diag([R, R])).tocsr()
     assert np.allclose(b1.damping @ (Q @ v0), Q @ (b0.damping @ v0), atol=1e-10 * np.abs(b0.damping @ v0).max())
+
+
+def test_the_frozen_azimuth_model_gives_its_shell_blades_the_same_damping(tube):
+    """The seed's frozen-azimuth model (frozen/turbine.py) with the files' damping: each shell blade
+    gets method p's per-direction modal damping (the clamped blade's, placed on the blade by its
+    pitch, azimuth, cone and tilt), not one ``beta K``.  The three-bladed tube rotor (hub clamped,
+    2.5 deg cone, 5 deg tilt) at pitch 0.3 rad, standstill, vacuum: its lowest six modes (1st flap
+    and 1st edge of each blade) have the damping ratio Rayleigh's closed form gives the direction,
+    ``pi f mu`` (1 %, as above), and method p's ``zeta`` of that blade mode (1 %).  One ``beta K``
+    with the larger bending ``mu`` (the old model) gives the edge modes twice their ratio.  A point
+    set that is not the blade moved rigidly is refused."""
+    from windflutter.frozen.turbine import TurbineOptions, TurbineStability
+    from windflutter.model.blade import BladeDamping
+    from windflutter.system.damping import rigid_fit
+
+    _, D = tube
+    tb = synthetic_turbine(tube_blade(40.0, 2.0, 0.5, 0.01))
+    tb = dataclasses.replace(tb, blade=dataclasses.replace(tb.blade, damping=BladeDamping(mu=MU)))
+    opts = TurbineOptions(model="shell", damping="file", reduction="modal", basis_modes=20, max_rpm=10.0,
+                          mesh={"part": "rotor", "n_span": 20, "n_chord": 24})
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, _, am = TurbineStability(tb, opts).model(0.3)
+    M, C, K = (np.asarray(A.toarray() if sp.issparse(A) else A) for A in (am.Mr, am.Dr, am.Kr0))
+    n = M.shape[0]
+    A = np.block([[np.zeros((n, n)), np.eye(n)], [-np.linalg.solve(M, K), -np.linalg.solve(M, C)]])
+    lam = np.linalg.eigvals(A)
+    lam = lam[lam.imag > 0]
+    lam = lam[np.argsort(np.abs(lam))][:6]
+    f, zeta = np.abs(lam) / (2 * np.pi), -lam.real / np.abs(lam)
+    for i, (mu, zp) in enumerate(((MU[5], D.zeta[0]), (MU[4], D.zeta[1]))):  # flap, then edge
+        fi, zi = f[3 * i:3 * i + 3], zeta[3 * i:3 * i + 3]
+        assert np.allclose(fi, D.freq_hz[i], rtol=1e-3), (fi, D.freq_hz[i])
+        assert np.allclose(zi, np.pi * fi * mu, rtol=0.01), (zi, np.pi * fi * mu)
+        assert np.allclose(zi, zp, rtol=0.01), (zi, zp)
+
+    x = np.random.default_rng(4).standard_normal((10, 3))
+    with pytest.raises(ValueError):
+        rigid_fit(x, x * 1.1)

@@ -41,7 +41,7 @@ from windflutter.solve.aeroelastic import AeroelasticModel, StructuralMatrices
 from windflutter.solve.skin_model import SkinAeroelasticModel
 from windflutter.structure.assembly import assemble
 from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
-from windflutter.system.damping import turbine_damping_matrix
+from windflutter.system.damping import blade_mu, shell_modal_damping, turbine_damping_matrix
 from windflutter.system.identity import MIXED_SHARE
 from windflutter.system.identity import blade_reference
 from windflutter.units import RPM
@@ -182,12 +182,37 @@ class TurbineStability:
         its standstill modes, named), from the blade alone meshed as this model's blades, cached:
         the names of method p, for the tracked modes of the frozen-azimuth searches."""
         if getattr(self, "_reference", None) is None:
+            _, st, sections = self._blade0()
+            self._reference = blade_reference(st, sections)
+        return self._reference
 
+    def _blade0(self):
+        """The blade alone, clamped at the hub, at pitch 0, meshed as this model's blades:
+        ``(fe, struct, sections)``, cached."""
+        if getattr(self, "_blade_zero", None) is None:
             settings = MeshSettings(**{"model": self.options.model, **self.options.mesh, "part": "rotor_blade",
                                        "pitch": 0.0})
             fe, sections = build_blade(self.turbine, settings)
-            self._reference = blade_reference(assemble(fe), sections)
-        return self._reference
+            self._blade_zero = (fe, assemble(fe), sections)
+        return self._blade_zero
+
+    def _shell_blade_damping(self, fe):
+        """The files' per-direction damping of the shell blades of the model ``fe`` -- method p's
+        (:func:`windflutter.system.damping.shell_modal_damping` on the clamped pitch-0 blade, built
+        once) placed on each blade by its rigid motion (pitch, azimuth, cone, tilt); None for beam
+        blades or without coefficients."""
+        mu = blade_mu(self.turbine)
+        if mu is None or not len(fe.shell_conn) or "blade0" not in fe.node_groups:
+            return None
+        if getattr(self, "_shell_damping0", None) is None:
+            fe0, st0, sec0 = self._blade0()
+            self._shell_damping0 = shell_modal_damping(fe0, st0, sec0, mu)
+        fe0 = self._blade0()[0]
+        src = fe0.node_groups["blade0"]
+        nodes = np.asarray(fe.nodes, float)
+        targets = [(ids, nodes[ids]) for k in range(int(self.turbine.n_blades))
+                   if (ids := fe.node_groups.get(f"blade{k}")) is not None]
+        return self._shell_damping0.placed(src, np.asarray(fe0.nodes, float)[src], targets, fe.n_nodes)
 
     def pitch_at(self, wind_speed: float) -> float:
         """Blade pitch (rad) from the operating curve (0 without one)."""
@@ -233,6 +258,9 @@ class TurbineStability:
             am = AeroelasticModel(**kw)
         if o.damping == "modal" and o.damping_ratio > 0:
             am.add_modal_damping(o.damping_ratio)
+        Db = self._shell_blade_damping(fe) if o.damping == "file" else None
+        if Db is not None:  # low-rank: added in the working basis (turbine_damping_matrix has the rest)
+            am.add_low_rank_damping(Db.U, Db.c)
         self._models[key] = (fe, sections, am)
         return self._models[key]
 

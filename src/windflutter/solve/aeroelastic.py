@@ -155,6 +155,16 @@ class AeroelasticModel:
         MV = M @ V
         self.Dr = self.Dr + MV @ np.diag(2.0 * zeta * np.sqrt(np.maximum(w2, 0.0))) @ MV.T
 
+    def add_low_rank_damping(self, U, c) -> None:
+        """Add the damping ``U diag(c) U^T`` (``U`` (n_dof, k) in the unconstrained numbering, N s/m)
+        in the working basis: ``W diag(c) W^T``, ``W = Phi^T T^T U`` -- the same as projecting it with
+        the structure's ``D``.  The projected basis is required (as :meth:`add_modal_damping`)."""
+        if self.Phi is None:
+            raise InputError("reduction", "none", "a projected model (n_modes set) for the shell blades' modal "
+                             "damping (a dense n x n matrix on the full model)")
+        W = self.Phi.T @ np.asarray(self.structure.T.T @ np.asarray(U, float))
+        self.Dr = self.Dr + (W * np.asarray(c, float)[None, :]) @ W.T
+
     @property
     def size(self) -> int:
         return self.Mr.shape[0]

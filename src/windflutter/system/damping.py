@@ -20,8 +20,9 @@
   ``beta = zeta_1 / (pi f_1)`` at the support's first mode.
 * A file without damping data gives none (the conservative choice); ``damping="none"`` ignores
   what the files give.
-* The seed's frozen-azimuth model (:func:`turbine_damping_matrix`) keeps ``beta K`` on shell blades,
-  ``beta`` the larger bending coefficient.
+* The seed's frozen-azimuth model gives its shell blades the same modal damping: the clamped
+  blade's (:func:`shell_modal_damping`) placed on each of its blades (:meth:`ModalDamping.placed`);
+  :func:`turbine_damping_matrix` is then the tower's alone.
 """
 
 from __future__ import annotations
@@ -107,6 +108,46 @@ class ModalDamping:
         R = np.broadcast_to(np.asarray(R, float), (U.shape[0], 3, 3))
         U2 = np.einsum("nab,nkbm->nkam", R, U).reshape(self.U.shape)
         return ModalDamping(U2, self.c, self.zeta, self.freq_hz, self.shares)
+
+    def placed(self, source, x_source, targets, n_nodes: int) -> "ModalDamping":
+        """One blade's matrix placed on every blade of another model (``n_nodes`` nodes): ``source``
+        the blade's node ids here, ``x_source`` (n, 3) their positions; ``targets`` one ``(ids, x)``
+        per blade there, the same nodes in the same order.  Each copy is carried by the rigid motion
+        that maps ``x_source`` on ``x`` (:func:`rigid_fit`), so ``C = sum_k Q_k C_b Q_k^T``; the
+        copies' columns side by side.  The other nodes here (a clamped hub) must carry no row."""
+        U = self.U.reshape(-1, 6, self.U.shape[1])
+        source = np.asarray(source, dtype=np.int64)
+        rest = np.setdiff1d(np.arange(U.shape[0]), source)
+        if rest.size and np.abs(U[rest]).max() > 1e-12 * max(np.abs(U).max(), 1e-300):
+            raise ValueError("the blade's damping acts on nodes outside the blade (not a clamped blade)")
+        blocks = []
+        for ids, x in targets:
+            R = rigid_fit(x_source, x)
+            Ub = ModalDamping(U[source].reshape(-1, U.shape[2]), self.c).rotated(R).U
+            Uk = np.zeros((int(n_nodes), 6, U.shape[2]))
+            Uk[np.asarray(ids, dtype=np.int64)] = Ub.reshape(-1, 6, U.shape[2])
+            blocks.append(Uk.reshape(-1, U.shape[2]))
+        k = len(blocks)
+        zeta, freq = (None if a is None else np.tile(a, k) for a in (self.zeta, self.freq_hz))
+        return ModalDamping(np.hstack(blocks), np.tile(self.c, k), zeta, freq,
+                            None if self.shares is None else np.concatenate([self.shares] * k))
+
+
+def rigid_fit(a, b, tol: float = 1e-6) -> np.ndarray:
+    """The rotation ``R`` (3, 3) of the rigid motion ``b ~ R a + t`` of the point sets ``a``, ``b``
+    (n, 3) (least squares, Kabsch's SVD); ValueError if it misses a point by more than ``tol`` of
+    the set's size (the sets are not one body moved)."""
+    a, b = np.asarray(a, float), np.asarray(b, float)
+    if a.shape != b.shape:
+        raise ValueError(f"point sets of shapes {a.shape} and {b.shape}")
+    pa, pb = a - a.mean(axis=0), b - b.mean(axis=0)
+    u, _, vt = np.linalg.svd(pa.T @ pb)
+    d = np.sign(np.linalg.det(vt.T @ u.T))
+    R = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
+    size = max(np.linalg.norm(pa, axis=1).max(), 1e-300)
+    if np.linalg.norm(pa @ R.T - pb, axis=1).max() > tol * size:
+        raise ValueError("the point sets are not one body moved rigidly")
+    return R
 
 
 #: cross terms only between modes whose kinetic energy the strips' rigid-section motion carries
@@ -257,10 +298,12 @@ def element_subset(fe, prefix: str):
 
 def turbine_damping_matrix(turbine, struct) -> sp.csr_matrix | None:
     """Full-numbering structural damping of a whole (frozen-azimuth) model from the files: the
-    blades' ``mu`` on the blade elements, the tower's modal ratio as ``beta K`` on the tower
+    beam blades' ``mu`` on the blade elements (shell blades: none here, their modal damping is
+    :meth:`ModalDamping.placed`), the tower's modal ratio as ``beta K`` on the tower
     elements with ``beta = 2 zeta / omega_1`` at the model's first mode; None if the files give none."""
     fe = struct.fe
-    D = blade_damping_matrix(element_subset(fe, "blade"), blade_mu(turbine))
+    blades = element_subset(fe, "blade")
+    D = None if len(blades.shell_conn) else blade_damping_matrix(blades, blade_mu(turbine))
     zeta = tower_ratio(turbine)
     if zeta > 0 and "tower" in fe.region_names:
         w2 = symmetric_eigs(struct.Kr.tocsc(), struct.Mr.tocsc(), 1, shift=-1.0, vectors=False)[0][0]
