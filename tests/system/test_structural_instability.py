@@ -64,10 +64,14 @@ def test_nrel5mw_shell_tip_instability_is_not_divergence():
 def test_nrel5mw_shell_with_the_tip_rib_stays_structurally_stable():
     """The default closure (a rib: the tip section keeps its shape in its plane) removes that local
     instability: the structure alone with its steady stress is stable at 26 RPM, where the open tip
-    had failed, and the sweep runs on to the aeroelastic onsets (no note; measured 2 Dec 2026: 4th
-    flap BW flutter 29.02 RPM at 4.04 Hz, divergence 29.06 RPM, ~110 s)."""
+    had failed, and the sweep runs on to the aeroelastic onsets (no note).  Measured 2 Dec 2026 with
+    one stiffness-proportional damping on the shell: 4th flap BW flutter 29.02 RPM; since the shell's
+    per-direction structural damping (issue 33, 4 Dec) the first onset is the 1st edge BW + 1st flap
+    BW at 20.56 RPM (0.68 Hz), the beam of the same blade's 20.37 RPM
+    (test_shell_same_blade.py's slow onset check), ~110 s."""
     (p,) = windflutter.stability("nrel5mw", [8.0], model="shell")
     d = p.as_dict()
-    assert d["note"] is None, d
-    assert p.flutter_rpm is not None and p.flutter_rpm > 26.0
+    assert d["note"] is None, d  # no structural instability anywhere in the sweep (which runs past 26 RPM)
+    assert p.flutter_rpm is not None and 1.5 * 12.1 < p.flutter_rpm < 26.0
+    assert "edge" in p.flutter_mode
     assert p.divergence_rpm is None or p.divergence_rpm > 26.0
