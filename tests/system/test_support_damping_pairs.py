@@ -38,7 +38,8 @@ def test_a_degenerate_pair_gets_the_fore_aft_and_side_side_ratios_whatever_the_s
     R = np.eye(4)
     for i in (0, 2):  # turn each pair within its eigen-space
         R[i:i + 2, i:i + 2] = [[c, -s], [s, c]]
-    monkeypatch.setattr(damping, "symmetric_eigs", lambda K_, M_: (w2, V @ R))
+    real = damping.symmetric_eigs  # the tower's solve returns the turned pairs; any other solve is real
+    monkeypatch.setattr(damping, "symmetric_eigs", lambda K_, M_: (w2, V @ R) if K_.shape == K.shape else real(K_, M_))
     fa, ss = np.array([0.013, 0.02]), np.array([0.017, 0.03])
     D = damping.support_modal_damping(K, M, np.zeros_like(M), fa, ss, _energy)
     for order in range(2):

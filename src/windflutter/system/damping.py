@@ -301,7 +301,7 @@ def split_directions(w2: np.ndarray, V: np.ndarray, direction_energy) -> np.ndar
                 for b in range(a + 1, k):
                     Q[a, b] = Q[b, a] = 0.25 * (direction_energy(G[:, a] + G[:, b])[0]
                                                 - direction_energy(G[:, a] - G[:, b])[0])
-            V[:, i:j] = G @ np.linalg.eigh(Q)[1][:, ::-1]  # the most fore-aft first
+            V[:, i:j] = G @ symmetric_eigs(Q, np.eye(k))[1][:, ::-1]  # the most fore-aft first
         i = j
     return V
 
