@@ -23,7 +23,7 @@ from windflutter.model import load_turbine
 from windflutter.operating import campbell_model
 from windflutter.sensitivity import finite_difference as fd
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, GLOBAL_PARAMETERS
-from windflutter.sensitivity.eigen import state_eig
+from windflutter.system.modes import state_eig
 from windflutter.sensitivity.point import point_sensitivities
 from windflutter.sensitivity.results import SEGMENTS
 from windflutter.sensitivity.steady import HELD_EXACTLY, point_totals, segment_totals

@@ -161,7 +161,7 @@ def test_one_eigen_solve_shared_with_point_modes(point):
     """The point's eigen-solve with left vectors handed to ``point_modes`` and to the sensitivities
     (``eig=``, one dense solve per point instead of two) gives the same named modes and bit-identical
     derivatives as each solving its own."""
-    from windflutter.sensitivity.eigen import state_eig
+    from windflutter.system.modes import state_eig
     from windflutter.sensitivity.point import point_sensitivities
     from windflutter.system.modes import point_modes
 

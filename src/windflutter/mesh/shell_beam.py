@@ -30,7 +30,6 @@ from windflutter.model.blade import PERM_BEAMDYN_TO_SECTION
 from windflutter.model.turbine import BeamProperties
 from windflutter.mesh.shell_section import station_section
 from windflutter.structure.equivalent_beam import section_properties
-from windflutter.structure.fem import FEModel
 
 #: the reading rings half a chord apart; the segment's ends a chord beyond them (in stations)
 RING_CHORDS, END_CHORDS = 0.5, 1.0
@@ -72,13 +71,7 @@ def station_planes(fe, sec):
 def shell_segment(fe, st, on, k0: int, k1: int):
     """The shell sub-model between stations k0 and k1, and a function: station -> its ring's nodes."""
     conn = np.asarray(fe.shell_conn)
-    keep = np.all((st[conn] >= k0) & (st[conn] <= k1) & on[conn], axis=1)
-    used = np.unique(conn[keep])
-    mp = -np.ones(fe.n_nodes, int)
-    mp[used] = np.arange(len(used))
-    seg = FEModel(nodes=np.asarray(fe.nodes)[used], shell_conn=mp[conn[keep]],
-                  shell_prop=np.asarray(fe.shell_prop)[keep], shell_matdir=np.asarray(fe.shell_matdir)[keep],
-                  shell_properties=fe.shell_properties)
+    seg, mp = fe.shell_part(np.all((st[conn] >= k0) & (st[conn] <= k1) & on[conn], axis=1))
     return seg, (lambda k: mp[np.flatnonzero(on & (st == k) & (mp >= 0))])
 
 

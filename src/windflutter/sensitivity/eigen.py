@@ -31,6 +31,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.linalg as sla
 
+from windflutter.system.modes import state_eig
 from windflutter.system.multiblade import blade_frame, coleman_matrix
 
 
@@ -57,18 +58,12 @@ class ModeVectors:
     neighbour: "ModeVectors | None" = None
 
 
-def state_eig(mbc) -> tuple:
-    """``(eigenvalues, left, right)`` of ``mbc``'s state matrix: the one dense eigen-solve that
-    :func:`~windflutter.system.modes.point_modes` (its ``eig``) and :func:`mode_vectors` can share."""
-    return sla.eig(mbc.state_matrix(), left=True, right=True)
-
-
 def mode_vectors(mbc, eigenvalues, eig: tuple | None = None) -> list[ModeVectors]:
     """:class:`ModeVectors` of the eigenvalues ``eigenvalues`` (those of the point's named modes)
     of ``mbc``'s state matrix: one dense eigen-solve with left and right vectors, as
     :func:`~windflutter.system.modes.point_modes`' (the same matrix, so the same eigenvalues).
     Each carries its nearest other eigenvalue's vectors as ``neighbour`` (:func:`pair_vectors`).
-    ``eig``: that eigen-solve already done (:func:`state_eig` of ``mbc``)."""
+    ``eig``: that eigen-solve already done (:func:`~windflutter.system.modes.state_eig` of ``mbc``)."""
     lam, Y, X = state_eig(mbc) if eig is None else eig
     n = mbc.M.shape[0]
     lu = sla.lu_factor(mbc.M)

@@ -253,7 +253,7 @@ def point_sensitivities(om, ps, modes, blade_properties=None, global_parameters=
     ``blade_properties``, ``global_parameters``: names (None: all of
     :data:`~windflutter.sensitivity.parameters.BLADE_PROPERTIES` / ``GLOBAL_PARAMETERS``).
     ``eig``: the point's eigen-solve with left vectors, when already done
-    (:func:`~windflutter.sensitivity.eigen.state_eig`, shared with ``point_modes``).
+    (:func:`~windflutter.system.modes.state_eig`, shared with ``point_modes``).
     """
     props = check_parameters(blade_properties, BLADE_PROPERTIES, "blade_properties")
     globs = check_parameters(global_parameters, GLOBAL_PARAMETERS, "global_parameters")

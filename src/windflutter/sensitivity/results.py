@@ -13,11 +13,11 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.units import RPM
-from windflutter.sensitivity.eigen import frequency_damping, state_eig
+from windflutter.sensitivity.eigen import frequency_damping
 from windflutter.sensitivity.parameters import BLADE_PROPERTIES, change_words, is_relative, unit_change
 from windflutter.sensitivity.point import PAIR_LIMIT, PointSensitivity, point_sensitivities
 from windflutter.system.campbell import ambiguous
-from windflutter.system.modes import point_modes
+from windflutter.system.modes import point_modes, state_eig
 from windflutter.sensitivity.steady import point_totals, segment_totals, steady_base
 
 #: the spanwise segments (r/R) the ranked table sums the stations over

@@ -281,17 +281,11 @@ def _cell(fe: FEModel, rings, refs, e1: np.ndarray) -> tuple[FEModel, np.ndarray
     """The shell elements between the two measuring rings (centroids between their planes) as a model
     of their own: ``(cell, a, b)`` with the rings' nodes renumbered."""
     X = np.asarray(fe.nodes, float)
-    conn = np.asarray(fe.shell_conn)
-    s = (X[conn].mean(axis=1) - refs[0]) @ e1
-    keep = (s > 0) & (s < (refs[1] - refs[0]) @ e1)
-    used = np.unique(conn[keep])
-    new = np.full(len(X), -1, dtype=np.int64)
-    new[used] = np.arange(len(used))
+    s = (X[np.asarray(fe.shell_conn)].mean(axis=1) - refs[0]) @ e1
+    cell, new = fe.shell_part((s > 0) & (s < (refs[1] - refs[0]) @ e1))
     a, b = (new[np.asarray(r, dtype=np.int64)] for r in rings)
     if np.any(a < 0) or np.any(b < 0):
         raise InputError("rings", "nodes outside the cell", "two rings bounding the shell elements between them")
-    cell = FEModel(nodes=X[used], shell_conn=new[conn[keep]], shell_prop=np.asarray(fe.shell_prop)[keep],
-                   shell_matdir=np.asarray(fe.shell_matdir)[keep], shell_properties=list(fe.shell_properties))
     return cell, a, b
 
 

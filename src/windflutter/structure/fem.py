@@ -284,6 +284,20 @@ class FEModel:
                 for s in self.beam_sections]
         return replace(self, beam_sections=secs, masses=[], springs=[])
 
+    def shell_part(self, keep: np.ndarray) -> tuple[FEModel, np.ndarray]:
+        """``(part, new)``: the shell elements selected by the boolean mask ``keep`` as a model of their
+        own (their properties and material directions; nothing else), and ``new`` (n_nodes,) each
+        node's index in it (-1: not in it)."""
+        keep = np.asarray(keep, bool)
+        conn = np.asarray(self.shell_conn)
+        used = np.unique(conn[keep])
+        new = np.full(self.n_nodes, -1, dtype=np.int64)
+        new[used] = np.arange(len(used))
+        part = FEModel(nodes=np.asarray(self.nodes, float)[used], shell_conn=new[conn[keep]],
+                       shell_prop=np.asarray(self.shell_prop)[keep], shell_matdir=np.asarray(self.shell_matdir)[keep],
+                       shell_properties=list(self.shell_properties))
+        return part, new
+
     @property
     def n_dof(self) -> int:
         return DOF_PER_NODE * self.n_nodes

@@ -17,10 +17,9 @@ import math
 from dataclasses import dataclass, field
 
 import numpy as np
-import scipy.linalg as sla
 
 from windflutter.linalg_tools import mac_matrix
-from windflutter.system.modes import ModeRecord, point_modes
+from windflutter.system.modes import ModeRecord, point_modes, state_eig
 from windflutter.system.operational import OperationalModel, missing_curve_error
 from windflutter.units import RPM
 
@@ -205,7 +204,7 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
             progress(i / len(ws), f"V = {v:g} m/s")
         ps = om.at(float(v))
         prev = pts[-1] if pts else None
-        eig = sla.eig(ps.mbc.state_matrix(), left=True, right=True)  # solved once, named up to twice
+        eig = state_eig(ps.mbc)  # solved once, named up to twice
         modes = point_modes(ps, max_hz=max_hz, previous=prev.modes if prev else None, eig=eig)
         if prev is not None and ambiguous(prev.modes, modes):  # refine the step: carry the names through its middle
             mid = point_modes(om.at(0.5 * (prev.wind_speed + float(v))), max_hz=max_hz, previous=prev.modes)

@@ -228,6 +228,15 @@ def classify(ps, lam: complex, x: np.ndarray) -> ModeRecord:
     return ModeRecord(lam, "other", "none", **rec)  # named by identify_modes
 
 
+def state_eig(mbc) -> tuple:
+    """``(eigenvalues, left, right)`` of ``mbc``'s state matrix: the one dense eigen-solve that
+    :func:`point_modes` (its ``eig``), the Campbell's refined steps and the design sensitivities'
+    :func:`~windflutter.sensitivity.eigen.mode_vectors` can share."""
+    import scipy.linalg as sla
+
+    return sla.eig(mbc.state_matrix(), left=True, right=True)
+
+
 def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structural: float = 0.8,
                 previous: list[ModeRecord] | None = None, eig: tuple | None = None) -> list[ModeRecord]:
     """Every oscillatory structural mode of the point up to ``max_hz`` (undamped frequency), named by
@@ -246,10 +255,8 @@ def point_modes(ps, max_hz: float = 2.5, max_damping: float = 0.99, min_structur
     (``scipy.linalg.eig(S, left=True, right=True)``, e.g. by the design sensitivities, which need the
     left vectors too); default solved here.
     """
-    import scipy.linalg as sla
-
     if eig is None:
-        eig = sla.eig(ps.mbc.state_matrix(), left=True, right=True)
+        eig = state_eig(ps.mbc)
     lam, UL, X = eig
     n2 = 2 * ps.mbc.M.shape[0]
     part = np.abs(UL.conj() * X)
