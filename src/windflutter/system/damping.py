@@ -135,15 +135,15 @@ class ModalDamping:
 
 def rigid_fit(a, b, tol: float = 1e-6) -> np.ndarray:
     """The rotation ``R`` (3, 3) of the rigid motion ``b ~ R a + t`` of the point sets ``a``, ``b``
-    (n, 3) (least squares, Kabsch's SVD); ValueError if it misses a point by more than ``tol`` of
-    the set's size (the sets are not one body moved)."""
+    (n, 3) (least squares: SciPy's ``Rotation.align_vectors`` of the centred sets); ValueError if it
+    misses a point by more than ``tol`` of the set's size (the sets are not one body moved)."""
+    from scipy.spatial.transform import Rotation
+
     a, b = np.asarray(a, float), np.asarray(b, float)
     if a.shape != b.shape:
         raise ValueError(f"point sets of shapes {a.shape} and {b.shape}")
     pa, pb = a - a.mean(axis=0), b - b.mean(axis=0)
-    u, _, vt = np.linalg.svd(pa.T @ pb)
-    d = np.sign(np.linalg.det(vt.T @ u.T))
-    R = vt.T @ np.diag([1.0, 1.0, d]) @ u.T
+    R = Rotation.align_vectors(pb, pa)[0].as_matrix()
     size = max(np.linalg.norm(pa, axis=1).max(), 1e-300)
     if np.linalg.norm(pa @ R.T - pb, axis=1).max() > tol * size:
         raise ValueError("the point sets are not one body moved rigidly")
