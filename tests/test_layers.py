@@ -67,6 +67,13 @@ def _module_name(path: Path, src: Path = SRC) -> str:
     return ".".join(parts)
 
 
+@functools.lru_cache(maxsize=None)
+def _parse(text: str) -> ast.Module:
+    """The syntax tree of a source text, parsed once (four checks read every module; the trees are
+    only read, never changed)."""
+    return ast.parse(text)
+
+
 def _statements(body):
     """Every statement in ``body`` and in the statement blocks nested in it (function and class
     bodies, if/else, try/except/finally, with, loops, match cases): where imports can stand.
@@ -89,7 +96,7 @@ def _imports(path: Path, src: Path = SRC) -> list[tuple[str, int]]:
     name = _module_name(path, src)
     package = name if path.name == "__init__.py" else name.rpartition(".")[0]
     found: list[tuple[str, int]] = []
-    for node in _statements(ast.parse(path.read_text(encoding="utf-8"), filename=str(path)).body):
+    for node in _statements(_parse(path.read_text(encoding="utf-8")).body):
         if isinstance(node, ast.Import):
             found += [(a.name, node.lineno) for a in node.names if a.name.split(".")[0] == "windflutter"]
         elif isinstance(node, ast.ImportFrom):
@@ -246,7 +253,7 @@ def private_imports(src: Path = SRC) -> list[str]:
     borrowed across modules: make it public in its module instead)."""
     out = []
     for path in sorted(src.rglob("*.py")):
-        for node in _statements(ast.parse(path.read_text(encoding="utf-8")).body):
+        for node in _statements(_parse(path.read_text(encoding="utf-8")).body):
             if isinstance(node, ast.ImportFrom) and (node.module or "").startswith("windflutter") or \
                     isinstance(node, ast.ImportFrom) and node.level:
                 for alias in node.names:
@@ -298,11 +305,16 @@ LOCAL_IMPORTS: dict[str, tuple[frozenset[str], str]] = {
 
 def local_imports(src: Path = SRC) -> dict[str, set[str]]:
     """Per file (relative to ``src``) the package modules it imports inside a function."""
+    return {k: set(v) for k, v in _local_imports(src).items()}
+
+
+@functools.lru_cache(maxsize=8)
+def _local_imports(src: Path) -> dict[str, set[str]]:
     out: dict[str, set[str]] = {}
     for path in sorted(src.rglob("*.py")):
         rel = path.relative_to(src).as_posix()
         name = _module_name(path, src)
-        for fn in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+        for fn in ast.walk(_parse(path.read_text(encoding="utf-8"))):
             if not isinstance(fn, (ast.FunctionDef, ast.AsyncFunctionDef)):
                 continue
             for node in ast.walk(fn):

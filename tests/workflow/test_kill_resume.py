@@ -63,7 +63,7 @@ def test_sigint_then_sigkill_then_resume_equals_uninterrupted(tmp_path):
     out = tmp_path / "out"
 
     # 1) Ctrl-C after two points: exit 130, finished points kept, a hint to resume
-    p = _start(cfg_path, out, delay=1.0)
+    p = _start(cfg_path, out, delay=0.3)
     _wait_for_points(p, out, 2)
     p.send_signal(signal.SIGINT)
     _, err = p.communicate(timeout=300)
@@ -74,7 +74,7 @@ def test_sigint_then_sigkill_then_resume_equals_uninterrupted(tmp_path):
     assert store.open_results(out).sizes["point"] == n1
 
     # 2) resume, then SIGKILL (no chance to clean up) once more points are stored
-    p = _start(cfg_path, out, delay=1.0, resume=True)
+    p = _start(cfg_path, out, delay=0.3, resume=True)
     _wait_for_points(p, out, n1 + 1)
     p.send_signal(signal.SIGKILL)
     p.communicate(timeout=300)
