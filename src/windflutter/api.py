@@ -29,17 +29,17 @@ Units as at the CLI: wind speed m/s, rotor speed RPM, angles in degrees, frequen
 
 from __future__ import annotations
 
-import dataclasses
 import inspect
 from pathlib import Path
 from typing import Any
 
-from windflutter.config import AnalysisConfig, MAX_MODES, MAX_RPM, check_config, config_from_dict, field_spec, load_config
+from windflutter.config import AnalysisConfig, check_config, config_from_dict, load_config
+# the modes/mesh options: declared with the config, re-exported here (the API's names)
+from windflutter.config.commands import DEFAULT_MODEL, MESH_DEFAULTS, MESH_OPTIONS, MODES_OPTIONS, SHELL_ONLY
 from windflutter.errors import InputError
 from windflutter.mesh.settings import MeshSettings
 from windflutter.model.turbine import Turbine
 from windflutter import operating
-from windflutter.schema import Spec
 from windflutter import methods  # module access: tests patch methods.stability_analysis
 from windflutter.operating import campbell_model
 from windflutter.post.runfolder import run_folder_name
@@ -49,42 +49,6 @@ from windflutter.sensitivity import shell_results
 from windflutter.simulate import onset as simulate_onset, run as simulate_run
 from windflutter.system.campbell import default_wind_speeds
 from windflutter.system.operational import missing_curve_error
-
-MESH_MODELS = ("beam", "shell")
-MESH_PARTS = ("turbine", "blade", "tower", "rotor")
-#: the model every command builds unless told otherwise
-DEFAULT_MODEL = "beam"
-#: the options that only the shell model has
-SHELL_ONLY = ("n_chord", "tower_model", "tip_closure", "element_length", "reference_surface")
-
-#: options of :func:`modes` and ``windflutter mesh`` (keyword -> check); the CLI flag of each is the
-#: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
-MESH_OPTIONS: dict[str, Spec] = {
-    "part": Spec("choice", choices=MESH_PARTS, doc="which part: turbine, blade (root clamped), tower "
-                 "(rotor-nacelle lumped) or rotor (blades and hub, the hub clamped: no drivetrain in a modal analysis)"),
-    "model": Spec("choice", choices=MESH_MODELS, doc="beam (Timoshenko beams, the default of every command) "
-                  "or shell (composite shells)"),
-    "pitch": Spec("float", lower=-180.0, upper=180.0, unit="deg", doc="blade pitch"),
-    "azimuth": Spec("float", lower=-360.0, upper=360.0, unit="deg", doc="rotor azimuth of blade 0 (0 = up)"),
-    "n_chord": Spec("int", lower=8, upper=400, nullable=True, doc="shell model: elements around a blade section"),
-    "n_span": field_spec("model.n_aero_sections"),
-    "tower_model": Spec("choice", choices=MESH_MODELS, nullable=True, doc="shell model: the tower as shell "
-                        "(default) or beam"),
-    "tip_closure": dataclasses.replace(field_spec("model.tip_closure"), nullable=True),
-    "element_length": field_spec("model.element_length"),
-    "reference_surface": dataclasses.replace(field_spec("model.reference_surface"), nullable=True),
-}
-MESH_DEFAULTS: dict[str, Any] = {"part": "turbine", "model": DEFAULT_MODEL, "pitch": 0.0, "azimuth": 0.0,
-                                 "n_chord": None, "n_span": None, "tower_model": None, "tip_closure": None,
-                                 "element_length": None, "reference_surface": None}
-
-#: the options of :func:`modes` besides the mesh
-MODES_OPTIONS: dict[str, Spec] = {
-    "rpm": Spec("float", lower=0.0, upper=MAX_RPM, unit="RPM", doc="rotor speed; > 0 adds centrifugal "
-                "stiffening and spin softening"),
-    "n": Spec("int", lower=1, upper=MAX_MODES, doc="number of modes"),
-}
-
 
 # --------------------------------------------------------------------------------------------
 # turbines and configs

@@ -9,7 +9,7 @@ from __future__ import annotations
 import argparse
 import json
 
-from windflutter.api import DEFAULT_MODEL, MESH_DEFAULTS, MESH_OPTIONS, MODES_OPTIONS
+from windflutter.config.commands import DEFAULT_MODEL, MESH_DEFAULTS, MESH_OPTIONS, MODES_OPTIONS
 from windflutter.cli.options import Flag, add_flags, command_values
 
 
