@@ -61,6 +61,14 @@ MIN_ASSIGNED_SHARE = 0.1
 #: continuation keeps it (the IEA 15 MW's tower torsion, 16-27 % damped at 16-25 m/s, its kinetic
 #: energy more and more the blades' flap)
 CONTINUED_MAC = 0.8
+#: along a sweep, a continued own-mode name is given back to the reference (:func:`reanchor`) when
+#: another own mode resembles the name's reference mode (standstill shape) with a MAC of at least this
+#: (:data:`REFERENCE_MAC`: the least resemblance that names a mode afresh) and ...
+REANCHOR_MAC = REFERENCE_MAC
+#: ... the carrier's MAC with it is at most this fraction of that one (hysteresis: through a veering's
+#: mixed middle, where both resemble it about alike, the name stays where continuation put it; in a
+#: two-mode veering it moves once the carrier has less than 20 % of the content)
+REANCHOR_RATIO = 0.25
 #: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
 RIGID_HZ = 0.15
 #: the default frequency limit of the Campbell and the overspeed sweep: this factor x the blade's 1st
@@ -233,6 +241,43 @@ def _continued(previous: OwnModeNames | None, sig: np.ndarray) -> list:
     return ident
 
 
+def reanchor(ident: list, mac: np.ndarray, reference: StructuralReference) -> list:
+    """The continued names ``ident`` (r,) (None where not continued) given back to the reference:
+    a name ``(family, order)`` moves from its carrier ``c`` to the own mode ``j`` that resembles its
+    reference mode best (``mac`` (n_ref, r): MAC of the reference's strip signatures with the own
+    modes') when ``mac[ref, j] >= REANCHOR_MAC``, ``mac[ref, c] <= REANCHOR_RATIO * mac[ref, j]``
+    and ``j`` resembles it more than the reference mode of the name it carries; ``c`` and ``j``'s
+    former name are left to the reference assignment.  Strongest moves first, one per own mode.
+
+    Continuation (previous point's MAC) follows a branch through a veering: after a local mode (a
+    shell's tip panel) has crossed and mixed with the 1st torsion, the branch named 1st torsion is the
+    local mode and the torsion is on the other branch.  The reference's shape is what the name means;
+    the hysteresis keeps the continued name through the mixed middle and where the deflection makes
+    two modes resemble the reference mode alike."""
+    out = list(ident)
+    row = {(fam, order): k for k, (fam, order, _) in enumerate(reference.blade)}
+    moves = []
+    for c, x in enumerate(ident):
+        k = row.get(x)
+        if k is None:
+            continue
+        others = [j for j in range(len(ident)) if j != c]
+        if not others:
+            continue
+        j = max(others, key=lambda j: mac[k, j])
+        own_k = row.get(ident[j])
+        if (mac[k, j] >= REANCHOR_MAC and mac[k, c] <= REANCHOR_RATIO * mac[k, j]
+                and (own_k is None or mac[k, j] > mac[own_k, j])):
+            moves.append((mac[k, j], c, j, x))
+    moved: set = set()
+    for _, c, j, x in sorted(moves, key=lambda m: -m[0]):
+        if c in moved or j in moved or out[c] != x:
+            continue
+        out[c], out[j] = None, x
+        moved.update((c, j))
+    return out
+
+
 def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralReference,
                     previous: OwnModeNames | None = None) -> PointOwnModes:
     """The blade's structural modes at the point (rotating, steady stress, no aerodynamics) named by
@@ -246,7 +291,7 @@ def point_own_modes(ps, basis_components: np.ndarray, reference: StructuralRefer
     comps = basis_components @ V
     sig = strip_signatures(ps.blade.sections, comps)
     mac = mac_matrix(reference.signatures, sig)
-    ident = _continued(previous, sig)
+    ident = reanchor(_continued(previous, sig), mac, reference)
     taken = {i for i in ident if i is not None}
     rows_free = [r for r, (fam, order, _) in enumerate(reference.blade) if (fam, order) not in taken]
     cols_free = [c for c in range(len(ident)) if ident[c] is None]
