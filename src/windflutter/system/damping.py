@@ -33,7 +33,7 @@ import numpy as np
 import scipy.sparse as sp
 
 from windflutter.structure.assembly import assemble_matrices
-from windflutter.structure.modal import symmetric_eigs
+from windflutter.structure.modal import split_directions, symmetric_eigs
 
 
 def blade_mu(turbine) -> np.ndarray | None:
@@ -272,38 +272,6 @@ def support_modal_damping(K: np.ndarray, M: np.ndarray, M_rotor: np.ndarray, fa:
         count[key] += 1
     MV = Mt @ V
     return (MV * (2.0 * zeta * np.sqrt(np.maximum(w2, 0.0)))[None, :]) @ MV.T
-
-
-#: modes whose squared frequencies are this close (relative) share one eigen-space: an axisymmetric
-#: tower's fore-aft and side-side pair, whose eigenvectors the solver returns in any rotation
-DEGENERATE = 1e-6
-
-
-def split_directions(w2: np.ndarray, V: np.ndarray, direction_energy) -> np.ndarray:
-    """``V`` with each group of degenerate modes (:data:`DEGENERATE`) turned within its eigen-space onto
-    the directions of extreme fore-aft energy (the eigenvectors of that quadratic form in the group's
-    basis, by polarization of ``direction_energy``): the pair of an axisymmetric tower becomes one
-    fore-aft and one side-side mode whatever rotation the solver returned (it decided which of the
-    files' two ratios each got: 1.3 / 1.7 % in one run, 1.7 / 1.7 % in another on the IEA 22 MW).
-    The eigen-space, hence the modal damping of a non-degenerate set, is unchanged."""
-    V = np.array(V, copy=True)
-    i = 0
-    while i < w2.size:
-        j = i + 1
-        while j < w2.size and abs(w2[j] - w2[i]) <= DEGENERATE * max(abs(w2[i]), 1e-12):
-            j += 1
-        if j - i > 1:
-            G = V[:, i:j]
-            k = j - i
-            Q = np.zeros((k, k))
-            for a in range(k):
-                Q[a, a] = direction_energy(G[:, a])[0]
-                for b in range(a + 1, k):
-                    Q[a, b] = Q[b, a] = 0.25 * (direction_energy(G[:, a] + G[:, b])[0]
-                                                - direction_energy(G[:, a] - G[:, b])[0])
-            V[:, i:j] = G @ symmetric_eigs(Q, np.eye(k))[1][:, ::-1]  # the most fore-aft first
-        i = j
-    return V
 
 
 def tower_ratio(turbine) -> float:

@@ -42,7 +42,7 @@ from scipy.optimize import linear_sum_assignment
 from windflutter.linalg_tools import mac_matrix
 from windflutter.solve.reduction import structural_modes
 from windflutter.structure.labels import blade_motion_components, ordinal
-from windflutter.structure.modal import symmetric_eigs
+from windflutter.structure.modal import split_directions, symmetric_eigs
 
 #: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
 #: mixed, with its two largest participations
@@ -185,8 +185,15 @@ def support_reference(support) -> tuple[list, np.ndarray | None]:
         return [], None
     w2, Phi = symmetric_eigs(support.K, support.M)
     md = np.asarray(support.struct.M.diagonal())
-    U = np.asarray(support.expand @ Phi)  # the support nodes' motion in every mode at once
-    e = (md[:, None] * np.abs(U) ** 2).reshape(-1, 6, Phi.shape[1]).sum(axis=0)  # (6, n): per component
+
+    def energies(V):  # (6, n): the support nodes' kinetic energy per motion component of each mode
+        U = np.asarray(support.expand @ V).reshape(md.size, -1)
+        return (md[:, None] * np.abs(U) ** 2).reshape(-1, 6, U.shape[1]).sum(axis=0)
+
+    # a degenerate fore-aft / side-side pair of an axisymmetric tower comes out of the solver in any
+    # rotation: turned onto its directions, its names no longer change from one run to the next
+    Phi = split_directions(w2, Phi, lambda v: tuple(energies(v[:, None])[:2, 0]))
+    e = energies(Phi)
     fams = ["tower_torsion" if e[5, k] > max(e[0, k], e[1, k]) else ("tower_fa" if e[0, k] >= e[1, k] else "tower_ss")
             for k in range(Phi.shape[1])]
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
