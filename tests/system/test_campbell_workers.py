@@ -52,3 +52,7 @@ def test_workers_default_and_refusal(nrel5mw_turbine):
     assert 1 <= campbell_workers(shell, 20) and campbell_workers(shell, 1) == 1
     with pytest.raises(InputError, match="workers"):
         campbell_workers(shell, 20, 0)
+    import windflutter
+
+    with pytest.raises(InputError, match="workers"):  # refused before the turbine is read
+        windflutter.campbell("no-such-turbine", [8.0], workers=0)

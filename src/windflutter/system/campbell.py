@@ -15,11 +15,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from concurrent.futures import FIRST_COMPLETED, wait
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from windflutter.linalg_tools import mac_matrix
+from windflutter.parallel import WorkerPool, check_workers, default_workers
 from windflutter.structure.labels import frame_components
 from windflutter.system.modes import ModeRecord, basis_components, point_modes, state_eig
 from windflutter.system.operational import OperationalModel, missing_curve_error
@@ -188,8 +190,6 @@ def campbell_workers(model: OperationalModel, n_points: int, workers: int | None
     usable cores (at most one per point) for a shell model -- a deflected shell point takes seconds
     (6.5 s on the IEA 22 MW), a worker's start about as long as one -- and 1 (this process) for a beam
     model, whose points take a fraction of a second."""
-    from windflutter.parallel import check_workers, default_workers
-
     if workers is not None:
         return check_workers(workers)
     return max(1, min(default_workers(), n_points)) if model.options.model == "shell" else 1
@@ -314,8 +314,6 @@ class PooledPoints:
     process's support and reference."""
 
     def __init__(self, model: OperationalModel, wind_speeds, workers: int):
-        from windflutter.parallel import WorkerPool
-
         self.model = model
         model.reference()  # computed once here, sent to the workers with the model
         self.pool = WorkerPool(PointEvaluator(model), workers)
@@ -330,8 +328,6 @@ class PooledPoints:
             self.running[self.pool.submit(key[0])] = key
 
     def point(self, v: float, middle: bool = False):
-        from concurrent.futures import FIRST_COMPLETED, wait
-
         key = (float(v), bool(middle))
         if key not in self.done and key not in self.running.values():
             if key in self.queue:
