@@ -43,6 +43,25 @@ def test_two_workers_give_the_serial_campbell(nrel5mw_turbine):
     assert [p.power for p in serial.points] == pytest.approx([p.power for p in pooled.points], rel=1e-6)
 
 
+def test_refined_steps_middles_in_the_workers(nrel5mw_turbine, monkeypatch):
+    """Every step ambiguous (JUMP patched to 0 in this process, where the names are checked): each
+    step's middle is evaluated by a worker and carries the names as in the serial run (same
+    tolerances as above); the middles are not reported."""
+    from windflutter.system import campbell as campbell_module
+
+    monkeypatch.setattr(campbell_module, "JUMP", 0.0)
+    winds = [8.0, 12.0, 16.0]
+    serial = campbell(nrel5mw_turbine, winds, SHELL, max_hz=2.0, workers=1)
+    pooled = campbell(nrel5mw_turbine, winds, SHELL, max_hz=2.0, workers=2)
+    assert [p.wind_speed for p in pooled.points] == winds
+    for pa, pb in zip(serial.points, pooled.points):
+        assert [m.name for m in pa.modes] == [m.name for m in pb.modes]
+        np.testing.assert_allclose([m.frequency_hz for m in pb.modes], [m.frequency_hz for m in pa.modes],
+                                   rtol=2.3e-6, atol=0)
+        np.testing.assert_allclose([m.damping_ratio for m in pb.modes], [m.damping_ratio for m in pa.modes],
+                                   rtol=0, atol=1.5e-6)
+
+
 def test_workers_default_and_refusal(nrel5mw_turbine):
     """``workers=None``: the cores (at most one per point) for a shell model, 1 for a beam model; a
     non-positive count is refused naming the field."""
