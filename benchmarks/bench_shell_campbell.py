@@ -12,7 +12,12 @@ in a forked child with one BLAS thread, so its peak RSS (``resource.getrusage``)
 from the default run's are printed.
 
     python benchmarks/bench_shell_campbell.py [--quick] [--turbine iea22mw] [--winds 23] [--cold]
-                                             [--only deflected|undeformed]
+                                             [--only deflected|undeformed] [--workers 2]
+
+``--workers N`` (default 2; 1: none): also the deflected run with its points in N worker processes
+(``campbell(..., workers=N)``); its CPU time and memory include the workers' (the memory as the parent's
+peak + N x the largest worker's, a bound on the total); the largest differences of its modes from the
+one-process run's are printed.
 """
 
 from __future__ import annotations
@@ -203,6 +208,11 @@ def main(argv=None) -> int:
           "corrections); states: first-order MBC system; rss_mb: peak RSS of the case's process; cpu: CPU time of the points "
           "(s, workers included); with workers rss_mb is the parent's + workers x the largest worker's (a bound on the total); the work of the points: evaluations (operating points, with the middles of ambiguous steps), sparse factorizations, "
           "columns solved with them, dense eigen-solves; load: 1-min load average at the case's end")
+    pooled = f"deflected, {args.workers} workers"
+    if pooled in runs and "deflected (default)" in runs:
+        df, dz = _difference(runs[pooled]["modes"], runs["deflected (default)"]["modes"])
+        print(f"one process vs {args.workers} workers: max rel. frequency difference {df:.2e}, max damping-ratio "
+              f"difference {dz:.2e} (elastic modes)")
     if args.cold and "deflected (default)" in runs:
         df, dz = _difference(runs["deflected, Lanczos at every point"]["modes"], runs["deflected (default)"]["modes"])
         print(f"default vs Lanczos at every point: max rel. frequency difference {df:.2e}, max damping-ratio "
