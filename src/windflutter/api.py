@@ -42,6 +42,7 @@ from windflutter.model.turbine import Turbine
 from windflutter import operating
 from windflutter import methods  # module access: tests patch methods.stability_analysis
 from windflutter.operating import campbell_model
+from windflutter.parallel import check_workers
 from windflutter.post.runfolder import run_folder_name
 from windflutter.sensitivity import onset as onset_
 from windflutter.sensitivity.results import as_dataset, sensitivities
@@ -240,7 +241,7 @@ def stability(turbine, wind_speeds, *, config: Any = None, **options) -> list:
 
 
 def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: Any = None, progress=None,
-             **options):
+             workers: int | None = None, **options):
     """The operating-point Campbell diagram: ``windflutter campbell``.
 
     Parameters
@@ -252,6 +253,8 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
         blade's 1st torsion frequency (:func:`windflutter.operating.operating_campbell`).
     config : base analysis config (see :func:`analysis_config`); one ``aero``.
     progress : optional ``progress(fraction, text)``.
+    workers : processes evaluating the operating points (``windflutter campbell --workers``); default
+        the usable cores for a shell model (a point takes seconds), 1 for a beam model.
     **options : analysis-config overrides (module docstring), e.g. ``model="shell"``,
         ``aero="potential"``, ``model={"part": "rotor"}``.
 
@@ -267,7 +270,9 @@ def campbell(turbine, wind_speeds=None, *, max_hz: float | None = None, config: 
     cfg = _config(config, {**options, **extra}, "windflutter.campbell() keywords")
     methods.operational_options(cfg, _one(cfg, "aero", "aerodynamic variant"))  # checked before the turbine is read
     winds = cfg.wind_speeds if wind_speeds is not None else None
-    return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress)
+    if workers is not None:
+        check_workers(workers)  # before the turbine is read
+    return operating.operating_campbell(as_turbine(turbine), cfg, winds, progress=progress, workers=workers)
 
 
 def _operating_study(turbine, wind_speeds, max_hz, config, options: dict[str, Any], function: str):

@@ -32,7 +32,8 @@ def campbell_max_hz(config: AnalysisConfig, model) -> float:
     return config.campbell.max_hz if config.campbell.max_hz is not None else model.reference().default_max_hz()
 
 
-def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *, model=None, progress=None):
+def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *, model=None, progress=None,
+                       workers: int | None = 1):
     """The operating-point Campbell diagram of ``turbine`` with the analysis ``config``.
 
     Parameters
@@ -43,6 +44,8 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
     model : an operating-point model built for ``config`` to reuse (its parts are cached), e.g. the
         one the run's stability solver built.
     progress : optional ``progress(fraction, text)``.
+    workers : processes evaluating the points (:func:`windflutter.system.campbell.campbell_workers`;
+        None: the cores for a shell model, 1 for a beam model).
 
     Returns
     -------
@@ -51,4 +54,5 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
     if getattr(turbine, "operating_curve", None) is None:
         raise missing_curve_error(turbine)
     om = model if model is not None else campbell_model(turbine, config)
-    return campbell(om.turbine, wind_speeds, max_hz=campbell_max_hz(config, om), model=om, progress=progress)
+    return campbell(om.turbine, wind_speeds, max_hz=campbell_max_hz(config, om), model=om, progress=progress,
+                    workers=workers)

@@ -46,7 +46,7 @@ except Exception:  # pragma: no cover - depends on the environment
     _cp = pickle
 
 __all__ = ["TaskResult", "run_tasks", "iter_tasks", "default_workers", "check_workers", "connect",
-           "check_scheduler_address", "runs_in_process"]
+           "check_scheduler_address", "runs_in_process", "WorkerPool"]
 
 ProgressCallback = Callable[[int, int, "TaskResult"], None]
 
@@ -313,6 +313,59 @@ def _terminate_workers(ex: ProcessPoolExecutor) -> None:
             proc.terminate()
         except Exception:  # noqa: BLE001 - already gone
             pass
+
+
+class WorkerPool:
+    """A local process pool fed one task at a time, for callers whose next tasks depend on the
+    results so far (the Campbell's refined steps, :func:`windflutter.system.campbell.campbell`).
+
+    ``fn`` is sent to each worker once (as :func:`run_tasks` does), the workers run under the
+    BLAS-thread limit ``blas_threads`` and die with this process; :meth:`submit` returns a future
+    whose :meth:`result` is a :class:`TaskResult`.  Used as a context manager: leaving the block by
+    an exception (Ctrl-C) cancels the queued tasks and terminates the running ones.
+    """
+
+    def __init__(self, fn: Callable[[Any], Any], workers: int, *, blas_threads: int | None = 1,
+                 start_method: str | None = None):
+        import multiprocessing as mp
+
+        try:
+            fn_bytes = _cp.dumps(fn)
+        except Exception as exc:
+            raise InputError("fn", repr(fn), f"a picklable callable ({type(exc).__name__}: {exc})") from exc
+        ctx = mp.get_context(start_method) if start_method else None
+        self.workers = check_workers(workers)
+        self._ex = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx, initializer=_init_worker,
+                                       initargs=(fn_bytes, blas_threads))
+        self._index = 0
+
+    def submit(self, task: Any):
+        """Queue ``fn(task)``; the returned future's ``result()`` is a :class:`TaskResult`."""
+        from concurrent.futures import Future
+
+        i, self._index = self._index, self._index + 1
+        payload, failed = _dumps_task(i, task)
+        if failed is not None:
+            fut: Future = Future()
+            fut.set_result(_cp.dumps(failed))
+            return fut
+        return self._ex.submit(_run_in_worker, i, payload)
+
+    @staticmethod
+    def result(future) -> TaskResult:
+        """The :class:`TaskResult` of a future from :meth:`submit` (waits for it)."""
+        try:
+            return _cp.loads(future.result())
+        except BrokenProcessPool as exc:
+            return TaskResult(-1, False, None, f"BrokenProcessPool: worker process died ({exc})", "", 0.0, "local")
+
+    def __enter__(self) -> "WorkerPool":
+        return self
+
+    def __exit__(self, exc_type, exc, tb) -> None:
+        self._ex.shutdown(wait=exc_type is None, cancel_futures=True)
+        if exc_type is not None:
+            _terminate_workers(self._ex)
 
 
 # --- Dask ---------------------------------------------------------------------------------

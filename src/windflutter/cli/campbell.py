@@ -40,6 +40,9 @@ def add_parser(sub: argparse._SubParsersAction) -> None:
                                    "ground-fixed frame, named (1st edge BW, 1st tower fore-aft, ...).")
     p.add_argument("turbine", help="turbine file (windIO, OpenFAST .fst, HAWC2 .htc) or bundled name")
     add_flags(p, FLAGS)
+    p.add_argument("--workers", metavar="N", default=None,
+                   help="operating points evaluated in N local processes (default: the usable cores for "
+                        "--model shell, whose points take seconds; 1 for a beam model; 1 = serial)")
     p.add_argument("--json", action="store_true", help="print the result as one JSON object")
     p.add_argument("--export", action="append", default=None, metavar="FILE",
                    help="write the result to FILE in the format of its suffix (repeatable): " + _FORMATS_HELP)
@@ -91,10 +94,13 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.api import campbell  # noqa: PLC0415
     from windflutter.files import prepare_output_file  # noqa: PLC0415
 
+    from windflutter.cli.run import parse_workers  # noqa: PLC0415
+
     config, _ = _config(args)
+    workers = parse_workers(args.workers)
     plan = _exports(args)
     winds = config.wind_speeds if args.wind_speeds is not None else None
-    res = campbell(args.turbine, winds, config=config)
+    res = campbell(args.turbine, winds, config=config, workers=workers)
     for exporter, path, flag in plan:
         exporter.write(res, prepare_output_file(path), field=flag, dpi=config.output.dpi)
     if args.json:

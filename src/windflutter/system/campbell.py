@@ -13,13 +13,17 @@ HAWCStab2-style ``.cmb``) and plots.
 
 from __future__ import annotations
 
+import dataclasses
 import math
+from concurrent.futures import FIRST_COMPLETED, wait
 from dataclasses import dataclass, field
 
 import numpy as np
 
 from windflutter.linalg_tools import mac_matrix
-from windflutter.system.modes import ModeRecord, point_modes, state_eig
+from windflutter.parallel import WorkerPool, check_workers, default_workers
+from windflutter.structure.labels import frame_components
+from windflutter.system.modes import ModeRecord, basis_components, point_modes, state_eig
 from windflutter.system.operational import OperationalModel, missing_curve_error
 from windflutter.units import RPM
 
@@ -181,8 +185,18 @@ def default_wind_speeds(turbine) -> np.ndarray:
     return sel if sel.size else v
 
 
+def campbell_workers(model: OperationalModel, n_points: int, workers: int | None = None) -> int:
+    """Processes for a Campbell of ``n_points`` wind speeds: ``workers`` if given, else (``None``) the
+    usable cores (at most one per point) for a shell model -- a deflected shell point takes seconds
+    (6.5 s on the IEA 22 MW), a worker's start about as long as one -- and 1 (this process) for a beam
+    model, whose points take a fraction of a second."""
+    if workers is not None:
+        return check_workers(workers)
+    return max(1, min(default_workers(), n_points)) if model.options.model == "shell" else 1
+
+
 def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progress=None,
-             model=None) -> CampbellResult:
+             model=None, workers: int | None = 1) -> CampbellResult:
     """The Campbell analysis of ``turbine`` (see module docstring).  Each point continues the
     previous one's identities; where a named mode's frequency jumps (:func:`ambiguous`) the step is
     refined once: the names are carried through the middle of the step (not reported).
@@ -194,27 +208,148 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
     max_hz : modes up to this undamped frequency (Hz).
     progress : optional ``progress(fraction, text)``.
     model : an :class:`~windflutter.system.operational.OperationalModel` to reuse (its parts are cached).
+    workers : processes evaluating the points (:func:`campbell_workers`; ``None``: its default): with
+        more than one, the operating points (steady state, linearization, blade basis, eigen-solve) are
+        evaluated in worker processes (:class:`PooledPoints`) and named here in wind-speed order, the
+        same names as serially; frequencies and damping equal to the iterative blade basis's tolerance
+        (its warm start is a worker's own previous point).
     """
 
     om = model or OperationalModel(turbine, options)
     ws = default_wind_speeds(turbine) if wind_speeds is None else np.asarray(wind_speeds, float)
-    pts = []
-    for i, v in enumerate(ws):
-        if progress is not None:
-            progress(i / len(ws), f"V = {v:g} m/s")
-        ps = om.at(float(v))
-        prev = pts[-1] if pts else None
-        eig = state_eig(ps.mbc)  # solved once, named up to twice
-        modes = point_modes(ps, max_hz=max_hz, previous=prev.modes if prev else None, eig=eig)
-        if prev is not None and ambiguous(prev.modes, modes):  # refine the step: carry the names through its middle
-            mid = point_modes(om.at(0.5 * (prev.wind_speed + float(v))), max_hz=max_hz, previous=prev.modes)
-            modes = point_modes(ps, max_hz=max_hz, previous=mid, eig=eig)
-        st = ps.steady
-        pts.append(CampbellPoint(wind_speed=float(v), rotor_speed_rpm=ps.omega / RPM, pitch_deg=math.degrees(ps.pitch),
-                                 modes=modes, power=float(st.power) if st is not None else float("nan"),
-                                 thrust=float(st.thrust) if st is not None else float("nan"),
-                                 tip_deflection=float(st.tip_flap) if st is not None else float("nan")))
+    n_workers = campbell_workers(om, len(ws), workers)
+    source = PooledPoints(om, ws, n_workers) if n_workers > 1 and len(ws) > 1 else SerialPoints(om)
+    with source:
+        pts = _named_points(source, ws, max_hz, progress)
     if progress is not None:
         progress(1.0, "done")
     return CampbellResult(turbine=str(getattr(turbine, "name", "")), part=om.options.part, points=pts,
                           tracks=track_modes(pts), assumptions=om.describe())
+
+
+def _named_points(source, ws, max_hz: float, progress) -> list[CampbellPoint]:
+    """The points of ``ws`` from ``source`` (:class:`SerialPoints` or :class:`PooledPoints`), named in
+    wind-speed order, each continuing the previous one's names."""
+    pts: list[CampbellPoint] = []
+    for i, v in enumerate(ws):
+        if progress is not None:
+            progress(i / len(ws), f"V = {v:g} m/s")
+        ps, eig, st = source.point(float(v))
+        prev = pts[-1] if pts else None
+        modes = point_modes(ps, max_hz=max_hz, previous=prev.modes if prev else None, eig=eig)
+        if prev is not None and ambiguous(prev.modes, modes):  # refine the step: carry the names through its middle
+            mps, meig, _ = source.point(0.5 * (prev.wind_speed + float(v)), middle=True)
+            mid = point_modes(mps, max_hz=max_hz, previous=prev.modes, eig=meig)
+            modes = point_modes(ps, max_hz=max_hz, previous=mid, eig=eig)
+        pts.append(CampbellPoint(wind_speed=float(v), rotor_speed_rpm=ps.omega / RPM, pitch_deg=math.degrees(ps.pitch),
+                                 modes=modes, **st))
+    return pts
+
+
+def _steady_summary(st) -> dict:
+    nan = float("nan")
+    return {"power": float(st.power) if st is not None else nan, "thrust": float(st.thrust) if st is not None else nan,
+            "tip_deflection": float(st.tip_flap) if st is not None else nan}
+
+
+class SerialPoints:
+    """The operating points evaluated in this process, in the order asked: ``point(v)`` is
+    ``(PointSystem, state_eig, steady summary)``."""
+
+    def __init__(self, model: OperationalModel):
+        self.model = model
+
+    def point(self, v: float, middle: bool = False):  # noqa: ARG002 - same signature as PooledPoints
+        ps = self.model.at(v)
+        return ps, state_eig(ps.mbc), _steady_summary(ps.steady)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc) -> None:
+        return None
+
+
+@dataclass
+class NamingBlade:
+    """What naming a point's modes reads of its blade once the basis's strip and tip motions are
+    computed (:func:`portable_point`): the strips."""
+
+    sections: object
+
+
+def portable_point(ps):
+    """A copy of the :class:`~windflutter.system.operational.PointSystem` ``ps`` with what its modes'
+    naming needs and little else, to cross a process boundary: the blade basis's strip and tip motions
+    computed (:func:`~windflutter.system.modes.basis_components`, ``tip_basis``), the blade reduced to
+    its strips, no support, reference, steady state or initial-stress matrices (the receiver attaches
+    its own support and reference, the same objects).  Full-order points (no basis) keep their blade."""
+    if ps.Phi is None:
+        return dataclasses.replace(ps, support=None, reference=None, steady=None, ksigma=None, klink=None)
+    basis_components(ps)
+    if ps.tip_frame is not None and ps.tip_basis is None:
+        ps.tip_basis = frame_components(ps.blade.sections, np.asarray(ps.blade.struct.T @ ps.Phi), ps.tip_frame)
+    return dataclasses.replace(ps, blade=NamingBlade(ps.blade.sections), support=None, reference=None, steady=None,
+                               ksigma=None, klink=None)
+
+
+class PointEvaluator:
+    """The worker's task: ``(portable_point, state_eig, steady summary)`` of the point at ``v``; the
+    worker's model keeps the blade of the last pitch only (:meth:`OperationalModel.keep_blades`)."""
+
+    def __init__(self, model: OperationalModel):
+        self.model = model
+
+    def __call__(self, v: float):
+        ps = self.model.at(v)
+        eig = state_eig(ps.mbc)
+        self.model.keep_blades([ps.pitch])
+        return portable_point(ps), eig, _steady_summary(ps.steady)
+
+
+class PooledPoints:
+    """The operating points evaluated in ``workers`` processes (:class:`~windflutter.parallel.WorkerPool`):
+    the wind speeds in order, one task per idle worker, a refined step's middle (``middle=True``)
+    ahead of the wind speeds not started; ``point(v)`` waits for ``v``'s result and attaches this
+    process's support and reference."""
+
+    def __init__(self, model: OperationalModel, wind_speeds, workers: int):
+        self.model = model
+        model.reference()  # computed once here, sent to the workers with the model
+        self.pool = WorkerPool(PointEvaluator(model), workers)
+        self.workers = workers
+        self.queue = [(float(v), False) for v in wind_speeds]
+        self.running: dict = {}
+        self.done: dict = {}
+
+    def _top_up(self) -> None:
+        while self.queue and len(self.running) < self.workers:
+            key = self.queue.pop(0)
+            self.running[self.pool.submit(key[0])] = key
+
+    def point(self, v: float, middle: bool = False):
+        key = (float(v), bool(middle))
+        if key not in self.done and key not in self.running.values():
+            if key in self.queue:
+                self.queue.remove(key)
+            self.queue.insert(0, key)
+        self._top_up()
+        while key not in self.done:
+            finished, _ = wait(list(self.running), return_when=FIRST_COMPLETED)
+            for fut in finished:
+                self.done[self.running.pop(fut)] = self.pool.result(fut)
+            self._top_up()
+        res = self.done.pop(key)
+        if not res.ok:
+            raise RuntimeError(f"the operating point at {key[0]:g} m/s failed in a worker process: {res.error}\n"
+                               f"{res.traceback}")
+        ps, eig, st = res.value
+        ps.support, ps.reference = self.model.support(), self.model.reference()
+        return ps, eig, st
+
+    def __enter__(self):
+        self.pool.__enter__()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        self.pool.__exit__(*exc)

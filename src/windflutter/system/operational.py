@@ -148,6 +148,15 @@ class OperationalModel:
             self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis, damping=D)
         return self._blades[key]
 
+    def keep_blades(self, pitches=()) -> None:
+        """Drop the cached pitched blades except those at ``pitches`` (rad) and the pitch-0 blade (the
+        reference's), and the steady-state warm starts (kept per blade, wind speed and pitch): a
+        Campbell above rated turns the blade to a new pitch at every wind speed, and a shell blade is
+        hundreds of MB (:func:`windflutter.system.campbell.campbell`'s workers keep one)."""
+        keep = {0.0} | {round(float(p), 8) for p in pitches}
+        self._blades = {k: b for k, b in self._blades.items() if k in keep}
+        self._last_steady = {}
+
     def _blade0(self):
         """The pitch-0 blade model ``(fe, struct, sections)``, built once."""
         if getattr(self, "_blade_zero", None) is None:
