@@ -75,3 +75,26 @@ def test_workers_default_and_refusal(nrel5mw_turbine):
 
     with pytest.raises(InputError, match="workers"):  # refused before the turbine is read
         windflutter.campbell("no-such-turbine", [8.0], workers=0)
+
+
+@pytest.mark.parametrize("error", ["model", "input"])
+def test_a_points_own_error_in_a_worker_is_raised_as_in_the_serial_run(nrel5mw_turbine, monkeypatch, error):
+    """A point that fails in a worker (no steady state: a ModelError) is raised in the parent as the
+    same one-line error, not as an unexpected RuntimeError carrying a traceback; an InputError, which
+    does not survive pickling, as a ModelError with its message.  (The workers are forked: the patched
+    ``OperationalModel.at`` is theirs too.)"""
+    from windflutter.errors import ModelError
+
+    real = OperationalModel.at
+
+    def at(self, wind_speed, *args, **kwargs):
+        if wind_speed == 11.0:
+            raise (ModelError("no steady state at V = 11 m/s") if error == "model"
+                   else InputError("wind_speed", 11.0, "a wind speed with a steady state"))
+        return real(self, wind_speed, *args, **kwargs)
+
+    monkeypatch.setattr(OperationalModel, "at", at)
+    with pytest.raises(ModelError) as exc:
+        campbell(nrel5mw_turbine, [8.0, 11.0], OperationalOptions(), max_hz=1.0, workers=2)
+    assert ("no steady state at V = 11 m/s" if error == "model" else "wind_speed = 11.0") in str(exc.value)
+    assert "Traceback" not in str(exc.value)

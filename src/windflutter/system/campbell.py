@@ -15,11 +15,13 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import pickle
 from concurrent.futures import FIRST_COMPLETED, wait
 from dataclasses import dataclass, field
 
 import numpy as np
 
+from windflutter.errors import ModelError, WindflutterError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.parallel import WorkerPool, check_workers, default_workers
 from windflutter.structure.labels import frame_components
@@ -301,10 +303,26 @@ class PointEvaluator:
         self.model = model
 
     def __call__(self, v: float):
-        ps = self.model.at(v)
+        try:
+            ps = self.model.at(v)
+        except WindflutterError as exc:  # the parent raises it as the serial run would (one clear line)
+            return PointFailure(exc)
         eig = state_eig(ps.mbc)
         self.model.keep_blades([ps.pitch])
         return portable_point(ps), eig, _steady_summary(ps.steady)
+
+
+class PointFailure:
+    """A worker's own error at a point (no steady state, a structural instability, ...), carried back to
+    be raised in the parent: the exception itself when it survives pickling, else a
+    :class:`~windflutter.errors.ModelError` with its message (an :class:`~windflutter.errors.InputError`
+    takes its fields as arguments and does not)."""
+
+    def __init__(self, exc: WindflutterError):
+        try:
+            self.exc = pickle.loads(pickle.dumps(exc))
+        except Exception:  # noqa: BLE001 - any pickling failure: the message is what matters
+            self.exc = ModelError(str(exc))
 
 
 class PooledPoints:
@@ -343,6 +361,8 @@ class PooledPoints:
         if not res.ok:
             raise RuntimeError(f"the operating point at {key[0]:g} m/s failed in a worker process: {res.error}\n"
                                f"{res.traceback}")
+        if isinstance(res.value, PointFailure):
+            raise res.value.exc
         ps, eig, st = res.value
         ps.support, ps.reference = self.model.support(), self.model.reference()
         return ps, eig, st
