@@ -38,6 +38,11 @@ class InputError(WindflutterError, ValueError):
         where = f"{source}: " if source else ""
         super().__init__(f"{where}{field} = {shown}: expected {expected}")
 
+    def __reduce__(self):
+        # rebuilt from its fields (the default rebuilds from the message alone, which __init__ refuses):
+        # an error raised in a worker process reaches the parent as itself
+        return type(self), (self.field, self.value, self.expected, self.source)
+
 
 def _shown(value: Any) -> str:
     """``repr(value)`` shortened to 80 characters; never fails (a 5000-digit integer has no

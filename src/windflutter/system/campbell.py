@@ -315,8 +315,7 @@ class PointEvaluator:
 class PointFailure:
     """A worker's own error at a point (no steady state, a structural instability, ...), carried back to
     be raised in the parent: the exception itself when it survives pickling, else a
-    :class:`~windflutter.errors.ModelError` with its message (an :class:`~windflutter.errors.InputError`
-    takes its fields as arguments and does not)."""
+    :class:`~windflutter.errors.ModelError` with its message (e.g. an error holding an unpicklable value)."""
 
     def __init__(self, exc: WindflutterError):
         try:
