@@ -5,7 +5,7 @@ Campbell stage of ``windflutter run`` (:func:`windflutter.analysers.operating_ca
 :func:`operating_campbell`: it owns the model (method p's
 :class:`~windflutter.system.operational.OperationalModel`, from the analysis config), the defaults
 (the wind speeds of the operating curve within 3-25 m/s; the frequency limit
-:meth:`~windflutter.system.identity.StructuralReference.default_max_hz`, 1.25 x the blade's 1st
+:meth:`~windflutter.system.reference.StructuralReference.default_max_hz`, 1.25 x the blade's 1st
 torsion frequency) and the named, tracked modes (:mod:`windflutter.system.identity`).
 """
 

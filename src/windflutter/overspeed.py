@@ -46,7 +46,7 @@ POINT_CACHE = 6
 class SearchSettings:
     """Rotor-speed sweep of method p: up to ``max_rpm`` (RPM) in steps of ``rpm_step`` from the
     operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: the
-    model's default, :meth:`windflutter.system.identity.StructuralReference.default_max_hz`);
+    model's default, :meth:`windflutter.system.reference.StructuralReference.default_max_hz`);
     ``full_sweep`` False stops past both onsets."""
 
     max_rpm: float = 40.0

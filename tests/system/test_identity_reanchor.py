@@ -17,7 +17,8 @@ from types import SimpleNamespace
 
 import numpy as np
 
-from windflutter.system.identity import StructuralReference, point_own_modes, strip_signatures
+from windflutter.system.identity import point_own_modes
+from windflutter.system.reference import StructuralReference, strip_signatures
 
 NS = 10  # strips
 TWO_PI = 2 * np.pi

@@ -1,4 +1,4 @@
-"""The support's reference modes on a degenerate fore-aft / side-side pair (system/identity.py).
+"""The support's reference modes on a degenerate fore-aft / side-side pair (system/reference.py).
 
 An axisymmetric tower's pair (the shell tower's 2.228, 3.053 and 4.585 Hz pairs on the IEA 22 MW) comes
 out of the eigen-solver in any rotation within its eigen-space.  The reference named each vector by the
@@ -16,7 +16,7 @@ import numpy as np
 import pytest
 import scipy.sparse as sp
 
-from windflutter.system import identity
+from windflutter.system import reference
 
 K2 = np.array([[2.0, -1.0], [-1.0, 1.0]]) * 4e6  # N/m: two tower levels in one direction
 M2 = np.diag([2e4, 1e4])  # kg
@@ -38,15 +38,15 @@ def _support():
 @pytest.mark.parametrize("angle", [0.0, 10.0, 45.0, 73.0, 90.0])
 def test_a_degenerate_tower_pair_is_named_by_its_directions_whatever_the_solvers_rotation(monkeypatch, angle):
     sup = _support()
-    w2, V = identity.symmetric_eigs(sup.K, sup.M)
+    w2, V = reference.symmetric_eigs(sup.K, sup.M)
     c, s = np.cos(np.radians(angle)), np.sin(np.radians(angle))
     R = np.eye(4)
     for i in (0, 2):  # each pair turned within its eigen-space
         R[i:i + 2, i:i + 2] = [[c, -s], [s, c]]
-    real = identity.symmetric_eigs
-    monkeypatch.setattr(identity, "symmetric_eigs",
+    real = reference.symmetric_eigs
+    monkeypatch.setattr(reference, "symmetric_eigs",
                         lambda K_, M_: (w2, V @ R) if np.shape(K_) == sup.K.shape else real(K_, M_))
-    named, Phi = identity.support_reference(sup)
+    named, Phi = reference.support_reference(sup)
     assert [(fam, order) for fam, order, _ in named] == [("tower_fa", 1), ("tower_ss", 1), ("tower_fa", 2),
                                                          ("tower_ss", 2)]
     for k, (fam, _, _) in enumerate(named):

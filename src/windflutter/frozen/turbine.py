@@ -43,7 +43,7 @@ from windflutter.structure.assembly import assemble
 from windflutter.structure.damping import damping_matrix, rayleigh_coefficients
 from windflutter.system.damping import blade_mu, shell_modal_damping, turbine_damping_matrix
 from windflutter.system.identity import MIXED_SHARE
-from windflutter.system.identity import blade_reference
+from windflutter.system.reference import blade_reference
 from windflutter.units import RPM
 
 
@@ -178,7 +178,7 @@ class TurbineStability:
 
     # -- model -----------------------------------------------------------------------------
     def reference(self):
-        """The blade's structural identities (:func:`windflutter.system.identity.structural_reference`:
+        """The blade's structural identities (:func:`windflutter.system.reference.structural_reference`:
         its standstill modes, named), from the blade alone meshed as this model's blades, cached:
         the names of method p, for the tracked modes of the frozen-azimuth searches."""
         if getattr(self, "_reference", None) is None:

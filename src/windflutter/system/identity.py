@@ -7,7 +7,8 @@ defined here once per turbine, from the parts' own modes, and each aeroelastic m
 participation in them -- not by the geometry of its eigenvector and its frequency order at the
 point, which fail at high pitch, high damping and strong coupling.
 
-1. **Reference** (:class:`StructuralReference`, once per model): the blade's structural modes at
+1. **Reference** (:class:`~windflutter.system.reference.StructuralReference`, once per model, in
+   :mod:`windflutter.system.reference`): the blade's structural modes at
    standstill, without aerodynamics, in its own (pitching) frame; each named by its largest strip
    motion -- flap, edge or torsion (:func:`windflutter.structure.labels.blade_motion_components`) --
    and ordered in frequency within its family.  The support's modes (the support alone), named fore-
@@ -34,23 +35,21 @@ point, which fail at high pitch, high damping and strong coupling.
 from __future__ import annotations
 
 import functools
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 from scipy.optimize import linear_sum_assignment
 
 from windflutter.linalg_tools import mac_matrix
-from windflutter.solve.reduction import structural_modes
-from windflutter.structure.labels import blade_motion_components, ordinal
-from windflutter.structure.modal import split_directions, symmetric_eigs
+from windflutter.structure.labels import ordinal
+from windflutter.structure.modal import symmetric_eigs
+from windflutter.system.reference import StructuralReference, strip_family, strip_signatures
 
 #: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
 #: mixed, with its two largest participations
 MIXED_SHARE = 0.6
 #: a point mode continues a reference mode only with at least this MAC of their strip motions
 REFERENCE_MAC = 0.3
-#: the blade's reference modes: its lowest this many standstill modes
-REFERENCE_MODES = 24
 #: an assigned identity carrying less than this share of a mode (for a heavily damped mode, or less
 #: than half of its largest participation) is not given to it (the identities that fit it are taken
 #: by modes that fit them better): the mode is named by its two largest participations, as mixed
@@ -71,14 +70,10 @@ REANCHOR_MAC = REFERENCE_MAC
 REANCHOR_RATIO = 0.25
 #: the drivetrain's rigid-body rotation is an identity only for roots below this frequency (Hz)
 RIGID_HZ = 0.15
-#: the default frequency limit of the Campbell and the overspeed sweep: this factor x the blade's 1st
-#: torsion frequency at standstill
-MAX_HZ_FACTOR = 1.25
 #: a heavily damped mode (drawn and flagged as such)
 HEAVY_DAMPING = 0.3
 #: modes damped above this are named by their kinetic, not strain, energy (aerodynamically damped flap)
 KINETIC_DAMPING = 0.15
-BLADE_FAMILIES = ("flap", "edge", "torsion")
 TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
 
 
@@ -114,99 +109,6 @@ def identity_name(family: str, whirl: str, order: int) -> str:
     if family == "buckling":
         return "blade structure unstable" + (f" {order}" if order > 1 else "")
     return f"{ordinal(order)} {family} {whirl}".rstrip()
-
-
-# ------------------------------------------------------------------------------------------------
-# 1. the reference: the parts' own modes, once per model
-# ------------------------------------------------------------------------------------------------
-@dataclass
-class StructuralReference:
-    """The blade's standstill modes (``blade``: (family, order, frequency Hz) in frequency order,
-    ``signatures``: their unit strip-motion signatures, columns) and the support's modes (``Phi_s``
-    mass-normalized in support coordinates, ``support``: (family, order, frequency Hz))."""
-
-    blade: list
-    signatures: np.ndarray
-    support: list = field(default_factory=list)
-    Phi_s: np.ndarray | None = None
-
-    def default_max_hz(self) -> float:
-        """The Campbell's and the overspeed sweep's frequency limit (Hz) when none is given:
-        :data:`MAX_HZ_FACTOR` x the blade's 1st torsion frequency (its classical-flutter partner), or
-        x its highest reference mode without a torsion mode."""
-        f = self.first_hz("torsion")
-        return MAX_HZ_FACTOR * (f if np.isfinite(f) else max(fk for _, _, fk in self.blade))
-
-    def first_hz(self, family: str) -> float:
-        """The frequency (Hz) of the blade's 1st mode of ``family`` (NaN if it has none)."""
-        return next((f for fam, o, f in self.blade if fam == family and o == 1), float("nan"))
-
-
-def strip_signatures(sections, comps: np.ndarray) -> np.ndarray:
-    """(3 ns, n) unit-norm signatures of strip motions ``comps`` (3, ns, n) (flap, edge, torsion x a
-    quarter chord), weighted by the square root of the strip widths."""
-    s = comps * np.sqrt(np.asarray(sections.width, float))[None, :, None]
-    s = s.reshape(-1, comps.shape[-1])
-    return s / np.maximum(np.linalg.norm(s, axis=0), 1e-300)[None, :]
-
-
-def strip_family(sections, comps: np.ndarray) -> list[str]:
-    """flap / edge / torsion of each mode: the largest width-weighted strip-motion energy."""
-    en = np.sum(np.abs(comps) ** 2 * np.asarray(sections.width, float)[None, :, None], axis=1)
-    return [BLADE_FAMILIES[k] for k in np.argmax(en, axis=0)]
-
-
-def _ordered(families: list[str]) -> list[int]:
-    count: dict = {}
-    out = []
-    for fam in families:
-        count[fam] = count.get(fam, 0) + 1
-        out.append(count[fam])
-    return out
-
-
-def blade_reference(struct, sections) -> StructuralReference:
-    """The blade part of the reference: its lowest :data:`REFERENCE_MODES` structural modes at
-    standstill (``struct``: its assembled, root-clamped :class:`~windflutter.structure.assembly.
-    Structural`), named and with their strip signatures."""
-
-    K, M = struct.Kr, struct.Mr
-    basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), min(REFERENCE_MODES, K.shape[0] - 1))
-    f = basis.omega / (2 * np.pi)
-    comps = blade_motion_components(sections, np.asarray(struct.T @ basis.Phi))
-    fams = strip_family(sections, comps)
-    named = [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)]
-    return StructuralReference(blade=named, signatures=strip_signatures(sections, comps))
-
-
-def support_reference(support) -> tuple[list, np.ndarray | None]:
-    """(named modes, mass-normalized shapes) of the support alone (tower, nacelle, hub; no rotor)."""
-    if support is None:
-        return [], None
-    w2, Phi = symmetric_eigs(support.K, support.M)
-    md = np.asarray(support.struct.M.diagonal())
-
-    def energies(V):  # (6, n): the support nodes' kinetic energy per motion component of each mode
-        U = np.asarray(support.expand @ V).reshape(md.size, -1)
-        return (md[:, None] * np.abs(U) ** 2).reshape(-1, 6, U.shape[1]).sum(axis=0)
-
-    # a degenerate fore-aft / side-side pair of an axisymmetric tower comes out of the solver in any
-    # rotation: turned onto its directions, its names no longer change from one run to the next
-    Phi = split_directions(w2, Phi, lambda v: tuple(energies(v[:, None])[:2, 0]))
-    e = energies(Phi)
-    fams = ["tower_torsion" if e[5, k] > max(e[0, k], e[1, k]) else ("tower_fa" if e[0, k] >= e[1, k] else "tower_ss")
-            for k in range(Phi.shape[1])]
-    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
-    return [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)], Phi
-
-
-def structural_reference(blade, support) -> StructuralReference:
-    """The reference of a turbine model: ``blade`` a :class:`~windflutter.system.blade.RotorBlade`
-    (its standstill structure; the pitch does not change its modes in its own frame), ``support`` the
-    support model or None."""
-    ref = blade_reference(blade.struct, blade.sections)
-    ref.support, ref.Phi_s = support_reference(support)
-    return ref
 
 
 # ------------------------------------------------------------------------------------------------

@@ -42,7 +42,7 @@ from windflutter.system.damping import (blade_damping_matrix, blade_mu, shell_mo
                                         tower_ratios)
 from windflutter.system.deflected import deflected_blade
 from windflutter.system.deflected_shell import deflected_shell_blade
-from windflutter.system.identity import structural_reference
+from windflutter.system.reference import structural_reference
 from windflutter.system.multiblade import FixedFrame, MultiBladeSystem, axis_rotation, multiblade_system
 from windflutter.system.operational_options import OperationalOptions, missing_curve_error  # noqa: F401  (re-exported)
 from windflutter.system.pitch import pitch_rotation, rotate_blade
