@@ -262,44 +262,14 @@ def _dumps_task(index: int, task: Any) -> tuple[bytes | None, TaskResult | None]
 
 
 def _iter_pool(fn, tasks, workers, start_method, blas_threads) -> Iterator[TaskResult]:
-    import multiprocessing as mp
-
-    try:
-        fn_bytes = _cp.dumps(fn)
-    except Exception as exc:
-        raise InputError("fn", repr(fn), f"a picklable callable ({type(exc).__name__}: {exc})") from exc
-    ctx = mp.get_context(start_method) if start_method else None
-    n_workers = max(1, min(workers, len(tasks)))
-    ex = ProcessPoolExecutor(max_workers=n_workers, mp_context=ctx, initializer=_init_worker,
-                             initargs=(fn_bytes, blas_threads))
-    futures = {}
-    finished = False
-    try:
-        for i, t in enumerate(tasks):
-            payload, failed = _dumps_task(i, t)
-            if failed is not None:
-                yield failed
-                continue
-            futures[ex.submit(_run_in_worker, i, payload)] = i
-        pending = set(futures)
+    # on Ctrl-C / an abandoned generator the pool does not wait for the running tasks to end
+    with WorkerPool(fn, max(1, min(workers, len(tasks))), blas_threads=blas_threads,
+                    start_method=start_method) as pool:
+        pending = {pool.submit(t) for t in tasks}
         while pending:
             done, pending = wait(pending, return_when=FIRST_COMPLETED)
             for fut in done:
-                i = futures[fut]
-                try:
-                    yield _cp.loads(fut.result())
-                except BrokenProcessPool as exc:
-                    yield TaskResult(i, False, None,
-                                     f"BrokenProcessPool: worker process died ({exc})", "", 0.0, "local")
-                except Exception as exc:  # noqa: BLE001
-                    yield TaskResult(i, False, None, f"{type(exc).__name__}: {exc}",
-                                     traceback.format_exc(), 0.0, "local")
-        finished = True
-    finally:
-        # on Ctrl-C / an abandoned generator do not wait for the running tasks to end
-        ex.shutdown(wait=finished, cancel_futures=True)
-        if not finished:
-            _terminate_workers(ex)
+                yield pool.result(fut)
 
 
 def _terminate_workers(ex: ProcessPoolExecutor) -> None:
@@ -338,9 +308,11 @@ class WorkerPool:
         self._ex = ProcessPoolExecutor(max_workers=self.workers, mp_context=ctx, initializer=_init_worker,
                                        initargs=(fn_bytes, blas_threads))
         self._index = 0
+        self._task_of: dict = {}
 
     def submit(self, task: Any):
-        """Queue ``fn(task)``; the returned future's ``result()`` is a :class:`TaskResult`."""
+        """Queue ``fn(task)`` (the pool's next task index); :meth:`result` of the returned future is
+        its :class:`TaskResult` (a task that cannot be pickled: a failed one, at once)."""
         from concurrent.futures import Future
 
         i, self._index = self._index, self._index + 1
@@ -348,16 +320,21 @@ class WorkerPool:
         if failed is not None:
             fut: Future = Future()
             fut.set_result(_cp.dumps(failed))
-            return fut
-        return self._ex.submit(_run_in_worker, i, payload)
+        else:
+            fut = self._ex.submit(_run_in_worker, i, payload)
+        self._task_of[fut] = i
+        return fut
 
-    @staticmethod
-    def result(future) -> TaskResult:
-        """The :class:`TaskResult` of a future from :meth:`submit` (waits for it)."""
+    def result(self, future) -> TaskResult:
+        """The :class:`TaskResult` of a future from :meth:`submit` (waits for it); a worker that died
+        fails its task."""
+        i = self._task_of.pop(future)
         try:
             return _cp.loads(future.result())
         except BrokenProcessPool as exc:
-            return TaskResult(-1, False, None, f"BrokenProcessPool: worker process died ({exc})", "", 0.0, "local")
+            return TaskResult(i, False, None, f"BrokenProcessPool: worker process died ({exc})", "", 0.0, "local")
+        except Exception as exc:  # noqa: BLE001
+            return TaskResult(i, False, None, f"{type(exc).__name__}: {exc}", traceback.format_exc(), 0.0, "local")
 
     def __enter__(self) -> "WorkerPool":
         return self
