@@ -46,7 +46,7 @@ def test_a_degenerate_tower_pair_is_named_by_its_directions_whatever_the_solvers
     real = reference.symmetric_eigs
     monkeypatch.setattr(reference, "symmetric_eigs",
                         lambda K_, M_: (w2, V @ R) if np.shape(K_) == sup.K.shape else real(K_, M_))
-    named, Phi = reference.support_reference(sup)
+    named, Phi, _ = reference.support_reference(sup)
     assert [(fam, order) for fam, order, _ in named] == [("tower_fa", 1), ("tower_ss", 1), ("tower_fa", 2),
                                                          ("tower_ss", 2)]
     for k, (fam, _, _) in enumerate(named):

@@ -38,8 +38,9 @@ CAMPBELL_VARIABLES: dict[str, tuple[str | None, str]] = {
     "track_name": (None, "structural identity the track follows (its last mode's name for a track without one)"),
     "mode_name": (None, "name of the mode at this operating point: its identity, with its second participation "
                         "when mixed (empty: not found)"),
-    "family": (None, "mode family: flap, edge, torsion, tower_fa, tower_ss, tower_torsion, drivetrain, rigid, mixed, "
-                     "buckling (the prestressed blade statically unstable on its own)"),
+    "family": (None, "mode family: flap, edge, torsion, tower_fa, tower_ss, tower_torsion, tower_wall (a shell "
+                     "tower's wall mode), drivetrain, rigid, mixed, buckling (the prestressed blade statically "
+                     "unstable on its own)"),
     "whirl": (None, "whirl of the mode: BW, FW, collective, asymmetric or none"),
     "participation_1": (None, "the structural identity with the largest share of the mode"),
     "participation_2": (None, "the structural identity with the second largest share of the mode"),

@@ -20,10 +20,11 @@ import numpy as np
 #: one colour per mode family (red is kept for instability marks)
 FAMILY_COLOURS = {"flap": "tab:blue", "edge": "tab:orange", "torsion": "tab:purple",
                   "tower_fa": "tab:brown", "tower_ss": "tab:olive", "tower_torsion": "tab:pink",
-                  "drivetrain": "tab:gray", "other": "tab:cyan"}
+                  "tower_wall": "tab:green", "drivetrain": "tab:gray", "other": "tab:cyan"}
 #: readable family names for legends
 FAMILY_NAMES = {"flap": "flap", "edge": "edge", "torsion": "torsion", "tower_fa": "tower fore-aft",
                 "tower_ss": "tower side-side", "tower_torsion": "tower torsion",
+                "tower_wall": "tower wall",
                 "drivetrain": "drivetrain", "other": "other"}
 #: one line style per whirl
 WHIRL_STYLES = {"collective": "-", "BW": "--", "FW": "-.", "none": ":"}

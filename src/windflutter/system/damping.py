@@ -247,13 +247,16 @@ def tower_ratios(turbine) -> tuple[np.ndarray, np.ndarray]:
 
 
 def support_modal_damping(K: np.ndarray, M: np.ndarray, M_rotor: np.ndarray, fa: np.ndarray, ss: np.ndarray,
-                          direction_energy) -> np.ndarray | None:
+                          direction_energy, wall=None) -> np.ndarray | None:
     """Modal damping (N s/m) of the support in its coordinates from the files' tower modal ratios.
 
     The modes are those of the support with the rotor lumped at the hub (``M + M_rotor``), i.e. the
     turbine's tower modes; a mode is fore-aft or side-side by ``direction_energy(v) -> (e_x, e_y)``
-    and gets the files' ratio of its order (the last one given for higher orders, the mean of
-    fore-aft and side-side for modes that are neither): ``D = M' V diag(2 zeta omega) V^T M'``.
+    and gets the files' ratio of its order (the last one given for higher orders):
+    ``D = M' V diag(2 zeta omega) V^T M'``.  ``wall(V) -> (n,) bool``, optional: the shell tower's
+    wall modes (:func:`windflutter.system.reference.tower_wall_waves`), neither fore-aft nor
+    side-side: they get the mean of the files' first fore-aft and side-side ratios and take no
+    bending mode's order.
     """
     if fa.size == 0 and ss.size == 0:
         return None
@@ -264,7 +267,11 @@ def support_modal_damping(K: np.ndarray, M: np.ndarray, M_rotor: np.ndarray, fa:
     V = split_directions(w2, V, direction_energy)
     zeta = np.zeros(w2.size)
     count = {"fa": 0, "ss": 0}
+    is_wall = np.zeros(w2.size, bool) if wall is None else np.asarray(wall(V), bool)
     for i in range(w2.size):
+        if is_wall[i]:
+            zeta[i] = 0.5 * (fa[0] + ss[0])
+            continue
         ex, ey = direction_energy(V[:, i])
         key = "fa" if ex >= ey else "ss"
         ratios = fa if key == "fa" else ss

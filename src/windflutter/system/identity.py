@@ -75,6 +75,9 @@ HEAVY_DAMPING = 0.3
 #: modes damped above this are named by their kinetic, not strain, energy (aerodynamically damped flap)
 KINETIC_DAMPING = 0.15
 TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
+#: support reference modes whose squared frequencies are this close (relative) are one degenerate
+#: group: a shell tower wall's pair (cos and sin of the same wave), shared at the points
+WALL_PAIR = 1e-6
 
 
 @dataclass(frozen=True)
@@ -83,21 +86,26 @@ class Identity:
     drivetrain, rigid; buckling: an own mode of the prestressed blade that is statically unstable
     without aerodynamics -- a local buckling of a shell mesh --, never an aeroelastic instability),
     ``order`` (1st, 2nd ...; 0 for the drivetrain's), ``whirl`` (collective, BW,
-    FW, asymmetric for blade modes; none otherwise)."""
+    FW, asymmetric for blade modes; none otherwise); ``wave``: the circumferential wave number of a
+    shell tower's wall mode (family ``tower_wall``, ordered within its wave number), -1 otherwise."""
 
     family: str
     order: int
     whirl: str = "none"
+    wave: int = -1
 
     @property
     def name(self) -> str:
-        return identity_name(self.family, self.whirl, self.order)
+        return identity_name(self.family, self.whirl, self.order, self.wave)
 
 
 @functools.lru_cache(maxsize=1024)
-def identity_name(family: str, whirl: str, order: int) -> str:
-    """``"1st flap BW"``, ``"2nd tower side-side"``, ``"drivetrain"``, ``"drivetrain rigid-body"``
-    (a few dozen distinct names, asked for thousands of times along a sweep: made once each)."""
+def identity_name(family: str, whirl: str, order: int, wave: int = -1) -> str:
+    """``"1st flap BW"``, ``"2nd tower side-side"``, ``"1st tower wall n=2"``, ``"drivetrain"``,
+    ``"drivetrain rigid-body"`` (a few dozen distinct names, asked for thousands of times along a
+    sweep: made once each)."""
+    if family == "tower_wall":
+        return f"{ordinal(order)} tower wall n={wave}"
     if family in TOWER_NAMES:
         return f"{ordinal(order)} {TOWER_NAMES[family]}"
     if family == "drivetrain":
@@ -270,9 +278,11 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
     if ns and reference.Phi_s is not None:  # support: its own modes
         a = reference.Phi_s.T @ (0.5 * (ps.support.M + ps.support.M.T)) @ Q[:ns]
         ws = 2 * np.pi * np.array([f for _, _, f in reference.support])
+        waves = reference.support_wave if reference.support_wave is not None else np.full(len(ws), -1)
         for k, (fam, order, _) in enumerate(reference.support):
-            ids.append(Identity(fam, order))
+            ids.append(Identity(fam, order, wave=int(waves[k])))
             cols.append(np.where(heavy, 1.0, ws[k] ** 2) * np.abs(a[k]) ** 2)
+        twins = _wall_pairs(ids, ws)
     dt = [i for i, lb in enumerate(labels) if lb in ("azimuth", "generator")]
     if dt:  # drivetrain: rigid rotation and shaft torsion
         qd = Q[dt]
@@ -312,7 +322,29 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
         cols.append(residual)
     S = np.stack(cols, axis=1) if cols else np.zeros((Q.shape[1], 1))
     tot = S.sum(axis=1, keepdims=True)
-    return ids, (S / np.maximum(tot, 1e-300))[:, :len(ids)]
+    S = (S / np.maximum(tot, 1e-300))[:, :len(ids)]
+    for group in (twins if ns and reference.Phi_s is not None else []):
+        S[:, group] = S[:, group].sum(axis=1, keepdims=True)
+    return ids, S
+
+
+def _wall_pairs(ids: list, ws: np.ndarray) -> list:
+    """The degenerate groups (index lists, :data:`WALL_PAIR`) of the shell tower wall's reference modes
+    (``ids``' first ``len(ws)`` entries, frequencies ``ws``).  The solver returns a pair (the wave's
+    cos and sin, no preferred direction) in any rotation, and at an operating point the pair is still
+    degenerate, its two modes any rotation of it: each member's share is the pair's (both members'
+    identities fit both modes alike, the assignment gives one to each), so which rotation either
+    run's solver returned decides no name and no share."""
+    out, k = [], 0
+    while k < len(ws):
+        j = k + 1
+        while (j < len(ws) and ids[k].family == ids[j].family == "tower_wall" and ids[j].wave == ids[k].wave
+               and abs(ws[j] ** 2 - ws[k] ** 2) <= WALL_PAIR * ws[k] ** 2):
+            j += 1
+        if j - k > 1:
+            out.append(list(range(k, j)))
+        k = j
+    return out
 
 
 # ------------------------------------------------------------------------------------------------
@@ -350,8 +382,14 @@ def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: boo
     :data:`RIGID_HZ`, :func:`participations`) is kept whatever its share too: a heavily damped
     rotor-speed root (-79 % on the IEA 22 MW shell at 8 m/s) moves the blades' flap more than the
     rotor turns, and its name must still say rigid body so that it is never an instability."""
-    order = np.argsort(shares)[::-1]
-    first, second = int(order[0]), int(order[1]) if len(order) > 1 else -1
+    order = [int(i) for i in np.argsort(shares)[::-1]]
+    if k >= 0 and order[0] != k and shares[k] == shares[order[0]]:  # a tie (a wall pair): the assigned one first
+        order.remove(k)
+        order.insert(0, k)
+    first = order[0]
+    # a wall pair's twin shares the pair's participation (:func:`_wall_pairs`): not a second one
+    second = next((i for i in order[1:] if not (ids[i].family == "tower_wall" == ids[first].family
+                                                 and ids[i].wave == ids[first].wave and shares[i] == shares[first])), -1)
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
     kept = continued or (k >= 0 and ids[k].family == "rigid" and shares[k] > 0)
     floor = 0.0 if kept else max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)

@@ -42,7 +42,7 @@ from windflutter.system.damping import (blade_damping_matrix, blade_mu, shell_mo
                                         tower_ratios)
 from windflutter.system.deflected import deflected_blade
 from windflutter.system.deflected_shell import deflected_shell_blade
-from windflutter.system.reference import structural_reference
+from windflutter.system.reference import structural_reference, tower_wall_waves
 from windflutter.system.multiblade import FixedFrame, MultiBladeSystem, axis_rotation, multiblade_system
 from windflutter.system.operational_options import OperationalOptions, missing_curve_error  # noqa: F401  (re-exported)
 from windflutter.system.pitch import pitch_rotation, rotate_blade
@@ -217,7 +217,7 @@ class OperationalModel:
             e = (md * u**2).reshape(-1, 6).sum(axis=0)
             return e[0], e[1]
 
-        D = support_modal_damping(sm.K, sm.M, Mr, fa, ss, direction)
+        D = support_modal_damping(sm.K, sm.M, Mr, fa, ss, direction, wall=lambda V: tower_wall_waves(sm, V) >= 0)
         return np.zeros_like(sm.K) if D is None else D
 
     def with_rotor_mass(self, rotor_mass: np.ndarray) -> "OperationalModel":

@@ -4,7 +4,8 @@
 The blade's structural modes at standstill, without aerodynamics, in its own (pitching) frame, each
 named by its largest strip motion -- flap, edge or torsion
 (:func:`windflutter.structure.labels.blade_motion_components`) -- and ordered in frequency within its
-family; the support's modes (the support alone), named fore-aft / side-side / torsion by their motion.
+family; the support's modes (the support alone), named fore-aft / side-side / torsion by their motion,
+and a shell tower's wall modes by their circumferential wave number.
 """
 
 from __future__ import annotations
@@ -29,12 +30,15 @@ BLADE_FAMILIES = ("flap", "edge", "torsion")
 class StructuralReference:
     """The blade's standstill modes (``blade``: (family, order, frequency Hz) in frequency order,
     ``signatures``: their unit strip-motion signatures, columns) and the support's modes (``Phi_s``
-    mass-normalized in support coordinates, ``support``: (family, order, frequency Hz))."""
+    mass-normalized in support coordinates, ``support``: (family, order, frequency Hz),
+    ``support_wave``: the circumferential wave number of the shell tower's wall modes, -1 for the
+    others)."""
 
     blade: list
     signatures: np.ndarray
     support: list = field(default_factory=list)
     Phi_s: np.ndarray | None = None
+    support_wave: np.ndarray | None = None
 
     def default_max_hz(self) -> float:
         """The Campbell's and the overspeed sweep's frequency limit (Hz) when none is given:
@@ -85,10 +89,88 @@ def blade_reference(struct, sections) -> StructuralReference:
     return StructuralReference(blade=named, signatures=strip_signatures(sections, comps))
 
 
-def support_reference(support) -> tuple[list, np.ndarray | None]:
-    """(named modes, mass-normalized shapes) of the support alone (tower, nacelle, hub; no rotor)."""
+#: a support mode whose tower rings deform (the wall's motion relative to each ring's rigid motion)
+#: with more than this share of the rings' kinetic energy is a mode of the shell tower's wall
+WALL_SHARE = 0.5
+
+
+def _tower_rings(fe) -> list[np.ndarray]:
+    """The shell tower's rings of nodes (one array per height, bottom up; at least 3 nodes each), or
+    [] for a beam tower or a support without one."""
+    groups = getattr(fe, "node_groups", None) or {}
+    if "tower" not in groups:
+        return []
+    tw = np.asarray(groups["tower"], dtype=np.int64)
+    z = np.asarray(fe.nodes, float)[tw, 2]
+    if z.size == 0:
+        return []
+    tol = 1e-6 * max(float(np.ptp(z)), 1.0)
+    key = np.round(z / tol).astype(np.int64)
+    rings = []
+    for k in np.unique(key):  # the wall's nodes of each height (not a node on the axis: the tower top's)
+        ring = tw[key == k]
+        r = np.linalg.norm(np.asarray(fe.nodes, float)[ring, :2] - np.asarray(fe.nodes, float)[ring, :2].mean(axis=0), axis=1)
+        rings.append(ring[r > 1e-3 * r.max()] if r.size else ring)
+    return rings if all(r.size >= 3 for r in rings) else []
+
+
+def tower_wall_waves(support, Phi: np.ndarray) -> np.ndarray:
+    """(n,) the circumferential wave number of each support mode (columns of ``Phi``, support
+    coordinates) that is a mode of the shell tower's wall, -1 for the others (all of them for a
+    beam tower).
+
+    A ring of the tower moves as a rigid section in its bending, torsion and axial modes (a beam's
+    kinematics); in the wall's own modes -- ovalling (``n = 2``), triangular (``n = 3``) ... lobes
+    around, with little or no motion of the section -- it deforms.  Each ring's rigid motion
+    (translation and rotation) is fitted to its nodes' translations by mass-weighted least squares;
+    a mode whose rings' deformation carries more than :data:`WALL_SHARE` of their kinetic energy is
+    a wall mode, its wave number the ``n != 1`` (``n = 1`` radial is a section's translation) with the
+    largest radial content ``|sum m u_r e^{-i n theta}|^2`` summed over the rings.  Such a mode has
+    equal fore-aft and side-side motion and no preferred direction (it comes in degenerate pairs):
+    a fore-aft / side-side name, decided by the solver's rotation of the pair, would change from run
+    to run."""
+    fe = getattr(support, "fe", None)
+    rings = _tower_rings(fe) if fe is not None else []
+    n = Phi.shape[1]
+    if not rings:
+        return np.full(n, -1)
+    X = np.asarray(fe.nodes, float)
+    md = np.asarray(support.struct.M.diagonal()).reshape(-1, 6)[:, 0]
+    U = np.asarray(support.expand @ Phi).reshape(-1, 6, n)[:, :3, :]
+    e_all = np.zeros(n)
+    e_wall = np.zeros(n)
+    n_max = max(r.size for r in rings) // 2
+    waves = np.zeros((n_max + 1, n))
+    for ring in rings:
+        m, u = md[ring], U[ring]  # (k,), (k, 3, n)
+        d = X[ring] - np.average(X[ring], axis=0, weights=m)
+        A = np.zeros((ring.size, 3, 6))  # rigid motion t + w x d of each node
+        A[:, :, :3] = np.eye(3)
+        A[:, 0, 4], A[:, 0, 5] = d[:, 2], -d[:, 1]
+        A[:, 1, 3], A[:, 1, 5] = -d[:, 2], d[:, 0]
+        A[:, 2, 3], A[:, 2, 4] = d[:, 1], -d[:, 0]
+        N = np.einsum("k,kia,kib->ab", m, A, A)
+        p = np.linalg.lstsq(N, np.einsum("k,kia,kin->an", m, A, u), rcond=None)[0]
+        r = u - np.einsum("kia,an->kin", A, p)
+        e_all += np.einsum("k,kin->n", m, u**2)
+        e_wall += np.einsum("k,kin->n", m, r**2)
+        theta = np.arctan2(d[:, 1], d[:, 0])
+        radial = np.stack([np.cos(theta), np.sin(theta)], 1)
+        ur = np.einsum("kj,kjn->kn", radial, u[:, :2, :])
+        harm = np.exp(-1j * np.outer(np.arange(n_max + 1), theta))  # (n_max + 1, k)
+        waves += np.abs(harm @ (m[:, None] * ur)) ** 2
+    waves[1] = -1.0
+    wall = e_wall > WALL_SHARE * np.maximum(e_all, 1e-300)
+    return np.where(wall, np.argmax(waves, axis=0), -1)
+
+
+def support_reference(support) -> tuple[list, np.ndarray | None, np.ndarray]:
+    """(named modes, mass-normalized shapes, wave numbers) of the support alone (tower, nacelle, hub;
+    no rotor): each mode named tower fore-aft, side-side or torsion by its motion, or ``tower_wall``
+    with its circumferential wave number (:func:`tower_wall_waves`; -1 for the others), ordered within
+    its family (the wall's within its wave number)."""
     if support is None:
-        return [], None
+        return [], None, np.zeros(0, dtype=np.int64)
     w2, Phi = symmetric_eigs(support.K, support.M)
     md = np.asarray(support.struct.M.diagonal())
 
@@ -100,10 +182,12 @@ def support_reference(support) -> tuple[list, np.ndarray | None]:
     # rotation: turned onto its directions, its names no longer change from one run to the next
     Phi = split_directions(w2, Phi, lambda v: tuple(energies(v[:, None])[:2, 0]))
     e = energies(Phi)
-    fams = ["tower_torsion" if e[5, k] > max(e[0, k], e[1, k]) else ("tower_fa" if e[0, k] >= e[1, k] else "tower_ss")
-            for k in range(Phi.shape[1])]
+    waves = tower_wall_waves(support, Phi)
+    fams = ["tower_wall" if waves[k] >= 0 else "tower_torsion" if e[5, k] > max(e[0, k], e[1, k])
+            else ("tower_fa" if e[0, k] >= e[1, k] else "tower_ss") for k in range(Phi.shape[1])]
+    orders = _ordered([f"{fam}{waves[k]}" if fam == "tower_wall" else fam for k, fam in enumerate(fams)])
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
-    return [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)], Phi
+    return [(fam, o, float(fk)) for fam, o, fk in zip(fams, orders, f)], Phi, waves
 
 
 def structural_reference(blade, support) -> StructuralReference:
@@ -111,5 +195,5 @@ def structural_reference(blade, support) -> StructuralReference:
     (its standstill structure; the pitch does not change its modes in its own frame), ``support`` the
     support model or None."""
     ref = blade_reference(blade.struct, blade.sections)
-    ref.support, ref.Phi_s = support_reference(support)
+    ref.support, ref.Phi_s, ref.support_wave = support_reference(support)
     return ref
