@@ -21,7 +21,9 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from windflutter.structure.labels import label_modes
 from windflutter.system import damping, reference
+from windflutter.system.identity import identity_name
 from windflutter.system.modes import point_modes
 from windflutter.system.operational import OperationalModel, OperationalOptions
 
@@ -169,3 +171,15 @@ def test_the_files_tower_ratios_skip_the_wall_modes(shell):
         want = 0.5 * (fa[0] + ss[0]) if want is None else want[min(order, 4) - 1]
         assert zeta[k] == pytest.approx(want, abs=1e-9), (fam, order, f)
     assert checked == 6  # 1st and 2nd fore-aft and side-side, the ovalling pair
+
+
+def test_the_structural_mode_labels_name_the_wall_modes_alike(shell):
+    """`windflutter modes`' labels (structure/labels.py, by the modes' own motion) call the wall modes
+    what the operating-point identities call them, and the bending modes by the same ordinals."""
+    om, (named, Phi, waves) = shell
+    sup = om.support()
+    labels = label_modes(sup.fe, sup.struct.M, np.asarray(sup.expand @ Phi))
+    for k, (fam, order, f) in enumerate(named):
+        if f < MAX_HZ and fam != "tower_torsion":
+            want = identity_name(fam, "none", order, int(waves[k]))
+            assert labels[k] == want, (k, f)

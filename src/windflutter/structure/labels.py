@@ -16,7 +16,9 @@ For each mode shape ``phi`` (full numbering):
    labelled with that blade.
 3. Tower modes: the tower nodes' kinetic energy in x (fore-aft), y (side-side) and rz
    (torsion); for shell towers torsion is recognised by the tangential share of the wall
-   nodes' horizontal motion (> 3/4; bending gives 1/2).
+   nodes' horizontal motion (> 3/4; bending gives 1/2).  A shell tower's wall modes (its rings
+   deforming into lobes, :func:`wall_waves`) are ``tower wall n=k``, counted within their wave
+   number.
 
 Ordinals count modes of the same kind in frequency order; with ``B`` blades each order is a
 family of ``B`` modes (one collective and ``B - 1`` asymmetric), so the order is
@@ -35,6 +37,72 @@ def ordinal(n: int) -> str:
     """``1st``, ``2nd``, ``3rd``, ``4th`` ... ``11th``, ``12th``, ``13th``, ``21st``, ``22nd``, ``111th``."""
     suffix = "th" if 10 <= n % 100 <= 20 else {1: "st", 2: "nd", 3: "rd"}.get(n % 10, "th")
     return f"{n}{suffix}"
+
+
+#: a mode whose tower rings deform (the wall's motion relative to each ring's rigid motion) with more
+#: than this share of the rings' kinetic energy is a mode of a shell tower's wall
+WALL_SHARE = 0.5
+
+
+def tower_rings(nodes: np.ndarray, tower: np.ndarray) -> list[np.ndarray]:
+    """A shell tower's rings of wall nodes (one array per height, bottom up; a node on the axis, the
+    tower top's, left out), or [] when a height has fewer than 3 (a beam tower)."""
+    tw = np.asarray(tower, dtype=np.int64)
+    X = np.asarray(nodes, float)
+    z = X[tw, 2]
+    if z.size == 0:
+        return []
+    tol = 1e-6 * max(float(np.ptp(z)), 1.0)
+    key = np.round(z / tol).astype(np.int64)
+    rings = []
+    for k in np.unique(key):
+        ring = tw[key == k]
+        r = np.linalg.norm(X[ring, :2] - X[ring, :2].mean(axis=0), axis=1)
+        rings.append(ring[r > 1e-3 * r.max()] if r.max() > 0 else ring[:0])
+    return rings if all(r.size >= 3 for r in rings) else []
+
+
+def wall_waves(nodes: np.ndarray, masses: np.ndarray, shapes: np.ndarray, tower: np.ndarray) -> np.ndarray:
+    """(n,) the circumferential wave number of each mode (columns of ``shapes``, full numbering) that
+    is a mode of a shell tower's wall, -1 for the others (all of them for a beam tower).
+
+    A ring of a (vertical) tower moves as a rigid section in its bending, torsion and axial modes (a
+    beam's kinematics); in the wall's own modes -- ovalling (``n = 2``), triangular (``n = 3``) ...
+    lobes around, with little or no motion of the section -- it deforms.  Each ring's rigid motion
+    (translation and rotation) is fitted to its nodes' translations by least squares weighted by the
+    nodes' translational ``masses`` (n_nodes,); a mode whose rings' deformation carries more than
+    :data:`WALL_SHARE` of their kinetic energy is a wall mode, its wave number the ``n != 1``
+    (``n = 1`` radial is a section's translation) with the largest radial content
+    ``|sum m u_r e^{-i n theta}|^2`` summed over the rings."""
+    n = shapes.shape[1]
+    rings = tower_rings(nodes, tower)
+    if not rings:
+        return np.full(n, -1)
+    X = np.asarray(nodes, float)
+    md = np.asarray(masses, float)
+    U = np.asarray(shapes).reshape(-1, 6, n)[:, :3, :]
+    e_all, e_wall = np.zeros(n), np.zeros(n)
+    n_max = max(r.size for r in rings) // 2
+    waves = np.zeros((n_max + 1, n))
+    for ring in rings:
+        m, u = md[ring], U[ring]  # (k,), (k, 3, n)
+        d = X[ring] - np.average(X[ring], axis=0, weights=m)
+        A = np.zeros((ring.size, 3, 6))  # rigid motion t + w x d of each node
+        A[:, :, :3] = np.eye(3)
+        A[:, 0, 4], A[:, 0, 5] = d[:, 2], -d[:, 1]
+        A[:, 1, 3], A[:, 1, 5] = -d[:, 2], d[:, 0]
+        A[:, 2, 3], A[:, 2, 4] = d[:, 1], -d[:, 0]
+        N = np.einsum("k,kia,kib->ab", m, A, A)
+        p = np.linalg.lstsq(N, np.einsum("k,kia,kin->an", m, A, u), rcond=None)[0]
+        r = u - np.einsum("kia,an->kin", A, p)
+        e_all += np.einsum("k,kin->n", m, u**2)
+        e_wall += np.einsum("k,kin->n", m, r**2)
+        theta = np.arctan2(d[:, 1], d[:, 0])
+        ur = np.einsum("kj,kjn->kn", np.stack([np.cos(theta), np.sin(theta)], 1), u[:, :2, :])
+        waves += np.abs(np.exp(-1j * np.outer(np.arange(n_max + 1), theta)) @ (m[:, None] * ur)) ** 2
+    waves[1] = -1.0
+    wall = e_wall > WALL_SHARE * np.maximum(e_all, 1e-300)
+    return np.where(wall, np.argmax(waves, axis=0), -1)
 
 
 def blade_motion_components(sections, shapes: np.ndarray) -> np.ndarray:
@@ -89,6 +157,8 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
     comps = blade_motion_components(sections, shapes) if (sections is not None and sections.n_sections) else None
     counts: dict[str, int] = {}
     labels = []
+    waves = wall_waves(fe.nodes, np.asarray(M.diagonal())[0::6], shapes, groups["tower"]) if "tower" in groups \
+        else np.full(n, -1)
     for m in range(n):
         if comps is not None and (e_bl[m] >= 0.5 * total[m] or "tower" not in groups):
             w = sections.width[:, None]
@@ -117,7 +187,9 @@ def label_modes(fe, M: sp.spmatrix, shapes: np.ndarray, sections=None) -> list[s
             ex = e[dofs(tn, (0,))].sum(axis=0)[m]
             ey = e[dofs(tn, (1,))].sum(axis=0)[m]
             rz = e[dofs(tn, (5,))].sum(axis=0)[m]
-            if _tangential_share(fe.nodes[tn], shapes[:, m], tn) > 0.75 or rz > max(ex, ey):
+            if waves[m] >= 0:
+                kind = f"tower wall n={waves[m]}"
+            elif _tangential_share(fe.nodes[tn], shapes[:, m], tn) > 0.75 or rz > max(ex, ey):
                 kind = "tower torsion"
             else:
                 kind = "tower fore-aft" if ex >= ey else "tower side-side"

@@ -15,7 +15,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from windflutter.solve.reduction import structural_modes
-from windflutter.structure.labels import blade_motion_components
+from windflutter.structure.labels import blade_motion_components, wall_waves
 from windflutter.structure.modal import split_directions, symmetric_eigs
 
 #: the blade's reference modes: its lowest this many standstill modes
@@ -89,79 +89,19 @@ def blade_reference(struct, sections) -> StructuralReference:
     return StructuralReference(blade=named, signatures=strip_signatures(sections, comps))
 
 
-#: a support mode whose tower rings deform (the wall's motion relative to each ring's rigid motion)
-#: with more than this share of the rings' kinetic energy is a mode of the shell tower's wall
-WALL_SHARE = 0.5
-
-
-def _tower_rings(fe) -> list[np.ndarray]:
-    """The shell tower's rings of nodes (one array per height, bottom up; at least 3 nodes each), or
-    [] for a beam tower or a support without one."""
-    groups = getattr(fe, "node_groups", None) or {}
-    if "tower" not in groups:
-        return []
-    tw = np.asarray(groups["tower"], dtype=np.int64)
-    z = np.asarray(fe.nodes, float)[tw, 2]
-    if z.size == 0:
-        return []
-    tol = 1e-6 * max(float(np.ptp(z)), 1.0)
-    key = np.round(z / tol).astype(np.int64)
-    rings = []
-    for k in np.unique(key):  # the wall's nodes of each height (not a node on the axis: the tower top's)
-        ring = tw[key == k]
-        r = np.linalg.norm(np.asarray(fe.nodes, float)[ring, :2] - np.asarray(fe.nodes, float)[ring, :2].mean(axis=0), axis=1)
-        rings.append(ring[r > 1e-3 * r.max()] if r.size else ring)
-    return rings if all(r.size >= 3 for r in rings) else []
-
-
 def tower_wall_waves(support, Phi: np.ndarray) -> np.ndarray:
     """(n,) the circumferential wave number of each support mode (columns of ``Phi``, support
-    coordinates) that is a mode of the shell tower's wall, -1 for the others (all of them for a
-    beam tower).
-
-    A ring of the tower moves as a rigid section in its bending, torsion and axial modes (a beam's
-    kinematics); in the wall's own modes -- ovalling (``n = 2``), triangular (``n = 3``) ... lobes
-    around, with little or no motion of the section -- it deforms.  Each ring's rigid motion
-    (translation and rotation) is fitted to its nodes' translations by mass-weighted least squares;
-    a mode whose rings' deformation carries more than :data:`WALL_SHARE` of their kinetic energy is
-    a wall mode, its wave number the ``n != 1`` (``n = 1`` radial is a section's translation) with the
-    largest radial content ``|sum m u_r e^{-i n theta}|^2`` summed over the rings.  Such a mode has
+    coordinates) that is a mode of the shell tower's wall, -1 for the others (all of them for a beam
+    tower): :func:`windflutter.structure.labels.wall_waves` on the support's tower.  Such a mode has
     equal fore-aft and side-side motion and no preferred direction (it comes in degenerate pairs):
     a fore-aft / side-side name, decided by the solver's rotation of the pair, would change from run
     to run."""
     fe = getattr(support, "fe", None)
-    rings = _tower_rings(fe) if fe is not None else []
-    n = Phi.shape[1]
-    if not rings:
-        return np.full(n, -1)
-    X = np.asarray(fe.nodes, float)
-    md = np.asarray(support.struct.M.diagonal()).reshape(-1, 6)[:, 0]
-    U = np.asarray(support.expand @ Phi).reshape(-1, 6, n)[:, :3, :]
-    e_all = np.zeros(n)
-    e_wall = np.zeros(n)
-    n_max = max(r.size for r in rings) // 2
-    waves = np.zeros((n_max + 1, n))
-    for ring in rings:
-        m, u = md[ring], U[ring]  # (k,), (k, 3, n)
-        d = X[ring] - np.average(X[ring], axis=0, weights=m)
-        A = np.zeros((ring.size, 3, 6))  # rigid motion t + w x d of each node
-        A[:, :, :3] = np.eye(3)
-        A[:, 0, 4], A[:, 0, 5] = d[:, 2], -d[:, 1]
-        A[:, 1, 3], A[:, 1, 5] = -d[:, 2], d[:, 0]
-        A[:, 2, 3], A[:, 2, 4] = d[:, 1], -d[:, 0]
-        N = np.einsum("k,kia,kib->ab", m, A, A)
-        p = np.linalg.lstsq(N, np.einsum("k,kia,kin->an", m, A, u), rcond=None)[0]
-        r = u - np.einsum("kia,an->kin", A, p)
-        e_all += np.einsum("k,kin->n", m, u**2)
-        e_wall += np.einsum("k,kin->n", m, r**2)
-        theta = np.arctan2(d[:, 1], d[:, 0])
-        radial = np.stack([np.cos(theta), np.sin(theta)], 1)
-        ur = np.einsum("kj,kjn->kn", radial, u[:, :2, :])
-        harm = np.exp(-1j * np.outer(np.arange(n_max + 1), theta))  # (n_max + 1, k)
-        waves += np.abs(harm @ (m[:, None] * ur)) ** 2
-    waves[1] = -1.0
-    wall = e_wall > WALL_SHARE * np.maximum(e_all, 1e-300)
-    return np.where(wall, np.argmax(waves, axis=0), -1)
+    groups = getattr(fe, "node_groups", None) or {}
+    if "tower" not in groups:
+        return np.full(Phi.shape[1], -1)
+    masses = np.asarray(support.struct.M.diagonal()).reshape(-1, 6)[:, 0]
+    return wall_waves(fe.nodes, masses, np.asarray(support.expand @ Phi), groups["tower"])
 
 
 def support_reference(support) -> tuple[list, np.ndarray | None, np.ndarray]:
