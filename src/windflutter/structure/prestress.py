@@ -67,7 +67,8 @@ def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None 
     return struct.expand(q)
 
 
-def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False, shell: str = "complete") -> sp.csr_matrix:
+def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False, shell: str = "complete",
+                        constraint_forces: np.ndarray | None = None) -> sp.csr_matrix:
     """Geometric stiffness (full numbering, CSR, symmetric) of the prestressed state ``u0``.
 
     Parameters
@@ -77,6 +78,8 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False, shel
     moments : beams: the terms of every stress resultant (shear, torsion, bending moments), not
         the axial force's alone (module docstring).
     shell : shells: ``"complete"`` (default) or ``"membrane"`` (module docstring).
+    constraint_forces : (n_dof,) ``K u0 - F`` of the state (the loads ``F``): with the complete
+        shell matrix, the ribs' term (:func:`diaphragm_geometric_stiffness`) is added.
     """
     if shell not in SHELL_KG:
         raise InputError("shell", shell, f"one of {SHELL_KG}")
@@ -107,7 +110,48 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False, shel
     if not rows:
         return sp.csr_matrix((n, n))
     A = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
-    return ((A + A.T) * 0.5).tocsr()
+    A = ((A + A.T) * 0.5).tocsr()
+    if constraint_forces is not None and shell == "complete" and fe.diaphragms:
+        A = (A + diaphragm_geometric_stiffness(fe, constraint_forces)).tocsr()
+    return A
+
+
+def diaphragm_geometric_stiffness(fe: FEModel, constraint_forces: np.ndarray) -> sp.csr_matrix:
+    """Geometric stiffness (full numbering, CSR) of the ribs' (:class:`~windflutter.structure.fem.Diaphragm`)
+    in-plane constraint forces, on each rib's independent node's rotation about its normal.
+
+    A rib is an in-plane rigid tie: the forces it exerts on its dependent nodes ``k`` (the in-plane
+    part of ``constraint_forces`` = ``K u0 - F`` there) are balanced in the rib (with its
+    independent node's).  Turned rigidly in its plane by ``theta`` about its normal ``n``, the rib,
+    as a body carrying the opposite forces, has the initial-stress energy
+    ``1/2 theta^2 (-sum_k rho_k . f_k)`` (``rho_k`` the in-plane lever from the independent node):
+    the term that cancels the shell's own (complete matrix) energy of those forces in a rigid
+    rotation, as :func:`windflutter.system.blade.link_geometric_stiffness` does for the hub links.
+    Without it a rib that keeps the wall's Poisson contraction or the tip load's introduction
+    (radial forces) stiffens a twist of the end section (on a tube in tension: +176 % of the
+    trapeze term).  The rib's tilt (rotation about an in-plane axis) is not tied by the rib and gets
+    no term (docs/structure.md).
+    """
+    cf = np.asarray(constraint_forces, dtype=float)
+    if cf.shape != (fe.n_dof,) or not np.all(np.isfinite(cf)):
+        raise InputError("constraint_forces", cf.shape, f"a finite ({fe.n_dof},) nodal force vector (N, N m)")
+    n = fe.n_dof
+    f = cf.reshape(-1, 6)[:, :3]
+    X = np.asarray(fe.nodes, dtype=float)
+    rows, cols, vals = [], [], []
+    for d in fe.diaphragms:
+        nrm = np.asarray(d.normal, dtype=float)
+        nrm = nrm / np.linalg.norm(nrm)
+        dep = np.asarray(d.dependent, dtype=np.int64)
+        rho = X[dep] - X[int(d.independent)]
+        k = -float(np.sum(rho * f[dep]) - np.sum((rho @ nrm) * (f[dep] @ nrm)))
+        i0 = 6 * int(d.independent) + 3 + np.arange(3)
+        rows.append(np.repeat(i0, 3))
+        cols.append(np.tile(i0, 3))
+        vals.append(k * np.outer(nrm, nrm).ravel())
+    if not rows:
+        return sp.csr_matrix((n, n))
+    return sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
 
 
 def axial_geometric_stiffness(fe: FEModel, axial_force: np.ndarray) -> sp.csr_matrix:
