@@ -98,9 +98,10 @@ def test_spinning_shell_is_continuous_with_the_undeformed_linearization(shell_mo
     """Centrifugal loads alone: the deflected linearization differs from the undeformed one by the
     second order of the centrifugal deflection -- measured 1e-6 at 0.1 rad/s and 1.5e-4 at rated
     speed on this mesh; tolerances 1e-5 and 1e-3.  The rigid rotation of the blade about the shaft
-    keeps the undeformed model's stiffness (its membrane-only initial stress leaves 1.04 % of
-    Omega^2 x the shaft inertia on this coarse mesh; the deflected one 1.04 % and 1.02 %):
-    within 0.1 % of Omega^2 x the shaft inertia."""
+    has no stiffness in the rotating frame (the centrifugal loads' second-order work, Omega^2 x the
+    shaft inertia, cancels the spin softening's): with the complete initial stress (issue 33)
+    1.6e-4 (undeformed) and 3e-5 (deflected, rated) of Omega^2 x the shaft inertia, where the
+    membrane-only matrix left 1.04 %; tolerance 1e-3 for both."""
     rb = shell_model.blade(0.0)
     for omega, tol in ((0.1, 1e-5), (RATED, 1e-3)):
         kg, kl, _ = rb.unit_prestress()
@@ -108,7 +109,7 @@ def test_spinning_shell_is_continuous_with_the_undeformed_linearization(shell_mo
         d = deflected_shell_blade(rb, None, omega)
         f1, k_shaft, i_shaft = clamped_frequencies(d.blade, d.ksigma, d.klink, omega)
         np.testing.assert_allclose(f1, f0, rtol=tol)
-        assert abs(k_shaft - k0) < 1e-3 * omega**2 * i_shaft
+        assert abs(k_shaft) < 1e-3 * omega**2 * i_shaft and abs(k0) < 1e-3 * omega**2 * i_shaft
 
 
 @pytest.fixture(scope="module")
