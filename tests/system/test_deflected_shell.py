@@ -164,8 +164,10 @@ def test_deflected_shell_operating_point(shell_point, shell_model):
 def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
     """IEA 22 MW at 11 m/s (near rated): the shell blade's steady tip flap on the seed's mesh (30
     span elements, skin on the outer mould line) against the co-rotational beam's (the windIO 6x6
-    tables) within 6 % (measured +5.5 %: 21.57 m against 20.44 m).  On the converged default mesh
-    (skin on the laminate midsurface) the shell deflects +9.8 % (22.44 m): its own section
+    tables) within 8 % (measured +7.3 %: 21.93 m against 20.44 m; +5.5 %, 21.57 m, with the
+    membrane-only initial stress, whose hoop term stiffened this coarse mesh's centrifugal state:
+    issue 33, docs/structure.md).  The tolerance is the data's, not the solver's: on the converged
+    default mesh (skin on the laminate midsurface) the shell deflects +10.0 % (22.48 m): its own section
     properties (windflutter beam-properties, docs/mesh.md) are 2-8 % softer in flap than the 6x6
     tables at 25-85 % span and 25 % softer at 10 % span, the root transition: against the beam of
     those properties it is within 1.4 % (tests/system/test_shell_same_blade.py).  The
@@ -184,7 +186,7 @@ def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
             omega, pitch = om.operating_point(11.0)
             st = om.steady(om.blade(pitch), 11.0, omega)
         flap[model] = st.tip_flap
-    assert flap["shell"] == pytest.approx(flap["beam"], rel=0.06)
+    assert flap["shell"] == pytest.approx(flap["beam"], rel=0.08)
 
 
 @pytest.mark.slow
