@@ -9,12 +9,16 @@ form on the 6 rigid motions, the rotations' block is ``sum_k [(X_k . F_k) I - sy
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 import scipy.sparse as sp
 from shellmodels import iso, tube
 
 from windflutter.structure import assemble, geometric_stiffness, static_solve
+from windflutter.structure.prestress import shell_initial_stress
+from windflutter.structure.shell import shell_membrane_resultants
 from windflutter.structure.shell_stress import rotate_element_forces, shell_element_forces
 
 R, L, NC, NL = 0.5, 3.0, 16, 12
@@ -114,15 +118,12 @@ def test_carried_stress_keeps_the_rigid_rotation_property():
     fe, _ = _free_tube()
     st = assemble(fe)
     u = static_solve(st, _self_equilibrated(fe, 4))
-    from windflutter.structure.prestress import shell_initial_stress
-    from windflutter.structure.shell import shell_membrane_resultants
-
     th = 0.7
     Q = np.array([[np.cos(th), 0, np.sin(th)], [0, 1, 0], [-np.sin(th), 0, np.cos(th)]]) @ \
         np.array([[1, 0, 0], [0, np.cos(0.3), -np.sin(0.3)], [0, np.sin(0.3), np.cos(0.3)]])
     N = shell_membrane_resultants(fe, u)
     f = shell_element_forces(fe, u)
-    fe_q = type(fe)(**{**fe.__dict__, "nodes": np.asarray(fe.nodes) @ Q.T, "shell_matdir": np.asarray(fe.shell_matdir) @ Q.T})
+    fe_q = dataclasses.replace(fe, nodes=np.asarray(fe.nodes) @ Q.T, shell_matdir=np.asarray(fe.shell_matdir) @ Q.T)
     Kq = shell_initial_stress(fe_q, rotate_element_forces(f, np.broadcast_to(Q, (len(f), 3, 3))), N)
     B = sp.kron(sp.identity(2 * fe.n_nodes), sp.csr_matrix(Q))
     uq = B @ u
