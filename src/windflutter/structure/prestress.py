@@ -128,7 +128,7 @@ def diaphragm_geometric_stiffness(fe: FEModel, constraint_forces: np.ndarray) ->
     the term that cancels the shell's own (complete matrix) energy of those forces in a rigid
     rotation, as :func:`windflutter.system.blade.link_geometric_stiffness` does for the hub links.
     Without it a rib that keeps the wall's Poisson contraction or the tip load's introduction
-    (radial forces) stiffens a twist of the end section (on a tube in tension: +176 % of the
+    (radial forces) stiffens a twist of the end section (on a tube in tension: +182 % of the
     trapeze term).  The rib's tilt (rotation about an in-plane axis) is not tied by the rib and gets
     no term (docs/structure.md).
     """
