@@ -9,7 +9,8 @@ Reference: the tension-torsion ("trapeze") effect of a thin circular tube under 
 raises ``omega^2`` by ``(pi/2L)^2 T / m'`` (``m'`` the mass per length), whatever ``GJ``.
 
 The beam's initial-stress matrix of an axial force has no such term (transverse only,
-docs/structure.md "Known limitations"); the shell's membrane initial stress has it.  On the IEA 22 MW
+docs/structure.md "Known limitations"); the shell's initial stress has it -- its spanwise membrane
+part alone, and the complete matrix (issue 33: structure/shell_stress.py) with all of the stress.  On the IEA 22 MW
 blade it is small (+0.05 % on the 1st torsion at rated, from the centrifugal tension): not the
 cause of the shell-beam difference there.
 """
@@ -78,11 +79,11 @@ def test_shell_tension_stiffens_torsion_by_the_trapeze_term():
     The unloaded 1st torsion itself within 1 % of sqrt(G/rho)/(4L) (measured 39.50 against 39.47
     Hz).
 
-    What the full membrane initial stress gives is NOT checked here: the tip load's introduction
-    and the root clamp make hoop resultants ``N_yy`` (self-equilibrated through the wall's bending
-    and transverse shear), whose membrane term ``1/2 N_yy theta^2`` is not balanced by the
-    transverse-shear initial stress the membrane-only matrix leaves out: measured 4.7 x the
-    closed form (docs/structure.md "Known limitations")."""
+    The full stress: the tip load's introduction and the root make hoop resultants ``N_yy``
+    (self-equilibrated through the wall's bending and transverse shear), whose membrane term
+    ``1/2 N_yy theta^2`` the membrane-only matrix leaves unbalanced (4.7 x the closed form); the
+    complete matrix balances it (test_complete_initial_stress_raises_the_torsion_by_the_trapeze_term
+    below; docs/structure.md "Initial stress of shells")."""
     rb = _blade("shell")
     G = E / (2 * (1 + NU))
     T = 0.1 * G * 2 * np.pi * R * WALL
