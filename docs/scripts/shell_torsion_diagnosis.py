@@ -11,8 +11,10 @@ curve's rotor speed and pitch, each model's own steady state):
   undeformed blade, of the deflected blade without and with its steady-stress stiffness;
 * the first-order shift ``phi^T K_sigma phi / (2 omega^2)`` of the steady stress on the deflected
   blade's torsion mode ``phi`` (mass-normalized): the beam's by resultant (axial, shear, torsion,
-  bending), the shell's by membrane resultant (Nxx spanwise, Nyy hoop, Nxy) and load (centrifugal,
-  aerodynamic);
+  bending); the shell's complete initial stress (structure/shell_stress.py) and its membrane-only
+  one, the latter by membrane resultant (Nxx spanwise, Nyy hoop, Nxy) and load (centrifugal,
+  aerodynamic); the modes between 3 and 8 Hz with their torsion share and tip-panel share (with
+  either stress);
 * the same on the undeformed blade with the linear steady stress (the classical initial-stress
   matrix of both models: the beam's linear steady state, ``corotational=False``).
 """
@@ -30,10 +32,10 @@ from windflutter.model import load_turbine
 from windflutter.structure.corotational import beam_tangent, linear_resultants, reference_configuration
 from windflutter.structure.labels import blade_motion_components
 from windflutter.structure.modal import symmetric_eigs
-from windflutter.structure.prestress import membrane_geometric_stiffness
+from windflutter.structure.prestress import geometric_stiffness, membrane_geometric_stiffness
 from windflutter.structure.shell import shell_membrane_resultants
 from windflutter.system.deflected import deflected_blade
-from windflutter.system.deflected_shell import deflected_shell_blade
+from windflutter.system.deflected_shell import deflected_shell_blade, steady_stress_stiffness
 from windflutter.system.operational import OperationalModel, OperationalOptions
 
 BEAM_GROUPS = {"axial": [0, 6], "shear": [1, 2, 7, 8], "torsion": [3, 9], "bending": [4, 5, 10, 11]}
@@ -52,6 +54,27 @@ def torsion(rb, ksigma, omega: float):
     sh = e / e.sum(axis=0)
     m = int(np.argmax(np.where((f > 3.5) & (f < 4.6), sh[2], -1.0)))
     return f[m], P[:, m], sh[:, m]
+
+
+def tip_panels(rb, ksigma, omega: float) -> str:
+    """The clamped blade's modes between 3 and 8 Hz under ``K + ksigma - omega^2 K_r``: frequency
+    (Hz), torsion share and the share of the mode's kinetic energy (diagonal of M) in the outer 3 %
+    of the span (a tip-panel mode: most of it)."""
+    st = rb.struct
+    K = st.K - omega**2 * rb.Kr1 + (ksigma if ksigma is not None else 0)
+    Kq = sp.csc_matrix(st.T.T @ K @ st.T)
+    w2, X = symmetric_eigs(0.5 * (Kq + Kq.T), sp.csc_matrix(st.T.T @ st.M @ st.T), 14, shift=0.0, v0=np.ones(st.nq))
+    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
+    P = np.asarray(st.T @ X)
+    e = np.sum(np.asarray(rb.sections.width)[None, :, None] * blade_motion_components(rb.sections, P) ** 2, axis=1)
+    sh = e / e.sum(axis=0)
+    x = np.asarray(rb.fe.nodes, float)
+    t = np.asarray(rb.sections.e_span, float)[-1]
+    s = (x - x[np.argmin(x @ t)]) @ t
+    m = st.M.diagonal().reshape(-1, 6)[:, :3].sum(axis=1)
+    ke = m[:, None] * np.sum(P.reshape(-1, 6, P.shape[1])[:, :3, :] ** 2, axis=1)
+    tip = ke[s > 0.97 * s.max()].sum(axis=0) / ke.sum(axis=0)
+    return ", ".join(f"{f[k]:.2f} Hz (torsion {sh[2, k]:.2f}, tip {tip[k]:.2f})" for k in range(len(f)) if 3.0 < f[k] < 8.0)
 
 
 def shift(K, f: float, phi: np.ndarray) -> float:
@@ -88,18 +111,23 @@ def shell_point(osh, V: float) -> None:
     f, phi, sh = torsion(d.blade, None, omega)
     N = shell_membrane_resultants(rb.fe, st.u)
     Ncf = shell_membrane_resultants(rb.fe, rb.unit_prestress()[2] * omega**2)
+    fk = torsion(d.blade, d.ksigma, omega)
+    Km = steady_stress_stiffness(rb.fe, d.blade.fe, st.u, d.rotations, complete=False)
+    fm = torsion(d.blade, Km, omega)
+    print(f"  shell: undeformed {f0:.3f} Hz; deflected {f:.3f} Hz (shares {np.round(sh, 2)}); with its stress: "
+          f"complete {fk[0]:.3f} Hz (shares {np.round(fk[2], 2)}), membrane-only {fm[0]:.3f} Hz (shares "
+          f"{np.round(fm[2], 2)}); first order complete {shift(d.ksigma, f, phi):+.2f} %, membrane-only "
+          f"{shift(Km, f, phi):+.2f} %")
     comp = {c: round(shift(membrane_geometric_stiffness(d.blade.fe, N * np.eye(3)[i]), f, phi), 2)
             for i, c in enumerate(("Nxx", "Nyy", "Nxy"))}
     load = {lab: round(shift(membrane_geometric_stiffness(d.blade.fe, M), f, phi), 2)
             for lab, M in (("centrifugal", Ncf), ("aerodynamic", N - Ncf))}
-    fk = torsion(d.blade, d.ksigma, omega)
-    nyy0 = torsion(d.blade, membrane_geometric_stiffness(d.blade.fe, N * np.array([1.0, 0.0, 1.0])), omega)[0]
-    print(f"  shell: undeformed {f0:.3f} Hz; deflected {f:.3f} Hz (shares {np.round(sh, 2)}), with its stress "
-          f"{fk[0]:.3f} Hz (shares {np.round(fk[2], 2)}), without the hoop resultant {nyy0:.3f} Hz; first order "
-          f"{shift(d.ksigma, f, phi):+.2f} % = {comp} = {load}")
-    comp0 = {c: round(shift(membrane_geometric_stiffness(rb.fe, N * np.eye(3)[i]), f0, phi0), 2)
-             for i, c in enumerate(("Nxx", "Nyy", "Nxy"))}
-    print(f"         undeformed with the linear stress: first order {shift(st.Ksigma, f0, phi0):+.2f} % = {comp0}")
+    print(f"         membrane-only by resultant {comp} and load {load}")
+    print(f"         modes 3-8 Hz, complete: {tip_panels(d.blade, d.ksigma, omega)}")
+    print(f"         modes 3-8 Hz, membrane-only: {tip_panels(d.blade, Km, omega)}")
+    Km0 = geometric_stiffness(rb.fe, st.u, shell="membrane")
+    print(f"         undeformed with the linear stress: first order complete {shift(st.Ksigma, f0, phi0):+.2f} %, "
+          f"membrane-only {shift(Km0, f0, phi0):+.2f} %")
 
 
 def main(speeds) -> None:

@@ -98,9 +98,10 @@ def test_spinning_shell_is_continuous_with_the_undeformed_linearization(shell_mo
     """Centrifugal loads alone: the deflected linearization differs from the undeformed one by the
     second order of the centrifugal deflection -- measured 1e-6 at 0.1 rad/s and 1.5e-4 at rated
     speed on this mesh; tolerances 1e-5 and 1e-3.  The rigid rotation of the blade about the shaft
-    keeps the undeformed model's stiffness (its membrane-only initial stress leaves 1.04 % of
-    Omega^2 x the shaft inertia on this coarse mesh; the deflected one 1.04 % and 1.02 %):
-    within 0.1 % of Omega^2 x the shaft inertia."""
+    has no stiffness in the rotating frame (the centrifugal loads' second-order work, Omega^2 x the
+    shaft inertia, cancels the spin softening's): with the complete initial stress (issue 33)
+    1.6e-4 (undeformed) and 3e-5 (deflected, rated) of Omega^2 x the shaft inertia, where the
+    membrane-only matrix left 1.04 %; tolerance 1e-3 for both."""
     rb = shell_model.blade(0.0)
     for omega, tol in ((0.1, 1e-5), (RATED, 1e-3)):
         kg, kl, _ = rb.unit_prestress()
@@ -108,7 +109,7 @@ def test_spinning_shell_is_continuous_with_the_undeformed_linearization(shell_mo
         d = deflected_shell_blade(rb, None, omega)
         f1, k_shaft, i_shaft = clamped_frequencies(d.blade, d.ksigma, d.klink, omega)
         np.testing.assert_allclose(f1, f0, rtol=tol)
-        assert abs(k_shaft - k0) < 1e-3 * omega**2 * i_shaft
+        assert abs(k_shaft) < 1e-3 * omega**2 * i_shaft and abs(k0) < 1e-3 * omega**2 * i_shaft
 
 
 @pytest.fixture(scope="module")
@@ -163,8 +164,10 @@ def test_deflected_shell_operating_point(shell_point, shell_model):
 def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
     """IEA 22 MW at 11 m/s (near rated): the shell blade's steady tip flap on the seed's mesh (30
     span elements, skin on the outer mould line) against the co-rotational beam's (the windIO 6x6
-    tables) within 6 % (measured +5.5 %: 21.57 m against 20.44 m).  On the converged default mesh
-    (skin on the laminate midsurface) the shell deflects +9.8 % (22.44 m): its own section
+    tables) within 8 % (measured +7.3 %: 21.93 m against 20.44 m; +5.5 %, 21.57 m, with the
+    membrane-only initial stress, whose hoop term stiffened this coarse mesh's centrifugal state:
+    issue 33, docs/structure.md).  The tolerance is the data's, not the solver's: on the converged
+    default mesh (skin on the laminate midsurface) the shell deflects +10.0 % (22.48 m): its own section
     properties (windflutter beam-properties, docs/mesh.md) are 2-8 % softer in flap than the 6x6
     tables at 25-85 % span and 25 % softer at 10 % span, the root transition: against the beam of
     those properties it is within 1.4 % (tests/system/test_shell_same_blade.py).  The
@@ -183,7 +186,7 @@ def test_iea22mw_shell_static_deflection_against_the_corotational_beam():
             omega, pitch = om.operating_point(11.0)
             st = om.steady(om.blade(pitch), 11.0, omega)
         flap[model] = st.tip_flap
-    assert flap["shell"] == pytest.approx(flap["beam"], rel=0.06)
+    assert flap["shell"] == pytest.approx(flap["beam"], rel=0.08)
 
 
 @pytest.mark.slow

@@ -50,14 +50,16 @@ def test_nrel5mw_shell_tip_instability_is_not_divergence():
     """The real case (36 s): the shell blade at 8 m/s with its tip section left open (the
     free skin edge, ``model.tip_closure: open``), on the seed's mesh (30 span elements, the skin on
     the outer mould line), where the open tip buckles first (on the converged default mesh the
-    sweep reaches divergence at 26.2 RPM first)."""
+    sweep reaches divergence at 26.2 RPM first).  Measured with the complete shell initial stress
+    (issue 33): 20.07 RPM, the mode largest at r/R = 0.97 (the last span element); with the
+    membrane-only one 21.5-22.5 RPM at r/R = 1.00."""
     (p,) = windflutter.stability("nrel5mw", [8.0], model={"type": "shell", "tip_closure": "open", "n_aero_sections": 30,
                                                          "reference_surface": "outer"})
     note = p.as_dict()["note"]
     assert p.divergence_rpm is None, p.as_dict()
-    assert note and "r/R = 1.00" in note
+    assert note and float(re.search(r"r/R = ([0-9.]+)", note).group(1)) >= 0.95  # the open tip's last elements
     stop = float(re.search(r"at about ([0-9.]+) RPM", note).group(1))
-    assert 21.5 < stop < 22.5
+    assert 19.5 < stop < 20.7
 
 
 @pytest.mark.slow

@@ -93,9 +93,10 @@ class RotorTerms:
 
 def _prestress(fe: FEModel, struct, Fr: np.ndarray, u0_solver=None, moments: bool = False) -> sp.csr_matrix:
     """Geometric stiffness of the static solution of ``Ks u0 = Fr`` (structural engineer's API);
-    ``moments``: of every stress resultant of the beams (not the axial force's alone)."""
+    ``moments``: of every stress resultant of the beams (not the axial force's alone); shells:
+    the complete initial stress with the ribs' term of their constraint forces ``K u0 - Fr``."""
     u0 = static_solve(struct, Fr) if u0_solver is None else u0_solver(struct, Fr)
-    Kg = geometric_stiffness(fe, u0, moments=moments)
+    Kg = geometric_stiffness(fe, u0, moments=moments, constraint_forces=struct.K @ u0 - Fr)
     return sp.csr_matrix(Kg)
 
 

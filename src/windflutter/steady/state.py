@@ -247,7 +247,7 @@ def _unit_centrifugal(fe, struct, axis: np.ndarray, hub: np.ndarray, group: str,
     else:
         _, Kr1, f1 = spin_terms(fe, struct.M, nodes, axis, hub)
         u1 = static_solve(struct, f1)
-        K1 = struct.reduce(sp.csr_matrix(geometric_stiffness(fe, u1) - Kr1))
+        K1 = struct.reduce(sp.csr_matrix(geometric_stiffness(fe, u1, constraint_forces=struct.K @ u1 - f1) - Kr1))
     cache[key] = (fe, (f1, u1, K1))
     return f1, u1, K1
 
@@ -397,7 +397,7 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
             fe, struct, sections, rotor_geometry, u, (V, om, n_blades, rho, pitch), options)
         iterations += it
         u = ex.configuration_displacement(fe, config)
-    f_internal, Ksigma = _stress(fe, struct, u, config)
+    f_internal, Ksigma = _stress(fe, struct, u, config, load_aero + f_cf)
     frames = pitching_frames(sections, rotor_geometry)
     tip_d, tip_r = tip_motion(sections, aero.defl, frames)
     thrust, torque, power = rotor_totals(aero.sections, rotor_geometry, aero.loads.loads, om, n_blades)
@@ -410,13 +410,15 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
         configuration=config)
 
 
-def _stress(fe, struct, u, config):
+def _stress(fe, struct, u, config, load):
     """(internal nodal forces (n_dof,), axial-force geometric stiffness Ksigma) of the steady state:
     ``K u`` and the linear elements' axial forces for the linear structure; for a co-rotational
     equilibrium ``config`` its beams' internal forces and axial forces (the linear ones of its
-    large-rotation ``u`` would not be its stress)."""
+    large-rotation ``u`` would not be its stress).  ``load`` (n_dof,): the state's nodal loads (the
+    shell ribs' term of the geometric stiffness takes the constraint forces ``K u - load``)."""
     if config is None:
-        return struct.K @ u, geometric_stiffness(fe, u)
+        f = struct.K @ u
+        return f, geometric_stiffness(fe, u, constraint_forces=f - load)
 
     tan = beam_tangent(fe, config)
     return internal_forces(fe, config, tan), axial_geometric_stiffness(fe, tan.resultants[:, 6])

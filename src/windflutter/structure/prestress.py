@@ -9,9 +9,14 @@ field ``u0`` (typically ``static_solve(struct, F)``):
   shear forces, torsion and bending moments -- the geometric part of the co-rotational tangent
   (:mod:`windflutter.structure.corotational`) at the undeformed configuration with the linear
   element forces of ``u0`` (its axial-force part is the Hermite matrix above);
-* shells: the FULL membrane geometric stiffness ``int N_ab dS/dx_a dS/dx_b dA (x) I3`` acting on
-  all three translations (a, b in-plane), with the membrane resultants N_ab from the laminate
-  ``A`` and ``B`` matrices at the element centroid, see :mod:`windflutter.structure.shell`.
+* shells: the COMPLETE initial-stress matrix of the flat facets (default, ``shell="complete"``):
+  the co-rotational (EICR) geometric stiffness of each element's nodal forces and moments with its
+  membrane initial stress on the deformational motion, :mod:`windflutter.structure.shell_stress`
+  (a rigid motion's energy is the external loads' second-order work); or (``shell="membrane"``,
+  kept for comparison) the membrane geometric stiffness alone ``int N_ab dS/dx_a dS/dx_b dA (x) I3``
+  on all three translations, with the membrane resultants N_ab from the laminate ``A`` and ``B``
+  matrices at the element centroid (:mod:`windflutter.structure.shell`), whose hoop resultants
+  stiffen rigid rotations of a curved wall (docs/structure.md).
 """
 
 from __future__ import annotations
@@ -27,7 +32,10 @@ from windflutter.structure.beam import beam_axial_force, beam_geometric_matrices
 from windflutter.structure.corotational import beam_tangent, linear_resultants, reference_configuration
 from windflutter.structure.fem import FEModel
 from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
-from windflutter.structure.shell import shell_membrane_kg
+from windflutter.structure.shell import shell_membrane_kg, shell_membrane_resultants
+from windflutter.structure.shell_stress import shell_complete_kg, shell_element_forces
+
+SHELL_KG = ("complete", "membrane")
 
 
 def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None = None) -> np.ndarray:
@@ -59,7 +67,8 @@ def static_solve(struct: Structural, F: np.ndarray, K_extra: sp.spmatrix | None 
     return struct.expand(q)
 
 
-def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> sp.csr_matrix:
+def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False, shell: str = "complete",
+                        constraint_forces: np.ndarray | None = None) -> sp.csr_matrix:
     """Geometric stiffness (full numbering, CSR, symmetric) of the prestressed state ``u0``.
 
     Parameters
@@ -68,7 +77,12 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> s
     u0 : (n_dof,) static displacement field (m, rad) in the full numbering.
     moments : beams: the terms of every stress resultant (shear, torsion, bending moments), not
         the axial force's alone (module docstring).
+    shell : shells: ``"complete"`` (default) or ``"membrane"`` (module docstring).
+    constraint_forces : (n_dof,) ``K u0 - F`` of the state (the loads ``F``): with the complete
+        shell matrix, the ribs' term (:func:`diaphragm_geometric_stiffness`) is added.
     """
+    if shell not in SHELL_KG:
+        raise InputError("shell", shell, f"one of {SHELL_KG}")
     u0 = np.asarray(u0, dtype=float)
     if u0.shape != (fe.n_dof,) or not np.all(np.isfinite(u0)):
         raise InputError("u0", u0.shape, f"a finite ({fe.n_dof},) displacement vector")
@@ -86,14 +100,58 @@ def geometric_stiffness(fe: FEModel, u0: np.ndarray, moments: bool = False) -> s
             cols.append(KG.col)
             vals.append(KG.data)
     if len(fe.shell_conn):
-        r, c, v = shell_membrane_kg(fe, u0)
+        if shell == "complete":
+            r, c, v = shell_complete_kg(fe, shell_element_forces(fe, u0), shell_membrane_resultants(fe, u0))
+        else:
+            r, c, v = shell_membrane_kg(fe, u0)
         rows.append(r)
         cols.append(c)
         vals.append(v)
     if not rows:
         return sp.csr_matrix((n, n))
     A = sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
-    return ((A + A.T) * 0.5).tocsr()
+    A = ((A + A.T) * 0.5).tocsr()
+    if constraint_forces is not None and shell == "complete" and fe.diaphragms:
+        A = (A + diaphragm_geometric_stiffness(fe, constraint_forces)).tocsr()
+    return A
+
+
+def diaphragm_geometric_stiffness(fe: FEModel, constraint_forces: np.ndarray) -> sp.csr_matrix:
+    """Geometric stiffness (full numbering, CSR) of the ribs' (:class:`~windflutter.structure.fem.Diaphragm`)
+    in-plane constraint forces, on each rib's independent node's rotation about its normal.
+
+    A rib is an in-plane rigid tie: the forces it exerts on its dependent nodes ``k`` (the in-plane
+    part of ``constraint_forces`` = ``K u0 - F`` there) are balanced in the rib (with its
+    independent node's).  Turned rigidly in its plane by ``theta`` about its normal ``n``, the rib,
+    as a body carrying the opposite forces, has the initial-stress energy
+    ``1/2 theta^2 (-sum_k rho_k . f_k)`` (``rho_k`` the in-plane lever from the independent node):
+    the term that cancels the shell's own (complete matrix) energy of those forces in a rigid
+    rotation, as :func:`windflutter.system.blade.link_geometric_stiffness` does for the hub links.
+    Without it a rib that keeps the wall's Poisson contraction or the tip load's introduction
+    (radial forces) stiffens a twist of the end section (on a tube in tension: +182 % of the
+    trapeze term).  The rib's tilt (rotation about an in-plane axis) is not tied by the rib and gets
+    no term (docs/structure.md).
+    """
+    cf = np.asarray(constraint_forces, dtype=float)
+    if cf.shape != (fe.n_dof,) or not np.all(np.isfinite(cf)):
+        raise InputError("constraint_forces", cf.shape, f"a finite ({fe.n_dof},) nodal force vector (N, N m)")
+    n = fe.n_dof
+    f = cf.reshape(-1, 6)[:, :3]
+    X = np.asarray(fe.nodes, dtype=float)
+    rows, cols, vals = [], [], []
+    for d in fe.diaphragms:
+        nrm = np.asarray(d.normal, dtype=float)
+        nrm = nrm / np.linalg.norm(nrm)
+        dep = np.asarray(d.dependent, dtype=np.int64)
+        rho = X[dep] - X[int(d.independent)]
+        k = -float(np.sum(rho * f[dep]) - np.sum((rho @ nrm) * (f[dep] @ nrm)))
+        i0 = 6 * int(d.independent) + 3 + np.arange(3)
+        rows.append(np.repeat(i0, 3))
+        cols.append(np.tile(i0, 3))
+        vals.append(k * np.outer(nrm, nrm).ravel())
+    if not rows:
+        return sp.csr_matrix((n, n))
+    return sp.coo_matrix((np.concatenate(vals), (np.concatenate(rows), np.concatenate(cols))), shape=(n, n)).tocsr()
 
 
 def axial_geometric_stiffness(fe: FEModel, axial_force: np.ndarray) -> sp.csr_matrix:
@@ -203,6 +261,18 @@ def membrane_geometric_stiffness(fe: FEModel, resultants: np.ndarray) -> sp.csr_
     ``(Nxx, Nyy, Nxy)`` (ne, 3) (N/m, each element's material frame) on the geometry of ``fe``:
     a stress field carried with its elements to another configuration of the same mesh."""
     r, c, v = shell_membrane_kg(fe, None, resultants=resultants)
+    n = fe.n_dof
+    A = sp.coo_matrix((v, (r, c)), shape=(n, n)).tocsr()
+    return ((A + A.T) * 0.5).tocsr()
+
+
+def shell_initial_stress(fe: FEModel, forces: np.ndarray, resultants: np.ndarray) -> sp.csr_matrix:
+    """The shells' complete initial-stress matrix (full numbering, CSR, symmetric) of given element
+    nodal forces and moments ``forces`` (ne, 4, 6) (N, N m, global axes) and membrane resultants
+    ``resultants`` (ne, 3) (N/m, material frame) on the geometry of ``fe``
+    (:func:`windflutter.structure.shell_stress.shell_complete_kg`): a stress state carried with its
+    elements to another configuration of the same mesh."""
+    r, c, v = shell_complete_kg(fe, forces, resultants)
     n = fe.n_dof
     A = sp.coo_matrix((v, (r, c)), shape=(n, n)).tocsr()
     return ((A + A.T) * 0.5).tocsr()

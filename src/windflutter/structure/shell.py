@@ -87,6 +87,17 @@ def _membrane_ab(p: ShellProperty, index: int) -> tuple[tuple, tuple]:
 
 def shell_coo(fe: FEModel, mass: str = "consistent"):
     """COO triplets ((r, c, v) for K, (r, c, v) for M) of all shell elements (pyfe3d Quad4)."""
+    return _quad4_coo(fe, 0 if mass == "consistent" else 1)
+
+
+def shell_kc0_coo(fe: FEModel):
+    """COO triplets (r, c, v) of the shells' linear stiffness alone (pyfe3d Quad4 ``KC0``, global
+    axes), ``Quad4Data().KC0_SPARSE_SIZE`` consecutive entries per element in ``fe.shell_conn`` order."""
+    return _quad4_coo(fe, None)[0]
+
+
+def _quad4_coo(fe: FEModel, mtype: int | None):
+    """(K triplets, M triplets or None): mass type 0 consistent, 1 lumped, None no mass."""
     from pyfe3d import Quad4, Quad4Data, Quad4Probe
 
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
@@ -95,8 +106,7 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
     ne = conn.shape[0]
     props = [_shellprop(p, i) for i, p in enumerate(fe.shell_properties)]
     data = Quad4Data()
-    nk, nm = data.KC0_SPARSE_SIZE, data.M_SPARSE_SIZE
-    mtype = 0 if mass == "consistent" else 1
+    nk, nm = data.KC0_SPARSE_SIZE, (data.M_SPARSE_SIZE if mtype is not None else 0)
     Kr = np.zeros(ne * nk, dtype=np.int64)
     Kc = np.zeros(ne * nk, dtype=np.int64)
     Kv = np.zeros(ne * nk)
@@ -104,7 +114,7 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
     Mc = np.zeros(ne * nm, dtype=np.int64)
     Mv = np.zeros(ne * nm)
     x = np.ascontiguousarray(np.asarray(fe.nodes, dtype=float).ravel())
-    _check_quads(fe)
+    check_quads(fe)
     probe = Quad4Probe()
     q = Quad4(probe)
     c6 = 6 * conn
@@ -121,7 +131,10 @@ def shell_coo(fe: FEModel, mass: str = "consistent"):
         q.update_probe_xe(x)
         prop = props[pid[e]]
         q.update_KC0(Kr, Kc, Kv, prop)
-        q.update_M(Mr, Mc, Mv, prop, mtype)
+        if mtype is not None:
+            q.update_M(Mr, Mc, Mv, prop, mtype)
+    if mtype is None:
+        return (Kr, Kc, Kv), None
     if mtype == 1:  # lumped mass writes only the first 120 entries per element
         keep = (np.arange(ne * nm) % nm) < 120
         Mr, Mc, Mv = Mr[keep], Mc[keep], Mv[keep]
@@ -161,7 +174,7 @@ def material_rotation(X: np.ndarray, matdir: np.ndarray) -> np.ndarray:
     return np.column_stack([np.cos(phi), np.sin(phi)])
 
 
-def _check_quads(fe: FEModel) -> None:
+def check_quads(fe: FEModel) -> None:
     """Reject degenerate quads (zero area or repeated nodes) with an InputError."""
     X = np.asarray(fe.nodes, dtype=float)[np.asarray(fe.shell_conn, dtype=np.int64)]
     nrm = np.cross(X[:, 2] - X[:, 0], X[:, 1] - X[:, 3])
@@ -240,6 +253,23 @@ def shell_membrane_resultants(fe: FEModel, u0: np.ndarray) -> np.ndarray:
     return np.einsum("eij,ej->ei", A[pid], eps) + np.einsum("eij,ej->ei", B[pid], kap)
 
 
+def membrane_element_matrices(fe: FEModel, resultants: np.ndarray) -> np.ndarray:
+    """(ne, 4, 4) ``int G^T Nm G dA`` of each element (N/m x m^2 / m^2 = N/m): the membrane
+    initial-stress matrix per translation component (2x2 Gauss, ``G`` the in-plane shape-function
+    gradients, ``Nm = [[Nxx, Nxy], [Nxy, Nyy]]`` of the given ``resultants`` (ne, 3), N/m)."""
+    Nres = np.asarray(resultants, dtype=float)
+    if Nres.shape != (len(fe.shell_conn), 3) or not np.all(np.isfinite(Nres)):
+        raise InputError("resultants", Nres.shape, f"finite ({len(fe.shell_conn)}, 3) membrane resultants (N/m)")
+    xy = shell_frames(fe)[1]
+    Nm = np.stack([np.stack([Nres[:, 0], Nres[:, 2]], -1), np.stack([Nres[:, 2], Nres[:, 1]], -1)], 1)
+    Ge = np.zeros((Nm.shape[0], 4, 4))
+    for xi in _GP:
+        for eta in _GP:
+            G, det = _grad(xy, xi, eta)
+            Ge += det[:, None, None] * np.einsum("ean,eab,ebm->enm", G, Nm, G)
+    return Ge
+
+
 def shell_membrane_kg(fe: FEModel, u0: np.ndarray | None, directions: str = "all", resultants: np.ndarray | None = None):
     """COO triplets of the full membrane geometric stiffness of all shells.
 
@@ -261,14 +291,9 @@ def shell_membrane_kg(fe: FEModel, u0: np.ndarray | None, directions: str = "all
     Nres = shell_membrane_resultants(fe, u0) if resultants is None else np.asarray(resultants, float)
     if Nres.shape != (len(fe.shell_conn), 3) or not np.all(np.isfinite(Nres)):
         raise InputError("resultants", Nres.shape, f"finite ({len(fe.shell_conn)}, 3) membrane resultants (N/m)")
-    Rf, xy, _ = shell_frames(fe)
-    Nm = np.stack([np.stack([Nres[:, 0], Nres[:, 2]], -1), np.stack([Nres[:, 2], Nres[:, 1]], -1)], 1)
-    ne = Nm.shape[0]
-    Ge = np.zeros((ne, 4, 4))
-    for xi in _GP:
-        for eta in _GP:
-            G, det = _grad(xy, xi, eta)
-            Ge += det[:, None, None] * np.einsum("ean,eab,ebm->enm", G, Nm, G)
+    Rf = shell_frames(fe)[0]
+    Ge = membrane_element_matrices(fe, Nres)
+    ne = Ge.shape[0]
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
     # expand (4x4) (x) I3 -> rows/cols on translational DOFs
     rn = np.repeat(conn, 4, axis=1)  # (ne, 16) node of row

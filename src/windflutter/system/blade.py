@@ -131,8 +131,9 @@ class RotorBlade:
     def prestress(self, load: np.ndarray):
         """``(Ksigma (full, sparse), Klink (3, 3), u0)`` of the static state under ``load`` (N)."""
         u0 = static_solve(self.struct, load) if self.struct.nq else np.zeros(self.fe.n_dof)
-        Kg = geometric_stiffness(self.fe, u0)
-        Kl = link_geometric_stiffness(self.fe, self.struct.K @ u0 - load, self.hub_node)
+        cf = self.struct.K @ u0 - load
+        Kg = geometric_stiffness(self.fe, u0, constraint_forces=cf)
+        Kl = link_geometric_stiffness(self.fe, cf, self.hub_node)
         return Kg, Kl, u0
 
     def unit_prestress(self):

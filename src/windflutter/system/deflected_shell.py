@@ -18,10 +18,11 @@ linearized about the deflected shape in three steps (docs/steady_state.md, "Shel
    ``K_d``, mass, Coriolis and spin softening of the deformed blade; the files' damping, the
    undeformed blade's modal damping turned with the nodes), and the
    strips' motion map with its lever arms turned by the nodal rotations.
-3. **The steady stress** is the shell's own, that of its steady state: the membrane resultants
-   ``(Nxx, Nyy, Nxy)`` of each element in its material frame, carried with the element to the
-   deformed geometry, give the membrane initial-stress matrix there
-   (:func:`windflutter.structure.prestress.membrane_geometric_stiffness`); the root reaction,
+3. **The steady stress** is the shell's own, that of its steady state: each element's nodal forces
+   and moments ``K_e u_e`` and its membrane resultants ``(Nxx, Nyy, Nxy)``, carried with the
+   element to the deformed geometry, give the complete initial-stress matrix there
+   (:func:`steady_stress_stiffness`: the flat facets' co-rotational matrix,
+   :mod:`windflutter.structure.shell_stress`, and the ribs' term of their constraint forces); the root reaction,
    turned with its nodes, the hub links' tensioned-bar term.  (A linear solution of the deformed
    blade under its own loads was tried for the stress and rejected: on the bent geometry it
    crushes the thin tip panels with hoop stresses twice those of the steady state, and the IEA
@@ -46,12 +47,14 @@ from windflutter.steady.exact import deformed_motion_map
 from windflutter.steady.geometry import (Deflection, blade_strips, deflection, rotation_matrices, rotation_vectors,
                                          strip_motion)
 from windflutter.structure.assembly import assemble
-from windflutter.structure.prestress import membrane_geometric_stiffness
+from windflutter.structure.prestress import (diaphragm_geometric_stiffness, membrane_geometric_stiffness,
+                                             shell_initial_stress)
 from windflutter.structure.shell import shell_membrane_resultants
+from windflutter.structure.shell_stress import rotate_element_forces, shell_element_forces
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 from windflutter.system.damping import ModalDamping, shell_modal_damping
 
-__all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade"]
+__all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade", "steady_stress_stiffness"]
 
 
 @dataclass
@@ -63,7 +66,7 @@ class DeflectedShell:
     blade : :class:`~windflutter.system.blade.RotorBlade` on the deformed geometry.
     steady : the steady state with the deformed blade's strip motion map and ``Ksigma = ksigma``
         (None without one).
-    ksigma : (n_dof, n_dof) CSR membrane initial-stress matrix of the steady stress.
+    ksigma : (n_dof, n_dof) CSR initial-stress matrix of the steady stress (complete).
     klink : (3, 3) hub-link geometric stiffness of the root reaction (N m/rad).
     nodes : (n, 3) deformed node positions (m); ``rotations`` (n, 3, 3) the nodes' finite rotations.
     """
@@ -131,10 +134,16 @@ def _turned(f: np.ndarray, Rn: np.ndarray) -> np.ndarray:
     return np.einsum("nab,nkb->nka", Rn, f).reshape(-1)
 
 
+def _element_rotations(fe, Rn: np.ndarray) -> np.ndarray:
+    """(ne, 3, 3) each shell element's carried rotation: the mean of its nodes' rotation vectors."""
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    return rotation_matrices(np.mean(rotation_vectors(Rn.reshape(-1, 3, 3))[conn], axis=1)) if len(conn) else Rn[:0]
+
+
 def _deformed_fe(fe, x: np.ndarray, Rn: np.ndarray):
     """``fe`` on the carried nodes: material directions, diaphragm normals and lumped masses turned."""
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
-    Re = rotation_matrices(np.mean(rotation_vectors(Rn.reshape(-1, 3, 3))[conn], axis=1)) if len(conn) else Rn[:0]
+    Re = _element_rotations(fe, Rn)
     matdir = np.einsum("eab,eb->ea", Re, np.asarray(fe.shell_matdir, float)) if len(conn) else fe.shell_matdir
     dia = [dataclasses.replace(d, normal=Rn[int(d.independent)] @ np.asarray(d.normal, float)) for d in fe.diaphragms]
     masses = [dataclasses.replace(m, inertia=Rn[m.node] @ np.asarray(m.inertia, float) @ Rn[m.node].T,
@@ -150,6 +159,25 @@ def _carried_damping(rb: RotorBlade, mu, Rn: np.ndarray):
         return None
     D = rb.damping if isinstance(rb.damping, ModalDamping) else shell_modal_damping(rb.fe, rb.struct, rb.sections, mu)
     return D.rotated(Rn)
+
+
+def steady_stress_stiffness(fe, fe_d, u: np.ndarray, Rn: np.ndarray, constraint_forces: np.ndarray | None = None,
+                            complete: bool = True) -> sp.csr_matrix:
+    """The initial-stress matrix (n_dof, n_dof) CSR of the steady displacement ``u`` of the undeformed
+    shell blade ``fe``, its stress carried with the elements to the deformed model ``fe_d`` (nodal
+    rotations ``Rn``): each element's nodal forces and moments ``K_e u_e`` turned by the element's
+    rotation, its membrane resultants in its (turned) material frame; the complete matrix
+    (:func:`windflutter.structure.prestress.shell_initial_stress`) with the ribs' term of the
+    carried ``constraint_forces`` (``f_internal - load`` turned with its nodes), or
+    (``complete=False``) the membrane initial stress alone, for comparison."""
+    N = shell_membrane_resultants(fe, u)
+    if not complete:
+        return membrane_geometric_stiffness(fe_d, N)
+    forces = rotate_element_forces(shell_element_forces(fe, u), _element_rotations(fe, Rn))
+    K = shell_initial_stress(fe_d, forces, N)
+    if constraint_forces is not None and fe_d.diaphragms:
+        K = (K + diaphragm_geometric_stiffness(fe_d, constraint_forces)).tocsr()
+    return K
 
 
 def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None) -> DeflectedShell:
@@ -181,8 +209,8 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     mm = deformed_motion_map(rb.sections.motion_map, Rn)
     # the steady stress: the membrane resultants of the shell's own steady state, carried with their
     # elements; the root reaction turned with its nodes for the hub links
-    ksigma = membrane_geometric_stiffness(fe_d, shell_membrane_resultants(fe, u))
     reaction = steady.f_internal - steady.load if steady is not None else rb.struct.K @ u - rb.centrifugal_load(omega)
+    ksigma = steady_stress_stiffness(fe, fe_d, u, Rn, _turned(reaction, Rn))
     klink = link_geometric_stiffness(fe_d, _turned(reaction, Rn), blade.hub_node)
     blade.sections = dataclasses.replace(sections, motion_map=mm)
     st_out = dataclasses.replace(steady, sections=blade.sections, Ksigma=ksigma) if steady is not None else None
