@@ -151,15 +151,19 @@ def smooth_root(f, lo: tuple, hi: tuple, tol: float, known=()) -> float:
     pts = {float(x): float(v) for x, v in known if np.isfinite(v)}
     pts.update({float(a): float(fa), float(b): float(fb)})
     a, b = float(a), float(b)
-    last, widths = None, [b - a]
+    last, step, widths = None, None, [b - a]
     for _ in range(MAX_TRIALS):
         s = _model_root(pts, a, b, 0.5 * (a + b) if last is None else last)
-        if last is not None and abs(s - last) <= 0.5 * tol:
-            return last
+        if last is not None:
+            if abs(s - last) <= 0.5 * tol:
+                return last
+            # bisect where the model's steps stop shrinking or the bracket did not halve in three trials
+            slow = (step is not None and abs(s - last) > 0.5 * step) or \
+                (len(widths) >= 4 and widths[-1] > 0.5 * widths[-4])
+            step = None if slow else abs(s - last)
+            s = 0.5 * (a + b) if slow else s
         if b - a <= tol:
             return a if abs(pts[a]) < abs(pts[b]) else b
-        if len(widths) >= 3 and widths[-1] > 0.5 * widths[-3]:  # slow (one end does not move): bisect
-            s = 0.5 * (a + b)
         s = min(max(s, a + 0.25 * tol), b - 0.25 * tol)
         fs = float(f(s))
         pts[s] = fs
