@@ -128,7 +128,10 @@ def _model_root(pts: dict, lo: float, hi: float, near: float) -> float:
     if not others:
         return sec
     x = np.array([lo, hi, others[0]])
-    c = np.polyfit(x, np.array([pts[v] for v in x]), 2)
+    y = np.array([pts[v] for v in x])
+    if not np.all(np.isfinite(y)):
+        return sec
+    c = np.polyfit(x, y, 2)
     r = np.roots(c) if abs(c[0]) > 1e-300 else np.roots(c[1:])
     r = r[np.isreal(r)].real
     r = r[(r >= lo) & (r <= hi)]
@@ -164,7 +167,7 @@ def smooth_root(f, lo: tuple, hi: tuple, tol: float, known=()) -> float:
             s = 0.5 * (a + b) if slow else s
         if b - a <= tol:
             return a if abs(pts[a]) < abs(pts[b]) else b
-        s = min(max(s, a + 0.25 * tol), b - 0.25 * tol)
+        s = min(max(s, a + 0.25 * tol), b - 0.25 * tol) if np.isfinite(s) else 0.5 * (a + b)
         fs = float(f(s))
         pts[s] = fs
         if fs == 0:
