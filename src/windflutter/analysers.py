@@ -20,7 +20,7 @@ import numpy as np
 from windflutter.backends import BUILTIN, backend_factory
 from windflutter.config import AnalysisConfig
 from windflutter.errors import InputError, InputWarning, ModelError, ValidityWarning
-from windflutter.operating import operating_campbell as service
+from windflutter.operating import campbell_model, operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult, point_result
 from windflutter.methods import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts, with_span_count
@@ -155,10 +155,13 @@ class TurbinePointAnalyser:
         return res
 
 
-def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = None, progress: bool = False):
+def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = None, progress: bool = False,
+                       workers: int = 1):
     """The operating-point Campbell of a run (``campbell.enabled`` with method p; None otherwise):
     every mode along the operating curve at the run's wind speeds, with the model of the run's
-    first p case (its parts reused when the built-in analyser built them in this process)."""
+    first p case (its parts reused when the built-in analyser built them in this process).
+    ``workers``: processes for a shell model's points (the run's local workers; a beam model's points
+    take a fraction of a second and stay in this process)."""
     if not (config.campbell.enabled and "p" in config.method and config.solver.backend == "windflutter"):
         return None
     if getattr(turbine, "operating_curve", None) is None:
@@ -176,7 +179,9 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
                       "stability map still analyses them)", InputWarning, stacklevel=2)
     if not winds:
         return None
-    return service(turbine, config, winds, model=case.model if case is not None else None)
+    model = case.model if case is not None else campbell_model(turbine, config)
+    workers = min(int(workers), len(winds)) if model.options.model == "shell" else 1
+    return service(turbine, config, winds, model=model, workers=workers)
 
 
 def _with_validity_notes(fn: Callable, *args, **kw):

@@ -13,10 +13,15 @@ no frequency matching is needed (the p-method; the seed's p-k and 8-k searches r
   through its middle, as along the Campbell), and followed along the rotor speed by their identities
   (the Campbell arrays) and by the MAC of their physical signatures (the root searches).
 * Flutter: the first rotor speed where a followed mode's damping ratio turns negative (the
-  drivetrain's rigid-body root excluded), located by Brent's method on that mode.
+  drivetrain's rigid-body root excluded), located on that mode by :func:`smooth_root`.
 * Divergence: the blades' static stiffness in the rotating frame with the aerodynamic stiffness at
   zero frequency (the lag states at their static values) losing positive definiteness: the
-  smallest eigenvalue of ``(K + F (-A)^-1 ... )`` changing sign, located by Brent's method.
+  smallest eigenvalue of ``(K + F (-A)^-1 ... )`` changing sign, located by :func:`smooth_root`.
+
+Each trial of a root search is a full operating point (steady state, linearization, blade basis,
+eigen-solve: 2.5-3.5 s on the NREL 5 MW shell): :func:`smooth_root` models the smooth function by a
+parabola through the bracket and the nearest known sample (the sweep point before the bracket first)
+and typically needs two trials where Brent's method took three or more.
 """
 
 from __future__ import annotations
@@ -37,6 +42,11 @@ from windflutter.system.modes import point_modes
 from windflutter.system.operational import OperationalModel
 
 RPM = math.pi / 30.0
+#: root searches: at most this many trial points (each a full operating point)
+MAX_TRIALS = 20
+#: the flutter search takes the followed mode's damping at the sweep point before its bracket as a
+#: sample for its first trial where that point has a mode of at least this MAC with it
+KNOWN_MAC = 0.9
 #: operating points (models and modes) kept by OperationalStability: the bracket of a root search
 #: and its last trial points
 POINT_CACHE = 6
@@ -108,6 +118,69 @@ def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
     return abs(w_r) < rel * max(omega, 1e-9)
 
 
+def _model_root(pts: dict, lo: float, hi: float, near: float) -> float:
+    """The root in ``[lo, hi]`` of the parabola through ``lo``, ``hi`` and the known point nearest to
+    ``near`` (``pts``: x -> f(x)); the secant of ``lo`` and ``hi`` where there is no third point or
+    the parabola has no root in the bracket."""
+    flo, fhi = pts[lo], pts[hi]
+    sec = lo - flo * (hi - lo) / (fhi - flo)
+    others = sorted((x for x in pts if x != lo and x != hi), key=lambda x: abs(x - near))
+    if not others:
+        return sec
+    x = np.array([lo, hi, others[0]])
+    y = np.array([pts[v] for v in x])
+    if not np.all(np.isfinite(y)):
+        return sec
+    c = np.polyfit(x, y, 2)
+    r = np.roots(c) if abs(c[0]) > 1e-300 else np.roots(c[1:])
+    r = r[np.isreal(r)].real
+    r = r[(r >= lo) & (r <= hi)]
+    return float(r[np.argmin(np.abs(r - sec))]) if r.size else sec
+
+
+def smooth_root(f, lo: tuple, hi: tuple, tol: float, known=()) -> float:
+    """A root of ``f`` (smooth: a followed mode's damping ratio, the static margin) between the sweep
+    points ``lo = (a, f(a))`` and ``hi = (b, f(b))`` of opposite signs, to ``tol``: each trial is the
+    root of the parabola through the bracket and the known point nearest to the last trial (``known``:
+    more ``(x, f(x))`` samples, e.g. the sweep point before ``a``; the first trial is the model's
+    root), the bracket kept.  It stops at a trial ``x`` when the next model root is within ``tol / 2``
+    of it, or when the bracket is narrower than ``tol``, and returns an evaluated point, as Brent's
+    method does.  Typically two trials where Brent's method takes three or more (each a full
+    operating point: 3 s on the NREL 5 MW shell); :func:`scipy.optimize.brentq` is the reference in
+    the tests."""
+    (a, fa), (b, fb) = lo, hi
+    if fa == 0 or fb == 0:
+        return float(a if fa == 0 else b)
+    pts = {float(x): float(v) for x, v in known if np.isfinite(v)}
+    pts.update({float(a): float(fa), float(b): float(fb)})
+    a, b = float(a), float(b)
+    last, step, widths = None, None, [b - a]
+    for _ in range(MAX_TRIALS):
+        s = _model_root(pts, a, b, 0.5 * (a + b) if last is None else last)
+        if last is not None:
+            if abs(s - last) <= 0.5 * tol:
+                return last
+            # bisect where the model's steps stop shrinking or the bracket did not halve in three trials
+            slow = (step is not None and abs(s - last) > 0.5 * step) or \
+                (len(widths) >= 4 and widths[-1] > 0.5 * widths[-4])
+            step = None if slow else abs(s - last)
+            s = 0.5 * (a + b) if slow else s
+        if b - a <= tol:
+            return a if abs(pts[a]) < abs(pts[b]) else b
+        s = min(max(s, a + 0.25 * tol), b - 0.25 * tol) if np.isfinite(s) else 0.5 * (a + b)
+        fs = float(f(s))
+        pts[s] = fs
+        if fs == 0:
+            return s
+        if (fs > 0) == (pts[a] > 0):
+            a = s
+        else:
+            b = s
+        last = s
+        widths.append(b - a)
+    return last
+
+
 def flutter_label(sweep, rpm: float, mode) -> str:
     """The flutter mode's name: the identity it had in operation (the first sweep point, the
     operating rotor speed) and ``" -> "`` the one it has at the onset where the two differ
@@ -131,6 +204,10 @@ def flutter_label(sweep, rpm: float, mode) -> str:
 
 class OperationalStability:
     """Method p on a turbine: :meth:`analyse_operating_point` per wind speed (models cached)."""
+
+    #: the onsets' root searches: ``"smooth"`` (:func:`smooth_root`) or ``"brent"``
+    #: (:func:`scipy.optimize.brentq`, the reference of the tests and ``benchmarks/bench_shell_map.py``)
+    root_search = "smooth"
 
     def __init__(self, turbine, options=None, search: SearchSettings | None = None):
 
@@ -228,9 +305,10 @@ class OperationalStability:
             margins.append(blade_static_margin(ps))
             if on.divergence is None and i > 0 and margins[-2] > 0 >= margins[-1]:
                 on.divergence = self._locate(lambda r: blade_static_margin(self._point(wind_speed, r, pitch)[0]),
-                                             grid[i - 1], rpm)
+                                             (grid[i - 1], margins[-2]), (rpm, margins[-1]),
+                                             [(grid[i - 2], margins[-3])] if i > 1 else [])
             if flutter is None and i > 0:
-                flutter = self._flutter(wind_speed, pitch, sweep[-2], sweep[-1])
+                flutter = self._flutter(wind_speed, pitch, sweep[-2], sweep[-1], sweep[-3] if i > 1 else None)
             if flutter is not None and on.divergence is not None and not self.search.full_sweep:
                 break
             if progress is not None:
@@ -256,14 +334,21 @@ class OperationalStability:
                      f"aeroelastic divergence [from {r0:.2f} RPM]")
         return True
 
-    def _locate(self, f, a: float, b: float) -> float:
+    def _locate(self, f, lo: tuple, hi: tuple, known=()) -> float:
+        """The sign change of ``f`` between the sweep points ``lo`` and ``hi`` (``(RPM, f)``), to the
+        search's tolerance: :func:`smooth_root` (``known``: earlier samples for its first trial), or
+        with :attr:`root_search` ``"brent"`` Brent's method on the bracket (the reference)."""
+        tol = self.search.tolerance_rpm
+        if self.root_search != "brent":
+            return smooth_root(f, lo, hi, tol, known)
         try:
-            return float(brentq(f, a, b, xtol=self.search.tolerance_rpm))
+            return float(brentq(f, lo[0], hi[0], xtol=tol))
         except ValueError:
-            return float(b)
+            return float(hi[0])
 
-    def _flutter(self, V: float, pitch: float, prev, cur):
-        """``(rpm, mode)`` of the lowest damping sign change between two sweep points, or None.
+    def _flutter(self, V: float, pitch: float, prev, cur, earlier=None):
+        """``(rpm, mode)`` of the lowest damping sign change between two sweep points, or None;
+        ``earlier``: the sweep point before ``prev``, a sample for the root search's first trial.
 
         A root whose rotating-frame frequency is about zero (a cyclic mode at the rotor speed in the
         ground-fixed frame, a collective one at zero) is the blades' static divergence seen from
@@ -285,7 +370,14 @@ class OperationalStability:
                 k = int(np.argmax(mac_matrix(ref[:, None], np.stack([x.signature for x in mods], 1))[0]))
                 return mods[k]
 
-            r0 = self._locate(lambda r: follow(r).damping_ratio, ra, rb)
+            known = []
+            if earlier is not None and earlier[1]:
+                me = earlier[1]
+                mac_e = mac_matrix(ref[:, None], np.stack([x.signature for x in me], 1))[0]
+                if mac_e.max() >= KNOWN_MAC:
+                    known = [(earlier[0], me[int(np.argmax(mac_e))].damping_ratio)]
+            r0 = self._locate(lambda r: follow(r).damping_ratio, (ra, ma[i].damping_ratio), (rb, m.damping_ratio),
+                              known)
             if best is None or r0 < best[0]:
                 best = (r0, follow(r0))
         return best

@@ -348,7 +348,9 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
     info = describe_run(turbine, config, _Described(analyser, reported) if reported else analyser)
     ds = assemble_dataset(done, config, info, len(points))
     ds.attrs["finished_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
-    camp = operating_campbell(turbine, config, analyser, progress)
+    # the Campbell's shell points on the run's local workers (its beam points stay here)
+    camp = operating_campbell(turbine, config, analyser, progress,
+                              workers=1 if in_process or client is not None else workers)
     if camp is not None:
         store.write_campbell(outdir, camp)
         for k, v in camp.assumptions.items():
