@@ -41,9 +41,9 @@ from windflutter.system.operational import OperationalModel, OperationalOptions
 BEAM_GROUPS = {"axial": [0, 6], "shear": [1, 2, 7, 8], "torsion": [3, 9], "bending": [4, 5, 10, 11]}
 
 
-def torsion(rb, ksigma, omega: float):
-    """(f Hz, mass-normalized full-numbering mode, shares flap/edge/torsion) of the clamped blade's
-    1st torsion under ``K + ksigma - omega^2 K_r``."""
+def clamped_modes(rb, ksigma, omega: float):
+    """(f Hz, mass-normalized full-numbering modes, shares flap/edge/torsion) of the clamped blade's
+    14 lowest modes under ``K + ksigma - omega^2 K_r``."""
     st = rb.struct
     K = st.K - omega**2 * rb.Kr1 + (ksigma if ksigma is not None else 0)
     Kq = sp.csc_matrix(st.T.T @ K @ st.T)
@@ -51,7 +51,13 @@ def torsion(rb, ksigma, omega: float):
     f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
     P = np.asarray(st.T @ X)
     e = np.sum(np.asarray(rb.sections.width)[None, :, None] * blade_motion_components(rb.sections, P) ** 2, axis=1)
-    sh = e / e.sum(axis=0)
+    return f, P, e / e.sum(axis=0)
+
+
+def torsion(rb, ksigma, omega: float):
+    """(f Hz, mass-normalized full-numbering mode, shares flap/edge/torsion) of the clamped blade's
+    1st torsion under ``K + ksigma - omega^2 K_r``."""
+    f, P, sh = clamped_modes(rb, ksigma, omega)
     m = int(np.argmax(np.where((f > 3.5) & (f < 4.6), sh[2], -1.0)))
     return f[m], P[:, m], sh[:, m]
 
@@ -61,13 +67,7 @@ def tip_panels(rb, ksigma, omega: float) -> str:
     (Hz), torsion share and the share of the mode's kinetic energy (diagonal of M) in the outer 3 %
     of the span (a tip-panel mode: most of it)."""
     st = rb.struct
-    K = st.K - omega**2 * rb.Kr1 + (ksigma if ksigma is not None else 0)
-    Kq = sp.csc_matrix(st.T.T @ K @ st.T)
-    w2, X = symmetric_eigs(0.5 * (Kq + Kq.T), sp.csc_matrix(st.T.T @ st.M @ st.T), 14, shift=0.0, v0=np.ones(st.nq))
-    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
-    P = np.asarray(st.T @ X)
-    e = np.sum(np.asarray(rb.sections.width)[None, :, None] * blade_motion_components(rb.sections, P) ** 2, axis=1)
-    sh = e / e.sum(axis=0)
+    f, P, sh = clamped_modes(rb, ksigma, omega)
     x = np.asarray(rb.fe.nodes, float)
     t = np.asarray(rb.sections.e_span, float)[-1]
     s = (x - x[np.argmin(x @ t)]) @ t
