@@ -8,9 +8,10 @@ deflections neglected); with the prebuckling deflections the load rises by about
 ``1/sqrt((1 - EI_minor/EI_major)(1 - GJ/EI_major))`` (Pettersson 1952; Trahair 1993; Kirby &
 Nethercot 1979), a small-deflection estimate (1.141 here).
 
-The shell model is not tested here: its own classical buckling load on this tube is 0.35 x (10 mm
-wall) and 0.70 x (40 mm) the closed form, so the tube does not decide between the linearizations
-for it (the note).
+The shell: without ribs its classical load is 0.35 x the closed form (the flat section distorts);
+with a rib at every ring of nodes (the rigid section of beam theory) its classical load is the
+closed form (tested below); about the bent state its route gives 1.03 x its classical load where
+1.14 x is expected (the note: not a test of agreement, it does not agree).
 """
 
 from __future__ import annotations
@@ -23,6 +24,16 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "docs" / "scripts"))
 from bent_tube_torsion import buckling_load, closed_forms, lever_arm, tube  # noqa: E402
+
+
+def test_ribbed_shell_classical_buckling_is_timoshenko():
+    """The shell tube (20 x 24 elements) with a rib at every interior ring, undeformed with its
+    complete linear initial stress: the classical load within 3 % (measured -1.4 %; the thin-walled
+    section constants against the shell's wall, the discretization).  Without the ribs 0.35 x:
+    the test would fail."""
+    rb, consts = tube("shell", 0.01, ribs=True)
+    Pc = closed_forms(*consts, lever_arm(rb))[0]
+    assert buckling_load(rb, "shell", "classical", Pc, rel=3e-3) == pytest.approx(Pc, rel=0.03)
 
 
 @pytest.fixture(scope="module")
