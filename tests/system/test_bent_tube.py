@@ -1,0 +1,62 @@
+"""Issue 33: lateral-torsional buckling of a cantilever elliptical tube under a tip load in its stiff
+direction -- the beam's linearizations against closed forms (docs/scripts/bent_tube_torsion.py,
+docs/notes/shell_same_blade.md section 3 "The bent tube").
+
+References (independent, classical): ``P_cr = 4.013 sqrt(EI_minor GJ) / L^2`` (Timoshenko & Gere,
+Theory of Elastic Stability, 1961, sec. 6.3; load at the centroid of the end section, prebuckling
+deflections neglected); with the prebuckling deflections the load rises by about
+``1/sqrt((1 - EI_minor/EI_major)(1 - GJ/EI_major))`` (Pettersson 1952; Trahair 1993; Kirby &
+Nethercot 1979), a small-deflection estimate (1.141 here).
+
+The shell: without ribs its classical load is 0.35 x the closed form (the flat section distorts);
+with a rib at every ring of nodes (the rigid section of beam theory) its classical load is the
+closed form (tested below); about the bent state its route gives 1.03 x its classical load where
+1.14 x is expected (the note: not a test of agreement, it does not agree).
+"""
+
+from __future__ import annotations
+
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "docs" / "scripts"))
+from bent_tube_torsion import buckling_load, closed_forms, lever_arm, tube  # noqa: E402
+
+
+def test_ribbed_shell_classical_buckling_is_timoshenko():
+    """The shell tube (20 x 24 elements) with a rib at every interior ring, undeformed with its
+    complete linear initial stress: the classical load within 3 % (measured -1.4 %; the thin-walled
+    section constants against the shell's wall, the discretization).  Without the ribs 0.35 x:
+    the test would fail."""
+    rb, consts = tube("shell", 0.01, ribs=True)
+    Pc = closed_forms(*consts, lever_arm(rb))[0]
+    assert buckling_load(rb, "shell", "classical", Pc, rel=3e-3) == pytest.approx(Pc, rel=0.03)
+
+
+@pytest.fixture(scope="module")
+def beam():
+    rb, consts = tube("beam", 0.01)
+    return rb, closed_forms(*consts, lever_arm(rb))
+
+
+def test_beam_classical_buckling_is_timoshenko(beam):
+    """Undeformed beam with its linear initial stress: the classical load within 1.5 % (the beam's
+    shear flexibility and the discretization; measured -0.1 %)."""
+    rb, (Pc, _) = beam
+    assert buckling_load(rb, "beam", "classical", Pc) == pytest.approx(Pc, rel=0.015)
+
+
+def test_beam_deflected_buckling_has_the_prebuckling_rise(beam):
+    """The co-rotational beam's exact Hessian about the bent state: the buckling load rises by the
+    prebuckling-deflection effect -- within 8 % of the Pettersson estimate (an estimate derived for
+    small deflections: the tube's tip moves about 0.2 L at buckling; measured +5.9 %, 1.209 x the
+    classical load against 1.141 x).  A linearization without the effect gives 1.0 x (-12 %) and
+    fails."""
+    rb, (Pc, Pp) = beam
+    got = buckling_load(rb, "beam", "deflected", Pc)
+    print(got / Pc, Pp / Pc)
+    assert got == pytest.approx(Pp, rel=0.08)
+    assert got > 1.1 * Pc
