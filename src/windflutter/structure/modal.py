@@ -227,6 +227,21 @@ def modes(
 DEGENERATE = 1e-6
 
 
+def degenerate_groups(w2: np.ndarray) -> list[range]:
+    """The groups of two or more consecutive modes (squared frequencies ``w2``, ascending) that share
+    one eigen-space (:data:`DEGENERATE`), each a range of indices."""
+    w2 = np.asarray(w2, dtype=float)
+    out, i = [], 0
+    while i < w2.size:
+        j = i + 1
+        while j < w2.size and abs(w2[j] - w2[i]) <= DEGENERATE * max(abs(w2[i]), 1e-12):
+            j += 1
+        if j - i > 1:
+            out.append(range(i, j))
+        i = j
+    return out
+
+
 def split_directions(w2: np.ndarray, V: np.ndarray, direction_energy) -> np.ndarray:
     """``V`` with each group of degenerate modes (:data:`DEGENERATE`) turned within its eigen-space onto
     the directions of extreme fore-aft energy (the eigenvectors of that quadratic form in the group's
@@ -236,20 +251,14 @@ def split_directions(w2: np.ndarray, V: np.ndarray, direction_energy) -> np.ndar
     :mod:`windflutter.system.identity`).
     The eigen-space, hence the modal damping of a non-degenerate set, is unchanged."""
     V = np.array(V, copy=True)
-    i = 0
-    while i < w2.size:
-        j = i + 1
-        while j < w2.size and abs(w2[j] - w2[i]) <= DEGENERATE * max(abs(w2[i]), 1e-12):
-            j += 1
-        if j - i > 1:
-            G = V[:, i:j]
-            k = j - i
-            Q = np.zeros((k, k))
-            for a in range(k):
-                Q[a, a] = direction_energy(G[:, a])[0]
-                for b in range(a + 1, k):
-                    Q[a, b] = Q[b, a] = 0.25 * (direction_energy(G[:, a] + G[:, b])[0]
-                                                - direction_energy(G[:, a] - G[:, b])[0])
-            V[:, i:j] = G @ symmetric_eigs(Q, np.eye(k))[1][:, ::-1]  # the most fore-aft first
-        i = j
+    for group in degenerate_groups(w2):
+        G = V[:, group]
+        k = len(group)
+        Q = np.zeros((k, k))
+        for a in range(k):
+            Q[a, a] = direction_energy(G[:, a])[0]
+            for b in range(a + 1, k):
+                Q[a, b] = Q[b, a] = 0.25 * (direction_energy(G[:, a] + G[:, b])[0]
+                                            - direction_energy(G[:, a] - G[:, b])[0])
+        V[:, group] = G @ symmetric_eigs(Q, np.eye(k))[1][:, ::-1]  # the most fore-aft first
     return V

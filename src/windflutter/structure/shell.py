@@ -288,11 +288,9 @@ def shell_membrane_kg(fe: FEModel, u0: np.ndarray | None, directions: str = "all
     """
     if directions not in ("all", "normal"):
         raise InputError("directions", directions, "'all' or 'normal'")
-    Nres = shell_membrane_resultants(fe, u0) if resultants is None else np.asarray(resultants, float)
-    if Nres.shape != (len(fe.shell_conn), 3) or not np.all(np.isfinite(Nres)):
-        raise InputError("resultants", Nres.shape, f"finite ({len(fe.shell_conn)}, 3) membrane resultants (N/m)")
+    Nres = shell_membrane_resultants(fe, u0) if resultants is None else resultants
     Rf = shell_frames(fe)[0]
-    Ge = membrane_element_matrices(fe, Nres)
+    Ge = membrane_element_matrices(fe, Nres)  # checks the resultants
     ne = Ge.shape[0]
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
     # expand (4x4) (x) I3 -> rows/cols on translational DOFs

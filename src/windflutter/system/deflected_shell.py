@@ -210,8 +210,9 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     # the steady stress: the membrane resultants of the shell's own steady state, carried with their
     # elements; the root reaction turned with its nodes for the hub links
     reaction = steady.f_internal - steady.load if steady is not None else rb.struct.K @ u - rb.centrifugal_load(omega)
-    ksigma = steady_stress_stiffness(fe, fe_d, u, Rn, _turned(reaction, Rn))
-    klink = link_geometric_stiffness(fe_d, _turned(reaction, Rn), blade.hub_node)
+    reaction = _turned(reaction, Rn)
+    ksigma = steady_stress_stiffness(fe, fe_d, u, Rn, reaction)
+    klink = link_geometric_stiffness(fe_d, reaction, blade.hub_node)
     blade.sections = dataclasses.replace(sections, motion_map=mm)
     st_out = dataclasses.replace(steady, sections=blade.sections, Ksigma=ksigma) if steady is not None else None
     return DeflectedShell(blade=blade, steady=st_out, ksigma=ksigma, klink=klink, nodes=x, rotations=Rn)

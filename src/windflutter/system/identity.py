@@ -42,7 +42,7 @@ from scipy.optimize import linear_sum_assignment
 
 from windflutter.linalg_tools import mac_matrix
 from windflutter.structure.labels import ordinal
-from windflutter.structure.modal import symmetric_eigs
+from windflutter.structure.modal import degenerate_groups, symmetric_eigs
 from windflutter.system.reference import StructuralReference, strip_family, strip_signatures
 
 #: a mode whose assigned identity carries less than this share of its kinetic energy is reported as
@@ -75,9 +75,6 @@ HEAVY_DAMPING = 0.3
 #: modes damped above this are named by their kinetic, not strain, energy (aerodynamically damped flap)
 KINETIC_DAMPING = 0.15
 TOWER_NAMES = {"tower_fa": "tower fore-aft", "tower_ss": "tower side-side", "tower_torsion": "tower torsion"}
-#: support reference modes whose squared frequencies are this close (relative) are one degenerate
-#: group: a shell tower wall's pair (cos and sin of the same wave), shared at the points
-WALL_PAIR = 1e-6
 
 
 @dataclass(frozen=True)
@@ -275,6 +272,7 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
     heavy = np.zeros(Q.shape[1], bool) if damping_ratios is None else np.asarray(damping_ratios) > KINETIC_DAMPING
     ids: list[Identity] = []
     cols: list[np.ndarray] = []
+    twins: list = []
     if ns and reference.Phi_s is not None:  # support: its own modes
         a = reference.Phi_s.T @ (0.5 * (ps.support.M + ps.support.M.T)) @ Q[:ns]
         ws = 2 * np.pi * np.array([f for _, _, f in reference.support])
@@ -323,27 +321,26 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
     S = np.stack(cols, axis=1) if cols else np.zeros((Q.shape[1], 1))
     tot = S.sum(axis=1, keepdims=True)
     S = (S / np.maximum(tot, 1e-300))[:, :len(ids)]
-    for group in (twins if ns and reference.Phi_s is not None else []):
+    for group in twins:
         S[:, group] = S[:, group].sum(axis=1, keepdims=True)
     return ids, S
 
 
 def _wall_pairs(ids: list, ws: np.ndarray) -> list:
-    """The degenerate groups (index lists, :data:`WALL_PAIR`) of the shell tower wall's reference modes
-    (``ids``' first ``len(ws)`` entries, frequencies ``ws``).  The solver returns a pair (the wave's
-    cos and sin, no preferred direction) in any rotation, and at an operating point the pair is still
-    degenerate, its two modes any rotation of it: each member's share is the pair's (both members'
-    identities fit both modes alike, the assignment gives one to each), so which rotation either
-    run's solver returned decides no name and no share."""
-    out, k = [], 0
-    while k < len(ws):
-        j = k + 1
-        while (j < len(ws) and ids[k].family == ids[j].family == "tower_wall" and ids[j].wave == ids[k].wave
-               and abs(ws[j] ** 2 - ws[k] ** 2) <= WALL_PAIR * ws[k] ** 2):
-            j += 1
-        if j - k > 1:
-            out.append(list(range(k, j)))
-        k = j
+    """The degenerate groups (index lists, :func:`~windflutter.structure.modal.degenerate_groups`) of
+    the shell tower wall's reference modes (``ids``' first ``len(ws)`` entries, frequencies ``ws``),
+    one per wave number.  The solver returns a pair (the wave's cos and sin, no preferred direction)
+    in any rotation, and at an operating point the pair is still degenerate, its two modes any
+    rotation of it: each member's share is the pair's (both members' identities fit both modes alike,
+    the assignment gives one to each), so which rotation either run's solver returned decides no name
+    and no share."""
+    out = []
+    for group in degenerate_groups(np.asarray(ws) ** 2):
+        walls: dict = {}
+        for k in group:
+            if ids[k].family == "tower_wall":
+                walls.setdefault(ids[k].wave, []).append(k)
+        out += [g for g in walls.values() if len(g) > 1]
     return out
 
 
