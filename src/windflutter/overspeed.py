@@ -281,7 +281,7 @@ class OperationalStability:
         pitch = self.pitch_at(wind_speed)
         grid = self.grid(wind_speed, rpm_grid)
         self.model.restart_modes()  # the result depends on this wind speed's points only
-        sweep, margins = [], []
+        sweep, margins, structural = [], [], []
         on = Onset(method="p")
         flutter = None
         for i, rpm in enumerate(grid):
@@ -298,9 +298,9 @@ class OperationalStability:
                 raise ModelError(f"at V = {wind_speed:g} m/s the blade's FE structure under its steady stress is "
                                  f"statically unstable at the operating point ({rpm:.2f} RPM) without aerodynamics "
                                  "(a local buckling of the mesh is likely)")
-            if i > 0 and self._structure_lost(ps, (grid[i - 1], last_margin), (rpm, struct_margin), on):
+            if i > 0 and self._structure_lost(ps, (grid[i - 1], structural[-1]), (rpm, struct_margin), on):
                 break
-            last_margin = struct_margin
+            structural.append(struct_margin)
             sweep.append((float(rpm), modes))
             margins.append(blade_static_margin(ps))
             if on.divergence is None and i > 0 and margins[-2] > 0 >= margins[-1]:
