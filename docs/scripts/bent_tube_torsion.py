@@ -71,6 +71,7 @@ class Bent:
     load: np.ndarray
     f_internal: np.ndarray
     sections: object
+    strip_loads: np.ndarray = None
     Ksigma: object = None
 
 
@@ -106,12 +107,17 @@ def with_ribs(rb):
     return RotorBlade(fe2, assemble(fe2), rb.sections, rb.apex, rb.axis)
 
 
-def tip_load(rb, P: float) -> np.ndarray:
-    """Nodal loads (n_dof,) of a tip force ``P`` (N) in the tube's stiff (chordwise, global y) direction."""
-    sec = rb.sections
-    strips = np.zeros((sec.n_sections, 6))
+def tip_strips(rb, P: float) -> np.ndarray:
+    """(ns, 6) strip loads: a tip force ``P`` (N) in the tube's stiff (chordwise, global y) direction
+    on the tip strip."""
+    strips = np.zeros((rb.sections.n_sections, 6))
     strips[-1, 1] = P
-    return sec.motion_map.T @ strips.reshape(-1)
+    return strips
+
+
+def tip_load(rb, P: float) -> np.ndarray:
+    """Nodal loads (n_dof,) of the tip force :func:`tip_strips`."""
+    return rb.sections.motion_map.T @ tip_strips(rb, P).reshape(-1)
 
 
 def lever_arm(rb) -> float:
@@ -138,7 +144,8 @@ def stiffness(rb, kind: str, route: str, P: float):
         if kind == "beam":
             Kg = beam_tangent(rb.fe, reference_configuration(rb.fe), resultants=linear_resultants(rb.fe, u)).K_geo
         return rb, rb.struct.K + Kg
-    bent = Bent(u=u, load_aero=f, load=f, f_internal=rb.struct.K @ u, sections=rb.sections)
+    bent = Bent(u=u, load_aero=f, load=f, f_internal=rb.struct.K @ u, sections=rb.sections,
+                strip_loads=tip_strips(rb, P))
     d = deflected_blade(rb, bent, 0.0) if kind == "beam" else deflected_shell_blade(rb, bent, 0.0)
     return d.blade, d.blade.struct.K + d.ksigma
 

@@ -72,10 +72,14 @@ from windflutter.structure.shell import check_quads, membrane_element_matrices, 
 __all__ = ["shell_element_forces", "shell_complete_kg", "rotate_element_forces"]
 
 
-def shell_element_forces(fe: FEModel, u: np.ndarray, cache: bool = True) -> np.ndarray:
+def shell_element_forces(fe: FEModel, u: np.ndarray, cache: bool = True, turned: np.ndarray | None = None) -> np.ndarray:
     """Each shell element's nodal forces and moments ``K_e u_e`` (ne, 4, 6) (N, N m), global axes:
     the pyfe3d Quad4 stiffness of the element on the displacement ``u`` (n_dof,) (m, rad), node
     order of ``fe.shell_conn``.
+
+    ``turned`` (ne, 3, 3): each element carried rigidly by that rotation to another configuration:
+    the forces of the turned element ``Re K_e Re^T`` on ``u`` (``u`` taken back by the element's
+    rotation, the forces turned forward), without computing the turned elements' stiffness.
 
     The element stiffnesses are kept in each element's own frame (:func:`windflutter.structure.shell.
     shell_frames`) for the last two meshes by their shape (``cache``): a rigidly turned copy of a mesh
@@ -89,9 +93,13 @@ def shell_element_forces(fe: FEModel, u: np.ndarray, cache: bool = True) -> np.n
         return np.zeros((0, 4, 6))
     Rf, _, X = shell_frames(fe)
     Kloc = _local_stiffness(fe, Rf, X, cache)
-    ue = np.einsum("eab,enkb->enka", Rf, u.reshape(-1, 2, 3)[conn]).reshape(-1, 24)
+    U = u.reshape(-1, 2, 3)[conn]
+    if turned is not None:
+        U = np.einsum("eba,enkb->enka", turned, U)
+    ue = np.einsum("eab,enkb->enka", Rf, U).reshape(-1, 24)
     fl = np.einsum("eij,ej->ei", Kloc, ue).reshape(-1, 4, 2, 3)
-    return np.einsum("eba,enkb->enka", Rf, fl).reshape(-1, 4, 6)
+    f = np.einsum("eba,enkb->enka", Rf, fl)
+    return (f if turned is None else np.einsum("eab,enkb->enka", turned, f)).reshape(-1, 4, 6)
 
 
 _KLOC: list = []  # [(key, local node coordinates, stiffness)], the last two meshes

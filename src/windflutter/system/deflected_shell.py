@@ -48,13 +48,14 @@ from windflutter.steady.geometry import (Deflection, blade_strips, deflection, r
                                          strip_motion)
 from windflutter.structure.assembly import assemble
 from windflutter.structure.prestress import (diaphragm_geometric_stiffness, membrane_geometric_stiffness,
-                                             shell_initial_stress)
+                                             shell_initial_stress, static_solve)
 from windflutter.structure.shell import shell_membrane_resultants
 from windflutter.structure.shell_stress import rotate_element_forces, shell_element_forces
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 from windflutter.system.damping import ModalDamping, shell_modal_damping
 
-__all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade", "steady_stress_stiffness"]
+__all__ = ["DeflectedShell", "station_frames", "carried_nodes", "deflected_shell_blade", "steady_stress_stiffness",
+           "carried_stress", "balanced_stress"]
 
 
 @dataclass
@@ -161,26 +162,62 @@ def _carried_damping(rb: RotorBlade, mu, Rn: np.ndarray):
     return D.rotated(Rn)
 
 
+def carried_stress(fe, u: np.ndarray, Rn: np.ndarray):
+    """The steady stress of the undeformed shell blade ``fe`` under its steady displacement ``u``,
+    carried with the elements to the deformed geometry (nodal rotations ``Rn``): ``(forces (ne, 4, 6)
+    each element's nodal forces and moments K_e u_e turned by the element's rotation, N (ne, 3) its
+    membrane resultants in its own -- turned -- frame)``."""
+    forces = rotate_element_forces(shell_element_forces(fe, u), _element_rotations(fe, Rn))
+    return forces, shell_membrane_resultants(fe, u)
+
+
+def _nodal(fe, forces: np.ndarray) -> np.ndarray:
+    """The shell elements' nodal forces ``forces`` (ne, 4, 6) summed at the nodes (n_dof,)."""
+    F = np.zeros((fe.n_nodes, 6))
+    np.add.at(F, np.asarray(fe.shell_conn, dtype=np.int64), forces)
+    return F.reshape(-1)
+
+
+def balanced_stress(fe, fe_d, st_d, Rn: np.ndarray, forces: np.ndarray, N: np.ndarray, load: np.ndarray):
+    """The carried stress ``(forces, N)`` brought into equilibrium with the loads ``load`` (n_dof,) on
+    the deformed geometry ``fe_d`` (assembled ``st_d``): the carried element forces, turned with
+    their elements, no longer balance loads whose directions did not turn with them (a dead load, the
+    centrifugal force on the bent blade: in a bent cantilever its component along the turned span
+    is an axial force the linear stress does not have); the linear correction ``K_d du = r`` of the
+    residual ``r = load - sum_e f_e`` on the deformed geometry adds ``K_e du_e`` to every element
+    (for a statically determinate blade its section resultants are then those of equilibrium).
+    ``K_e du_e`` is that of the undeformed element ``fe`` turned by its carried rotation (from the
+    nodal rotations ``Rn``; the element's shape is carried rigidly, and its stiffness, kept by
+    :func:`~windflutter.structure.shell_stress.shell_element_forces`, is not computed again).
+    Returns ``(forces, N, constraint forces sum_e f_e - load (n_dof,))``.  Shell elements only: a
+    model with beams or springs gets its carried stress back unchanged (constraint forces None)."""
+    if len(fe_d.beam_conn) or fe_d.springs:
+        return forces, N, None
+    du = static_solve(st_d, load - _nodal(fe_d, forces))
+    forces = forces + shell_element_forces(fe, du, turned=_element_rotations(fe, Rn))
+    N = N + shell_membrane_resultants(fe_d, du)
+    return forces, N, _nodal(fe_d, forces) - load
+
+
 def steady_stress_stiffness(fe, fe_d, u: np.ndarray, Rn: np.ndarray, constraint_forces: np.ndarray | None = None,
-                            complete: bool = True) -> sp.csr_matrix:
+                            complete: bool = True, stress=None) -> sp.csr_matrix:
     """The initial-stress matrix (n_dof, n_dof) CSR of the steady displacement ``u`` of the undeformed
     shell blade ``fe``, its stress carried with the elements to the deformed model ``fe_d`` (nodal
-    rotations ``Rn``): each element's nodal forces and moments ``K_e u_e`` turned by the element's
-    rotation, its membrane resultants in its (turned) material frame; the complete matrix
+    rotations ``Rn``, :func:`carried_stress`) or ``stress`` ``(forces, N)`` given (e.g. the
+    :func:`balanced_stress`); the complete matrix
     (:func:`windflutter.structure.prestress.shell_initial_stress`) with the ribs' term of the
-    carried ``constraint_forces`` (``f_internal - load`` turned with its nodes), or
-    (``complete=False``) the membrane initial stress alone, for comparison."""
-    N = shell_membrane_resultants(fe, u)
+    ``constraint_forces``, or (``complete=False``) the membrane initial stress alone, for comparison."""
+    forces, N = stress if stress is not None else carried_stress(fe, u, Rn)
     if not complete:
         return membrane_geometric_stiffness(fe_d, N)
-    forces = rotate_element_forces(shell_element_forces(fe, u), _element_rotations(fe, Rn))
     K = shell_initial_stress(fe_d, forces, N)
     if constraint_forces is not None and fe_d.diaphragms:
         K = (K + diaphragm_geometric_stiffness(fe_d, constraint_forces)).tocsr()
     return K
 
 
-def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None) -> DeflectedShell:
+def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None,
+                          balance: bool = True) -> DeflectedShell:
     """The shell blade ``rb`` linearized about its deflected steady state (module docstring).
 
     Parameters
@@ -190,6 +227,9 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
         state alone (the linear centrifugal displacement carries the mesh).
     omega : rotor speed (rad/s) about ``rb.axis``.
     mu : the blade's damping coefficients (None: no damping).
+    balance : the carried stress brought into equilibrium with the loads on the deformed geometry
+        (:func:`balanced_stress`, the default); False: the carried linear stress alone (the route
+        before 5 Dec 2026, for comparison).
     """
 
     fe = rb.fe
@@ -211,7 +251,15 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     # elements; the root reaction turned with its nodes for the hub links
     reaction = steady.f_internal - steady.load if steady is not None else rb.struct.K @ u - rb.centrifugal_load(omega)
     reaction = _turned(reaction, Rn)
-    ksigma = steady_stress_stiffness(fe, fe_d, u, Rn, reaction)
+    stress = carried_stress(fe, u, Rn)
+    if balance:  # the loads on the deformed geometry: the strips' through the turned lever arms
+        load = blade.centrifugal_load(omega)
+        if steady is not None:
+            load = load + mm.T @ np.asarray(steady.strip_loads, float).reshape(-1)
+        forces, N, cf = balanced_stress(fe, fe_d, st_d, Rn, *stress, load)
+        if cf is not None:
+            stress, reaction = (forces, N), cf
+    ksigma = steady_stress_stiffness(fe, fe_d, u, Rn, reaction, stress=stress)
     klink = link_geometric_stiffness(fe_d, reaction, blade.hub_node)
     blade.sections = dataclasses.replace(sections, motion_map=mm)
     st_out = dataclasses.replace(steady, sections=blade.sections, Ksigma=ksigma) if steady is not None else None
