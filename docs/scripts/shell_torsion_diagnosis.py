@@ -11,8 +11,9 @@ curve's rotor speed and pitch, each model's own steady state):
   undeformed blade, of the deflected blade without and with its steady-stress stiffness;
 * the first-order shift ``phi^T K_sigma phi / (2 omega^2)`` of the steady stress on the deflected
   blade's torsion mode ``phi`` (mass-normalized): the beam's by resultant (axial, shear, torsion,
-  bending); the shell's complete initial stress (structure/shell_stress.py) and its membrane-only
-  one, the latter by membrane resultant (Nxx spanwise, Nyy hoop, Nxy) and load (centrifugal,
+  bending); the shell's complete initial stress (structure/shell_stress.py) of its stress balanced on
+  the bent geometry (system/deflected_shell.py ``balanced_stress``), of the carried stress alone, and
+  the carried membrane-only one, the latter by membrane resultant (Nxx spanwise, Nyy hoop, Nxy) and load (centrifugal,
   aerodynamic); the modes between 3 and 8 Hz with their torsion share and tip-panel share (with
   either stress);
 * the same on the undeformed blade with the linear steady stress (the classical initial-stress
@@ -123,6 +124,9 @@ def shell_point(osh, V: float) -> None:
     load = {lab: round(shift(membrane_geometric_stiffness(d.blade.fe, M), f, phi), 2)
             for lab, M in (("centrifugal", Ncf), ("aerodynamic", N - Ncf))}
     print(f"         membrane-only by resultant {comp} and load {load}")
+    carried = deflected_shell_blade(rb, st, omega, balance=False).ksigma
+    print(f"         the carried stress alone (not balanced on the bent geometry, the route before 5 Dec 2026): "
+          f"first order complete {shift(carried, f, phi):+.2f} %")
     print(f"         modes 3-8 Hz, complete: {tip_panels(d.blade, d.ksigma, omega)}")
     print(f"         modes 3-8 Hz, membrane-only: {tip_panels(d.blade, Km, omega)}")
     Km0 = geometric_stiffness(rb.fe, st.u, shell="membrane")
