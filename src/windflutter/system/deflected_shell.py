@@ -23,10 +23,20 @@ linearized about the deflected shape in three steps (docs/steady_state.md, "Shel
    element to the deformed geometry, give the complete initial-stress matrix there
    (:func:`steady_stress_stiffness`: the flat facets' co-rotational matrix,
    :mod:`windflutter.structure.shell_stress`, and the ribs' term of their constraint forces); the root reaction,
-   turned with its nodes, the hub links' tensioned-bar term.  (A linear solution of the deformed
-   blade under its own loads was tried for the stress and rejected: on the bent geometry it
-   crushes the thin tip panels with hoop stresses twice those of the steady state, and the IEA
-   22 MW blade buckled locally at 11 m/s -- docs/steady_state.md.)
+   turned with its nodes, the hub links' tensioned-bar term.
+4. **The stress balanced on the bent geometry** (:func:`balanced_stress`): forces carried with
+   their elements no longer balance loads whose directions did not turn with them -- the
+   centrifugal force on the bent blade, a dead load; in a bent cantilever their component along
+   the turned span is an axial force the linear stress does not have, and it is what raises the
+   bent tube's lateral-torsional buckling load (docs/scripts/bent_tube_routes.py: the beam's exact
+   Hessian 1.21 x its classical load, 0.99 x without that axial force).  One linear correction on
+   the deformed geometry, ``K_d du = load_d - sum_e f_e`` with the loads at the deformed
+   configuration (the centrifugal force at the moved nodes, the strips' loads through the turned
+   lever arms), adds ``K_e du_e`` to each element; the blade being statically determinate, its
+   section resultants are then those of equilibrium on the bent geometry.  (A linear solution of
+   the deformed blade under its whole loads, tried earlier, was rejected: it deflects the blade a
+   second time and crushed the thin tip panels of the IEA 22 MW -- docs/steady_state.md; the
+   correction here carries only the residual.)
 
 ``K_d + K_sigma - Omega^2 K_r`` then plays the role that the co-rotational beam's Hessian plays
 for beam blades.  The aerodynamic operator acts on the deflected strips, as for beams.
