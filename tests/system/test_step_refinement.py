@@ -41,6 +41,19 @@ def test_a_step_is_ambiguous_when_a_lightly_damped_name_jumps():
     assert not ambiguous(before, [_mode(Identity("torsion", 1, "BW"), 5.0)])
 
 
+def test_the_rigid_body_root_does_not_make_a_step_ambiguous():
+    """The drivetrain's free rotation (family ``rigid``) at a few mHz: its frequency doubling between
+    two points is the remainder of a zero one moving, not a swapped name -- no refinement; the same
+    jump of an elastic name still refines."""
+    rigid = Identity("rigid", 0, "none")
+    before = [_mode(rigid, 0.005), _mode(EDGE, 1.0)]
+    after = [_mode(rigid, 0.010), _mode(EDGE, 1.0)]
+    for m in before + after:
+        m.rigid = m.family == "rigid"
+    assert not ambiguous(before, after)
+    assert ambiguous(before, [after[0], _mode(EDGE, 1.0 + 1.1 * JUMP)])
+
+
 def _recording_point_modes(calls, jump_at, eigs=None):
     """A point_modes stand-in: the modes at the point ``ps`` (its ``x``), whose 1st edge BW is
     misnamed (a mode at 1.5 Hz carries it) where a step longer than 1.5 crosses ``jump_at``; records

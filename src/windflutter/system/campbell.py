@@ -166,11 +166,14 @@ HEAVILY_DAMPED = 0.3
 
 def ambiguous(before: list[ModeRecord], after: list[ModeRecord]) -> bool:
     """An identity whose lightly damped mode's natural frequency jumps by more than :data:`JUMP`
-    between two neighbouring points (the names may have been swapped across a veering)."""
+    between two neighbouring points (the names may have been swapped across a veering).  Rigid-body
+    roots (the drivetrain's free rotation, 0.003-0.03 Hz on the IEA 22 MW) are left out: their
+    frequency is the small remainder of a zero one, and its relative change names nothing (it made
+    11 of the IEA 22 MW shell Campbell's 12 refined steps)."""
     was = {m.identity: m for m in before if m.identity is not None}
     for m in after:
         q = was.get(m.identity)
-        light = q is not None and max(m.damping_ratio, q.damping_ratio) < HEAVILY_DAMPED
+        light = q is not None and not m.rigid and max(m.damping_ratio, q.damping_ratio) < HEAVILY_DAMPED
         if light and abs(m.frequency_hz / q.frequency_hz - 1) > JUMP:
             return True
     return False
