@@ -90,9 +90,14 @@ def blade_structural_margin(ps) -> float:
     """Smallest eigenvalue (1/s^2) of the blade's structural static stiffness over its mass --
     rotating-frame and steady-stress terms, no aerodynamics, hub clamped.  Negative: the FE
     structure under its steady stress is statically unstable on its own (e.g. a local buckling mode
-    of shell elements), which is not aeroelastic divergence."""
+    of shell elements), which is not aeroelastic divergence.  ``-inf`` where the blade's basis is
+    positive but its full-order stiffness is not (``ps.blade_negative``: a local mode of the mesh
+    far from the basis's lowest modes, whose eigenvalue is not computed)."""
     M, K = ps.blade_structure
-    return _lowest_elastic(K, M)
+    low = _lowest_elastic(K, M)
+    if low > 0 and getattr(ps, "blade_negative", None):
+        return float("-inf")
+    return low
 
 
 def structural_mode_radius(ps) -> float:
@@ -326,6 +331,12 @@ class OperationalStability:
         (ra, ma), (rb, mb) = a, b
         if mb > 0:
             return False
+        if not np.isfinite(mb):  # a negative eigenvalue outside the basis: where it crossed zero is not known
+            on.reason = (f"the blade's FE structure under its steady stress is not positive definite at {rb:.2f} RPM "
+                         f"(it was at {ra:.2f}): a mode far above the blade's lowest modes has a negative stiffness "
+                         "(a local buckling of the mesh, e.g. a skin panel under compression, is likely): the sweep "
+                         f"stops there; this is not aeroelastic divergence [from {ra:.2f} RPM]")
+            return True
         where = structural_mode_radius(ps)
         r0 = float(np.sqrt(ra**2 + (rb**2 - ra**2) * ma / (ma - mb))) if ma > 0 else float(ra)
         on.reason = (f"the blade's FE structure under its steady stress loses static stability on its own at about "

@@ -40,3 +40,23 @@ def test_propeller_brake_state_is_reported(blade, wind, rpm, outside):
         assert res.cp < 0  # the rotor takes power: the propeller-brake state, not a turbine
     else:
         assert res.cp > 0
+
+
+def test_a_drag_only_root_strip_is_not_the_propeller_state(nrel5mw):
+    """The shell model's strips follow its elements (100 on the NREL 5 MW), the innermost on the root
+    cylinder (cl = 0, cd ~ 0.5), where the drag swirls the flow against the rotation: a' ~ -0.19 at the
+    operating point, 10-25 m/s.  That is not the propeller-brake state: no warning at the operating
+    point; the propeller state at fixed pitch far above it is still reported on the same strips."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        _, sec = build_model(nrel5mw, MeshSettings(model="beam", part="rotor_blade", n_span=100))
+    geom = rotor_geometry(nrel5mw)
+    for wind, rpm, outside in [(11.4, 12.1, False), (4.0, 16.0, True)]:
+        with warnings.catch_warnings(record=True) as got:
+            warnings.simplefilter("always")
+            res = sections_induction(sec, geom, wind, rpm * np.pi / 30, n_blades=3)
+        hits = [w for w in got if issubclass(w.category, ValidityWarning)]
+        assert bool(hits) == outside, (wind, rpm, [str(w.message) for w in hits])
+        if not outside:  # the case: a drag-only strip beyond the tangential limit
+            drag = res.converged & (np.abs(res.cl) < res.cd)
+            assert np.any(res.ap[drag] < -0.1), (res.ap[drag], res.cl[drag])

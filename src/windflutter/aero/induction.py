@@ -456,6 +456,12 @@ def warn_outside_momentum_theory(res: BEMResult, wind_speed: float, omega: float
     if not ok.any():
         return
     a, ap = np.asarray(res.a, float)[ok], np.asarray(res.ap, float)[ok]
+    # the tangential limit on lifting strips only: a drag-dominated strip (|cl| < cd: the root cylinder,
+    # cl = 0, cd ~ 0.5) swirls the flow against the rotation at any rotor speed, by its drag, which is
+    # not the propeller state (the innermost of the NREL 5 MW shell's 100 strips, r = 1.9 m: a' = -0.19 at
+    # the operating 12.1 RPM, 10-25 m/s)
+    lifting = np.abs(np.asarray(res.cl, float)[ok]) >= np.asarray(res.cd, float)[ok]
+    ap = np.where(lifting, ap, 0.0)
     # (C_P < 0 alone is not a limit: a drag-dominated rotor at high tip-speed ratio, or one pitched
     # towards feather, takes power with a small, valid induction -- the NREL 5 MW at 25 m/s and 2 x
     # rated speed)

@@ -22,7 +22,7 @@ from windflutter.solve.linsolve import as_operator, default_backend, factorize
 from windflutter.structure.linalg import NotPositiveDefinite, SPDFactor
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 
-__all__ = ["spd_operator", "refine_modes"]
+__all__ = ["spd_operator", "factor_with_inertia", "refine_modes"]
 
 
 def spd_operator(A, backend: str = "auto") -> spla.LinearOperator:
@@ -32,6 +32,18 @@ def spd_operator(A, backend: str = "auto") -> spla.LinearOperator:
     standstill NREL 5 MW shell blade's 8k DOF factorize in 0.1 s against SuperLU's 1.7 s, a solve
     4 ms against 16 ms), else the LU of :func:`~windflutter.solve.linsolve.factorize` (CHOLMOD
     missing, or a rotating blade past its static stability)."""
+    return factor_with_inertia(A, backend)[0]
+
+
+def factor_with_inertia(A, backend: str = "auto") -> tuple[spla.LinearOperator, int | None]:
+    """:func:`spd_operator`'s ``A^-1`` and the number of negative eigenvalues of ``A`` (Sylvester's law of
+    inertia on the factorization ``P A P^T = L D L^T``): 0 where the Cholesky factor exists, the count of
+    negative pivots where the LU pivoted on the diagonal alone (row and column permutations equal), None
+    where it is not known (another LU, or pivots off the diagonal).
+
+    A shell blade under its steady stress can lose definiteness in a local mode of the mesh (a skin
+    panel's short-wave buckling, ``w^2 ~ -1e5 1/s^2``) far from the lowest modes that a structural margin
+    computed on the blade's basis sees: the count tells it at no cost beyond the factorization."""
     A = sp.csc_matrix(A)
     if backend == "auto":
         try:  # CHOLMOD only: without it (ImportError) the LU below is the one factorization
@@ -40,7 +52,7 @@ def spd_operator(A, backend: str = "auto") -> spla.LinearOperator:
             pass
         else:
             if F.backend == "cholmod":
-                return spla.LinearOperator(A.shape, matvec=F.solve, matmat=F.solve, dtype=float)
+                return spla.LinearOperator(A.shape, matvec=F.solve, matmat=F.solve, dtype=float), 0
         if default_backend() == "superlu":
             # an indefinite symmetric matrix (a blade past a local static instability): SuperLU on the
             # minimum-degree ordering of A + A^T, pivoting off the diagonal only below 1e-3 of the
@@ -52,8 +64,10 @@ def spd_operator(A, backend: str = "auto") -> spla.LinearOperator:
             except RuntimeError:  # singular: the general LU below reports it
                 pass
             else:
-                return spla.LinearOperator(A.shape, matvec=lu.solve, matmat=lu.solve, dtype=float)
-    return as_operator(factorize(A, backend))
+                negative = int(np.count_nonzero(lu.U.diagonal() < 0)) \
+                    if np.array_equal(lu.perm_r, lu.perm_c) else None
+                return spla.LinearOperator(A.shape, matvec=lu.solve, matmat=lu.solve, dtype=float), negative
+    return as_operator(factorize(A, backend)), None
 
 
 def refine_modes(K, M, solve, start: np.ndarray, n_modes: int, *, tol: float = 1e-4, max_iter: int = 6):

@@ -63,6 +63,10 @@ class BladeBasis:
     def __init__(self, n_modes: int | None, corrections: bool = False, correction_tol: float = 1e-6):
         self.n_modes, self.corrections, self.correction_tol = n_modes, bool(corrections), float(correction_tol)
         self.start = None  # the last large-blade modes and guards (reduced coordinates)
+        #: negative eigenvalues of the last call's full-order blade stiffness (the inertia of its
+        #: factorization, :func:`~windflutter.solve.symmetric.factor_with_inertia`): 0 positive definite,
+        #: None not known (a small blade's dense basis holds its lowest modes, negative ones included)
+        self.negative: int | None = None
 
     def restart(self) -> None:
         """Forget the last modes: the next large-blade basis is computed from scratch."""
@@ -74,6 +78,7 @@ class BladeBasis:
         state-space blocks, or None) and ``strip_P`` (the strips' motion map) for the corrections."""
         n = self.n_modes
         st = rb.struct
+        self.negative = None
         if n is None or n >= st.nq:
             return None
         T = st.T
@@ -85,7 +90,7 @@ class BladeBasis:
             solve = lambda F: np.linalg.solve(K, F)  # noqa: E731
         else:
             M = st.Mr.tocsc()
-            solve = symmetric.spd_operator(Ks)
+            solve, self.negative = symmetric.factor_with_inertia(Ks)
             V = self._sparse_modes(Ks, M, solve, n)
         if not (self.corrections and blocks is not None):
             return V

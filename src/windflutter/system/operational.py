@@ -84,6 +84,9 @@ class PointSystem:
     labels: list
     blade_system: object = None
     blade_structure: tuple | None = None
+    #: negative eigenvalues of the blade's full-order structural stiffness (its basis's factorization:
+    #: a local mode of a shell mesh can be far from the basis's lowest modes); 0 definite, None not known
+    blade_negative: int | None = None
     blade_damping: np.ndarray | None = field(default=None, repr=False)
     fixed: FixedFrame | None = field(default=None, repr=False)
     #: (3, ns, m) flap, edge, torsion strip motion of each basis vector (filled when modes are read)
@@ -346,8 +349,10 @@ class OperationalModel:
         (None: computed at the point).  Design sensitivities (:mod:`windflutter.sensitivity`) call it
         with a blade or a support of changed data and the steady state held fixed."""
         blocks, strip_P = self._aero_blocks(rb, st, wind_speed, omega)
+        negative = None
         if Phi is None:
             Phi = self.blade_basis(rb, omega, ksig, blocks, strip_P)
+            negative = self._basis.negative
         bm = rb.matrices(Phi, ksigma_full=ksig, klink=klink)
         M, C, K = bm.at(omega, ksigma=bm.Ks1)
         aero = None
@@ -359,7 +364,7 @@ class OperationalModel:
         mbc = multiblade_system(ff, blade, self.n_blades, omega, self.rotor.shaft_axis)
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
-                           blade_system=blade, blade_structure=(M, K), blade_damping=C,
+                           blade_system=blade, blade_structure=(M, K), blade_negative=negative, blade_damping=C,
                            fixed=ff, tip_frame=tip_frame, reference=self.reference(), ksigma=ksig, klink=klink)
 
     # -- pieces ------------------------------------------------------------------------------
