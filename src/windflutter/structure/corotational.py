@@ -373,7 +373,7 @@ class Equilibrium:
 
 def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: BeamConfiguration | None = None,
                       tol: float = 1e-10, max_iterations: int = 40, load_steps: int = 1,
-                      final: bool = True) -> Equilibrium:
+                      final: bool = True, damped: bool = True) -> Equilibrium:
     """Newton iteration to ``f_int(config) = f_ext(config)`` on the free DOFs ``u = T q``.
 
     Parameters
@@ -391,6 +391,12 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     final : evaluate the tangent and the loads at the converged configuration; False leaves
         ``tangent``, ``f_ext`` and ``K_ext`` None (an outer iteration that needs the configuration
         alone saves one tangent and one load evaluation).
+    damped : limit the step: a Newton increment more than :data:`STEP_GROWTH` times the last applied
+        one (its size as in ``tol``) is halved until it is not (at most :data:`MAX_HALVINGS` times);
+        the first step of each load step is taken whole.  Near a solution the increments shrink, so
+        the steps plain Newton converges with are unchanged; far from one (a cantilever elastica
+        at ``P L^2 / EI = 10`` in one load step) the full step overshoots into a far configuration
+        and plain Newton wanders.  False: plain Newton.
 
     Raises
     ------
@@ -405,6 +411,7 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
     total = 0
     for step in range(1, load_steps + 1):
         factor = step / load_steps
+        last = None  # the size of the last applied increment of this load step
         for it in range(1, max_iterations + 1):
             tan = beam_tangent(fe, config, elements=el)
             f_ext, K_ext = external(config, factor)
@@ -414,8 +421,11 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
             r = T.T @ (np.asarray(f_ext, float) - f_int)
             dq = spla.spsolve(sp.csc_matrix(A), r) if sp.issparse(A) else np.linalg.solve(A, r)
             du = np.asarray(T @ dq).reshape(-1, 6)
+            inc = _increment(du, size)
+            if damped and last is not None and np.isfinite(inc):
+                du, inc = _limited(du, inc, last, size)
             config = chained_configuration(fe, du.reshape(-1), config) if chain else displaced(config, du)
-            inc = max(float(np.abs(du[:, :3]).max(initial=0.0)) / size, float(np.abs(du[:, 3:]).max(initial=0.0)))
+            last = inc
             total += 1
             if not np.isfinite(inc):
                 break
@@ -426,13 +436,35 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
         if not inc <= tol:
             raise ModelError(f"the co-rotational static iteration did not converge at load factor {factor:.3g} "
                              f"({max_iterations} iterations): no equilibrium near the start, or a limit point; "
-                             "use more load steps")
+                             "use more load steps" + ("" if damped else " or the damped iteration"))
     if not final:
         return Equilibrium(config=config, tangent=None, f_ext=None, K_ext=None, iterations=total, increment=inc)
     tan = beam_tangent(fe, config, elements=el)
     f_ext, K_ext = external(config, 1.0)
     return Equilibrium(config=config, tangent=tan, f_ext=np.asarray(f_ext, float), K_ext=K_ext, iterations=total,
                        increment=inc)
+
+
+#: a Newton increment longer than this many times the last applied one is halved (``damped``)
+STEP_GROWTH = 4.0
+#: at most this many halvings of one increment
+MAX_HALVINGS = 8
+
+
+def _increment(du: np.ndarray, size: float) -> float:
+    """Size of an (n, 6) increment: the largest translation over the model size, or the largest rotation (rad)."""
+    return max(float(np.abs(du[:, :3]).max(initial=0.0)) / size, float(np.abs(du[:, 3:]).max(initial=0.0)))
+
+
+def _limited(du: np.ndarray, inc: float, last: float, size: float) -> tuple[np.ndarray, float]:
+    """``(du, size)`` halved until no longer than :data:`STEP_GROWTH` x ``last`` (at most
+    :data:`MAX_HALVINGS` times)."""
+    for _ in range(MAX_HALVINGS):
+        if inc <= STEP_GROWTH * last:
+            break
+        du = 0.5 * du
+        inc = _increment(du, size)
+    return du, inc
 
 
 def internal_forces(fe: FEModel, config: BeamConfiguration, tangent: BeamTangent | None = None,
