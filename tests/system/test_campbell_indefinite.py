@@ -1,0 +1,40 @@
+"""The operating-point Campbell says when a blade's full-order stiffness is indefinite at a point.
+
+The count comes from the factorization of the blade's basis (``PointSystem.blade_negative``,
+``tests/structure/test_inertia.py``); here the Campbell's reaction: one ValidityWarning naming the wind
+speed, no change to the modes.  The count is set by hand on a beam model (a beam blade's basis is its
+full spectrum's lowest modes, so it has none of its own)."""
+
+from __future__ import annotations
+
+import warnings
+
+import numpy as np
+
+import windflutter
+from windflutter.errors import ValidityWarning
+from windflutter.system import campbell
+
+
+def _run(monkeypatch, negative):
+    real = campbell.SerialPoints.point
+
+    def point(self, v, middle=False):
+        ps, eig, st = real(self, v, middle)
+        ps.blade_negative = negative
+        return ps, eig, st
+
+    monkeypatch.setattr(campbell.SerialPoints, "point", point)
+    with warnings.catch_warnings(record=True) as got:
+        warnings.simplefilter("always")
+        res = windflutter.campbell("nrel5mw", wind_speeds=[8.0], model={"part": "rotor"}, workers=1)
+    return res, [w for w in got if issubclass(w.category, ValidityWarning) and "not positive definite" in str(w.message)]
+
+
+def test_an_indefinite_blade_at_an_operating_point_warns(monkeypatch):
+    res, hits = _run(monkeypatch, 2)
+    assert len(hits) == 1 and "V = 8.0 m/s" in str(hits[0].message) and "2 negative" in str(hits[0].message)
+    ref, none = _run(monkeypatch, 0)
+    assert not none
+    f = [m.frequency_hz for m in res.points[0].modes]
+    np.testing.assert_array_equal(f, [m.frequency_hz for m in ref.points[0].modes])
