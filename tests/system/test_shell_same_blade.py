@@ -208,6 +208,9 @@ def test_nrel5mw_shell_overspeed_onsets_against_the_beam_of_its_own_properties(w
       (+0.9 %; 0.678 / 0.685 Hz); divergence beyond it 26.25 against 26.57 RPM;
     * 10 m/s: the same mode, 19.20 against 19.45 RPM (-1.3 %); divergence 26.55 against 26.77.
 
+    With the shell's stress balanced on the bent geometry (5 Dec 2026; the shell map of the 9th session):
+    8 m/s 21.03 RPM (+3.2 %), divergence 26.23; 10 m/s 19.42 RPM (-0.2 %), divergence 26.45.
+
     With the shell's earlier damping (one ``beta K``, the flap's ``mu`` on every direction: its edge
     +57 %) the shell's first instability was the divergence at 8 m/s (its edge BW only grazing zero)
     and the edge BW at 21.22 RPM at 10 m/s (+9.1 %); with modal damping without the direction terms
