@@ -95,7 +95,7 @@ def blade_structural_margin(ps) -> float:
     far from the basis's lowest modes, whose eigenvalue is not computed)."""
     M, K = ps.blade_structure
     low = _lowest_elastic(K, M)
-    if low > 0 and getattr(ps, "blade_negative", None):
+    if low > 0 and ps.blade_negative:
         return float("-inf")
     return low
 

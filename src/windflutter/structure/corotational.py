@@ -423,7 +423,7 @@ def solve_equilibrium(fe: FEModel, T: sp.spmatrix, external: Callable, start: Be
             du = np.asarray(T @ dq).reshape(-1, 6)
             inc = _increment(du, size)
             if damped and last is not None and np.isfinite(inc):
-                du, inc = _limited(du, inc, last, size)
+                du, inc = _limited(du, inc, last)
             config = chained_configuration(fe, du.reshape(-1), config) if chain else displaced(config, du)
             last = inc
             total += 1
@@ -456,15 +456,13 @@ def _increment(du: np.ndarray, size: float) -> float:
     return max(float(np.abs(du[:, :3]).max(initial=0.0)) / size, float(np.abs(du[:, 3:]).max(initial=0.0)))
 
 
-def _limited(du: np.ndarray, inc: float, last: float, size: float) -> tuple[np.ndarray, float]:
-    """``(du, size)`` halved until no longer than :data:`STEP_GROWTH` x ``last`` (at most
-    :data:`MAX_HALVINGS` times)."""
-    for _ in range(MAX_HALVINGS):
-        if inc <= STEP_GROWTH * last:
-            break
-        du = 0.5 * du
-        inc = _increment(du, size)
-    return du, inc
+def _limited(du: np.ndarray, inc: float, last: float) -> tuple[np.ndarray, float]:
+    """``(du, inc)`` (``inc`` its :func:`_increment`) halved until no longer than :data:`STEP_GROWTH` x
+    ``last`` (at most :data:`MAX_HALVINGS` times; halving is exact, so is the size's)."""
+    k = 0
+    while k < MAX_HALVINGS and inc > STEP_GROWTH * last:
+        inc, k = 0.5 * inc, k + 1
+    return (du * 0.5**k if k else du), inc
 
 
 def internal_forces(fe: FEModel, config: BeamConfiguration, tangent: BeamTangent | None = None,
