@@ -23,6 +23,7 @@ from windflutter.errors import InputError, InputWarning, ModelError, ValidityWar
 from windflutter.operating import campbell_model, operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult, point_result
+from windflutter.system.campbell import campbell_point
 from windflutter.methods import case_options, mesh_settings as _mesh, method as search_method, stability_analysis, turbine_options as _opts, with_span_count
 from windflutter.units import RPM
 
@@ -90,6 +91,7 @@ class TurbinePointAnalyser:
         self.config = config
         self._cases: dict[tuple[str, str], Any] = {}
         self._size: dict[str, Any] = {}
+        self._campbell = campbell_case(config)  # its points keep their operating point for the Campbell
         # validate the options now, so a bad combination fails before the first point
 
         for aero, method in config.cases:
@@ -103,6 +105,14 @@ class TurbinePointAnalyser:
         if key not in self._cases:
             self._cases[key] = stability_analysis(self.turbine, self.config, aero, method)
         return self._cases[key]
+
+    def share_campbell_model(self) -> None:
+        """Build the Campbell case's solver here, its model's support and reference computed, before
+        this analyser is copied to worker processes: the copies assemble their operating points with
+        this support basis, so the run's Campbell (on this model, :func:`operating_campbell`) reads
+        them (:attr:`PointResult.operating_system`) as its own."""
+        if self._campbell is not None:
+            self._stability(*self._campbell).model.reference()
 
     def fe_model(self, point: OperatingPoint):
         """The FE model of ``point`` (its blade pitch), for the mode animation (seed's methods)."""
@@ -131,6 +141,9 @@ class TurbinePointAnalyser:
             progress(0.02, f"{point.label}: model and search")
 
         grid = np.asarray(point.sweep_rpm, float) if search_method(point.method).config_grid else None
+        keep = (point.aero, point.method) == self._campbell and hasattr(ts, "keep_operating")
+        if keep:
+            ts.keep_operating = True
         s, notes = _with_validity_notes(ts.analyse_operating_point, point.wind_speed, rpm_grid=grid)
         size = self._model_size(ts, ts.pitch_at(point.wind_speed))
         if not self._size:
@@ -139,6 +152,8 @@ class TurbinePointAnalyser:
         # the run's attributes do not depend on which points this process computed
         res = point_result(s, info=size,
                            reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
+        if keep and ts.operating is not None:
+            res.operating_system, ts.operating = campbell_point(*ts.operating), None
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:
@@ -155,20 +170,28 @@ class TurbinePointAnalyser:
         return res
 
 
+def campbell_case(config: AnalysisConfig) -> tuple[str, str] | None:
+    """The ``(aero, method)`` case whose model the run's operating-point Campbell uses (its first
+    method-p case), None when the run has no Campbell (``campbell.enabled`` false, no method p, a
+    plug-in back-end)."""
+    if not (config.campbell.enabled and "p" in config.method and config.solver.backend == BUILTIN):
+        return None
+    return next(a for a, m in config.cases if m == "p"), "p"
+
+
 def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = None, progress: bool = False,
-                       workers: int = 1):
+                       workers: int = 1, prepared: dict | None = None):
     """The operating-point Campbell of a run (``campbell.enabled`` with method p; None otherwise):
     every mode along the operating curve at the run's wind speeds, with the model of the run's
     first p case (its parts reused when the built-in analyser built them in this process).
     ``workers``: processes for a shell model's points (the run's local workers; a beam model's points
-    take a fraction of a second and stay in this process)."""
-    if not (config.campbell.enabled and "p" in config.method and config.solver.backend == "windflutter"):
+    take a fraction of a second and stay in this process).  ``prepared``: ``{wind speed: point}`` the
+    map's analysers kept of their operating points (:attr:`PointResult.operating_system`), not
+    evaluated again."""
+    key = campbell_case(config)
+    if key is None or getattr(turbine, "operating_curve", None) is None:
         return None
-    if getattr(turbine, "operating_curve", None) is None:
-        return None
-
-    aero = next(a for a, m in config.cases if m == "p")
-    case = getattr(analyser, "_cases", {}).get((aero, "p")) if analyser is not None else None
+    case = getattr(analyser, "_cases", {}).get(key) if analyser is not None else None
     oc = turbine.operating_curve
     lo, hi = float(oc.wind_speed[0]), float(oc.wind_speed[-1])
     winds = [v for v in config.wind_speeds if lo - 1e-9 <= v <= hi + 1e-9]
@@ -181,7 +204,7 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
         return None
     model = case.model if case is not None else campbell_model(turbine, config)
     workers = min(int(workers), len(winds)) if model.options.model == "shell" else 1
-    return service(turbine, config, winds, model=model, workers=workers)
+    return service(turbine, config, winds, model=model, workers=workers, prepared=prepared)
 
 
 def _with_validity_notes(fn: Callable, *args, **kw):

@@ -33,7 +33,7 @@ def campbell_max_hz(config: AnalysisConfig, model) -> float:
 
 
 def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *, model=None, progress=None,
-                       workers: int | None = 1):
+                       workers: int | None = 1, prepared: dict | None = None):
     """The operating-point Campbell diagram of ``turbine`` with the analysis ``config``.
 
     Parameters
@@ -46,6 +46,8 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
     progress : optional ``progress(fraction, text)``.
     workers : processes evaluating the points (:func:`windflutter.system.campbell.campbell_workers`;
         None: the cores for a shell model, 1 for a beam model).
+    prepared : ``{wind speed: point}`` already evaluated with ``config``'s model (a run's stability
+        map: :func:`windflutter.system.campbell.campbell_point` of each sweep's operating point).
 
     Returns
     -------
@@ -55,4 +57,4 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, wind_speeds=None, *
         raise missing_curve_error(turbine)
     om = model if model is not None else campbell_model(turbine, config)
     return campbell(om.turbine, wind_speeds, max_hz=campbell_max_hz(config, om), model=om, progress=progress,
-                    workers=workers)
+                    workers=workers, prepared=prepared)

@@ -38,7 +38,7 @@ from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.results import Onset, PointSummary
 from windflutter.system.campbell import CampbellPoint, ambiguous, track_modes
-from windflutter.system.modes import point_modes
+from windflutter.system.modes import point_modes, state_eig
 from windflutter.system.operational import OperationalModel
 
 RPM = math.pi / 30.0
@@ -221,6 +221,10 @@ class OperationalStability:
         self.search = search or SearchSettings()
         self._max_hz = None
         self._points: OrderedDict = OrderedDict()
+        #: keep each wind speed's operating point (:meth:`analyse_operating_point`'s first) as
+        #: :attr:`operating`, ``(PointSystem, state_eig)``: the run's Campbell has the same points
+        self.keep_operating = False
+        self.operating = None
 
     def max_hz(self, pitch: float) -> float:
         if self.search.max_hz is not None:
@@ -240,19 +244,30 @@ class OperationalStability:
             if rpm_grid is None else np.asarray(rpm_grid, float)
         return np.concatenate([[om_op], g[g > om_op + 1e-9]])
 
-    def _modes(self, wind_speed: float, rpm: float, pitch: float, previous=None):
+    def _modes(self, wind_speed: float, rpm: float, pitch: float, previous=None, eig=None):
         """``(PointSystem, modes)`` at a rotor speed, the last :data:`POINT_CACHE` kept: the root
         searches start from the two sweep points that bracket a crossing, and the flutter search ends
         on a point it evaluated (a shell point costs 3-5 s).  ``previous``: the modes of the previous
-        sweep point, whose identities these continue (:func:`~windflutter.system.modes.point_modes`)."""
+        sweep point, whose identities these continue (:func:`~windflutter.system.modes.point_modes`);
+        ``eig``: the point's eigen-solution when already solved."""
         ps, entry = self._point(wind_speed, rpm, pitch)
         if entry[1] is None:
-            entry[1] = self._named(ps, pitch, previous)
+            entry[1] = self._named(ps, pitch, previous, eig)
         return ps, entry[1]
 
-    def _named(self, ps, pitch: float, previous=None) -> list:
+    def _first(self, wind_speed: float, rpm: float, pitch: float):
+        """``(PointSystem, modes)`` of a sweep's first point, the operating point; with
+        :attr:`keep_operating` its system and eigen-solution are kept as :attr:`operating`
+        (``(PointSystem, state_eig)``) for the run's Campbell, which has the same point."""
+        if not self.keep_operating:
+            return self._modes(wind_speed, rpm, pitch)
+        ps = self._point(wind_speed, rpm, pitch)[0]
+        self.operating = (ps, state_eig(ps.mbc))
+        return self._modes(wind_speed, rpm, pitch, eig=self.operating[1])
+
+    def _named(self, ps, pitch: float, previous=None, eig=None) -> list:
         """The named modes of ``ps`` but the rigid rotation, continuing ``previous``'s names."""
-        return [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous) if not m.rigid]
+        return [m for m in point_modes(ps, max_hz=self.max_hz(pitch), previous=previous, eig=eig) if not m.rigid]
 
     def _continued(self, wind_speed: float, pitch: float, before: tuple, rpm: float):
         """``(PointSystem, modes)`` at ``rpm``, continuing the names of the sweep point ``before``
@@ -286,13 +301,14 @@ class OperationalStability:
         pitch = self.pitch_at(wind_speed)
         grid = self.grid(wind_speed, rpm_grid)
         self.model.restart_modes()  # the result depends on this wind speed's points only
+        self.operating = None
         sweep, margins, structural = [], [], []
         on = Onset(method="p")
         flutter = None
         for i, rpm in enumerate(grid):
             try:
                 ps, modes = self._continued(wind_speed, pitch, sweep[-1], rpm) if sweep else \
-                    self._modes(wind_speed, rpm, pitch)
+                    self._first(wind_speed, rpm, pitch)
             except ModelError as exc:  # no steady state (e.g. it diverges at this overspeed)
                 if not sweep:
                     raise

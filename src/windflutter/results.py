@@ -88,6 +88,9 @@ class PointResult:
     info : extra scalars stored as attributes of the point (e.g. iterations, pitch).
     flutter_dof_vector : (n_dof,) complex flutter mode in the FE model's DOF numbering, for the
         VTK animation (not stored in the dataset); needs ``analyser.fe_model(point)``.
+    operating_system : the operating point's linearized system and eigen-solution
+        (:func:`windflutter.system.campbell.campbell_point`), which the run's Campbell reads instead
+        of evaluating the point again (method p; not stored in the dataset).
     status, reason : ``ok`` / ``failed`` and why (set by the workflow on an exception).
     elapsed : wall-clock time (s), set by the workflow.
     """
@@ -105,6 +108,7 @@ class PointResult:
     aero_work: np.ndarray | None = None
     info: dict[str, Any] = field(default_factory=dict)
     flutter_dof_vector: np.ndarray | None = None
+    operating_system: Any = None
     status: str = "ok"
     reason: str = ""
     elapsed: float = float("nan")

@@ -308,8 +308,11 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
 
     todo = [p for p in points if p.index not in done]
     in_process = parallel.runs_in_process(len(todo), workers, client)
+    if todo and not in_process and hasattr(analyser, "share_campbell_model"):
+        analyser.share_campbell_model()  # the workers' copies then share the Campbell's support basis
     job = _PointJob(analyser, config, outdir, _accepts_progress(analyser), animate=client is None)
     reported: dict[str, Any] = {}  # describe() entries from the workers
+    prepared: dict[float, Any] = {}  # the Campbell's points the map evaluated (its sweeps' first)
     point_attrs = {"config_fingerprint": config.fingerprint(), "run_fingerprint": record["fingerprint"]}
     with RunProgress(len(points), len(done), quiet=not progress, stream=stream) as prog:
         if in_process:
@@ -324,6 +327,8 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
                 for task in tasks:
                     p = todo[task.index]
                     res, desc = _task_point_result(task)
+                    if res.operating_system is not None:  # the Campbell's own case: its operating point
+                        prepared[p.wind_speed], res.operating_system = res.operating_system, None
                     reported.update(desc)
                     if not in_process:
                         prog.start_point(p.label)
@@ -350,7 +355,7 @@ def _run(turbine: Any, config: AnalysisConfig, outdir: Path, resume: bool, progr
     ds.attrs["finished_utc"] = _dt.datetime.now(_dt.timezone.utc).isoformat(timespec="seconds")
     # the Campbell's shell points on the run's local workers (its beam points stay here)
     camp = operating_campbell(turbine, config, analyser, progress,
-                              workers=1 if in_process or client is not None else workers)
+                              workers=1 if in_process or client is not None else workers, prepared=prepared)
     if camp is not None:
         store.write_campbell(outdir, camp)
         for k, v in camp.assumptions.items():

@@ -15,7 +15,7 @@ from windflutter.api import analysis_config, load_turbine
 def test_run_campbell_workers(monkeypatch, model, workers, expected):
     seen = {}
 
-    def service(turbine, config, winds, model=None, workers=1):
+    def service(turbine, config, winds, model=None, workers=1, prepared=None):
         seen["workers"] = workers
         return None
 

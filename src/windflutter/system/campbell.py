@@ -202,7 +202,7 @@ def campbell_workers(model: OperationalModel, n_points: int, workers: int | None
 
 
 def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progress=None,
-             model=None, workers: int | None = 1) -> CampbellResult:
+             model=None, workers: int | None = 1, prepared: dict | None = None) -> CampbellResult:
     """The Campbell analysis of ``turbine`` (see module docstring).  Each point continues the
     previous one's identities; where a named mode's frequency jumps (:func:`ambiguous`) the step is
     refined once: the names are carried through the middle of the step (not reported).
@@ -219,12 +219,20 @@ def campbell(turbine, wind_speeds=None, options=None, max_hz: float = 2.5, progr
         evaluated in worker processes (:class:`PooledPoints`) and named here in wind-speed order, the
         same names as serially; frequencies and damping equal to the iterative blade basis's tolerance
         (its warm start is a worker's own previous point).
+    prepared : ``{wind speed: campbell_point(...)}`` of points already evaluated with ``model``'s
+        options (:func:`campbell_point`; a stability map's operating points): used as they are, the
+        other wind speeds and any refined step's middle evaluated as above (:class:`PreparedPoints`).
     """
 
     om = model or OperationalModel(turbine, options)
     ws = default_wind_speeds(turbine) if wind_speeds is None else np.asarray(wind_speeds, float)
     n_workers = campbell_workers(om, len(ws), workers)
-    source = PooledPoints(om, ws, n_workers) if n_workers > 1 and len(ws) > 1 else SerialPoints(om)
+
+    def evaluated(winds):  # a shell's points in worker processes (also a prepared run's middles only)
+        pooled = n_workers > 1 and (len(winds) > 1 or bool(prepared))
+        return PooledPoints(om, winds, max(1, min(n_workers, len(winds)))) if pooled else SerialPoints(om)
+
+    source = PreparedPoints(om, prepared, ws, evaluated) if prepared else evaluated(ws)
     with source:
         pts = _named_points(source, ws, max_hz, progress)
     if progress is not None:
@@ -316,6 +324,56 @@ def portable_point(ps):
                                ksigma=None, klink=None)
 
 
+def campbell_point(ps, eig: tuple) -> tuple:
+    """``(portable_point(ps), eig, steady summary)``: what the Campbell reads of an operating point
+    evaluated in another process (:class:`PointEvaluator`, or a stability map's worker, whose
+    sweep starts at the operating point) by a copy of the receiver's model made once its reference
+    was computed: the receiver attaches its own support and reference, which are then the ones the
+    point was assembled with (the support's modal basis is an iterative eigen-solve's, and the
+    tower's fore-aft and side-side pairs are degenerate: two models' bases may differ by a rotation,
+    and a point named through another model's support is named wrong).  ``eig`` (:func:`~windflutter.system.modes.state_eig`)
+    keeps the roots with ``Im lambda > 0`` only: naming reads no others
+    (:func:`~windflutter.system.modes.point_modes`), and the rest is half the transfer."""
+    lam, left, right = eig
+    up = lam.imag > 0
+    return portable_point(ps), (lam[up], left[:, up], right[:, up]), _steady_summary(ps.steady)
+
+
+class PreparedPoints:
+    """Operating points already evaluated (``prepared``: ``{wind speed: campbell_point(...)}``, by
+    ``model`` or copies of it made after its reference was computed, e.g. a stability map's workers)
+    served as they are; the wind speeds of ``wind_speeds`` not prepared
+    and a refined step's middles from ``evaluated(wind_speeds)`` (a :class:`PooledPoints` or
+    :class:`SerialPoints`), opened at once when some wind speed is missing, else when a middle is
+    first asked for (none: no worker is started)."""
+
+    def __init__(self, model: OperationalModel, prepared: dict, wind_speeds, evaluated):
+        self.model, self.prepared = model, {float(v): p for v, p in prepared.items()}
+        self.missing = [float(v) for v in wind_speeds if float(v) not in self.prepared]
+        self.evaluated, self.source = evaluated, None
+
+    def _source(self):
+        if self.source is None:
+            self.source = self.evaluated(self.missing).__enter__()
+        return self.source
+
+    def point(self, v: float, middle: bool = False):
+        if middle or float(v) not in self.prepared:
+            return self._source().point(v, middle)
+        ps, eig, st = self.prepared.pop(float(v))
+        ps.support, ps.reference = self.model.support(), self.model.reference()
+        return ps, eig, st
+
+    def __enter__(self):
+        if self.missing:
+            self._source()
+        return self
+
+    def __exit__(self, *exc) -> None:
+        if self.source is not None:
+            self.source.__exit__(*exc)
+
+
 class PointEvaluator:
     """The worker's task: ``(portable_point, state_eig, steady summary)`` of the point at ``v``; the
     worker's model keeps the blade of the last pitch only (:meth:`OperationalModel.keep_blades`)."""
@@ -330,7 +388,7 @@ class PointEvaluator:
             return PointFailure(exc)
         eig = state_eig(ps.mbc)
         self.model.keep_blades([ps.pitch])
-        return portable_point(ps), eig, _steady_summary(ps.steady)
+        return campbell_point(ps, eig)
 
 
 class PointFailure:
