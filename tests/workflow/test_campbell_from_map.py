@@ -96,27 +96,48 @@ def test_missing_wind_speeds_and_middles_are_evaluated(nrel5mw, monkeypatch):
     _same(own, got)
 
 
-def test_a_run_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, monkeypatch):
-    """``windflutter run`` (beam, in this process): its Campbell evaluates no point of its own and
-    equals ``windflutter campbell``'s with the same config."""
+def _run(nrel5mw, tmp_path, monkeypatch, model: dict, workers: int):
+    """``(campbell, own, evaluated)`` of ``windflutter run``: the Campbell it wrote, the one the same
+    model gives evaluating every point itself, and the evaluations in this process during the run.
+    Modes up to 2 Hz: above, a shell tower's degenerate wall pairs (3rd and 4th tower wall n=2 at
+    the same frequency) may take their two ordinals in either order from bases equal to 1e-6."""
     import windflutter
     from windflutter import workflow
 
-    cfg = windflutter.analysis_config(wind_speeds=[8.0, 12.0], model={"n_aero_sections": 12},
-                                      rotor_speed={"min_rpm": 4, "max_rpm": 16, "n_points": 4},
+    cfg = windflutter.analysis_config(wind_speeds=[8.0, 12.0], model=model,
+                                      rotor_speed={"min_rpm": 4, "max_rpm": 16, "n_points": 4}, campbell={"max_hz": 2.0},
                                       output={"plots": False, "report": False, "animations": False})
-    alone = windflutter.campbell(nrel5mw, [8.0, 12.0], config=cfg)
-    got, orig = [], workflow.operating_campbell
+    got, orig = {}, workflow.operating_campbell
+    seen = _counted(monkeypatch)
 
-    def operating_campbell(*args, **kw):
-        assert sorted(kw["prepared"]) == [8.0, 12.0]
-        got.append(orig(*args, **kw))
-        return got[-1]
+    def operating_campbell(turbine, config, analyser=None, progress=False, workers=1, prepared=None):
+        assert sorted(prepared) == [8.0, 12.0]
+        got["run"] = orig(turbine, config, analyser, progress, workers=workers, prepared=prepared)
+        got["evaluated"] = list(seen)
+        got["own"] = orig(turbine, config, analyser, progress, workers=1)  # the same model, every point its own
+        return got["run"]
 
     monkeypatch.setattr(workflow, "operating_campbell", operating_campbell)
-    seen = _counted(monkeypatch)
-    windflutter.run(nrel5mw, cfg, tmp_path / "out", progress=False, workers=1)
-    assert len(got) == 1 and len(seen) > 2  # the map's sweeps evaluated their points ...
-    n_map = len(seen)
-    _same(alone, got[0])  # ... and the Campbell none (the beam's basis is exact: equal to round-off)
-    assert len(seen) == n_map
+    windflutter.run(nrel5mw, cfg, tmp_path / "out", progress=False, workers=workers)
+    return got["run"], got["own"], got["evaluated"]
+
+
+def test_a_run_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, monkeypatch):
+    """``windflutter run`` (beam, in this process): its Campbell evaluates no point of its own (the
+    evaluations seen are the map's) and equals the one its model gives evaluating them."""
+    run, own, seen = _run(nrel5mw, tmp_path, monkeypatch, {"n_aero_sections": 12}, workers=1)
+    assert len(seen) > 2
+    _same(own, run)
+
+
+@pytest.mark.parametrize("model", [{"n_aero_sections": 12}, {"type": "shell", "n_aero_sections": 12, "mesh_density": 0.5}])
+def test_a_run_on_workers_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, monkeypatch, model):
+    """The same on two worker processes (nothing evaluated here): their analysers are copies of this
+    one, which shared the Campbell case's model first (``share_campbell_model``), so the points they
+    assembled are named through this process's support basis -- a shell tower's wall modes come in
+    degenerate pairs, which two models' eigen-solves may rotate differently: without the sharing the
+    shell case's points are named through another basis (its drivetrain root "5th tower fore-aft +
+    8th tower wall n=3", measured)."""
+    run, own, seen = _run(nrel5mw, tmp_path, monkeypatch, model, workers=2)
+    assert seen == []
+    _same(own, run)
