@@ -43,3 +43,19 @@ def test_shell_and_beam_tube_blades_agree():
     assert s.tip_twist == pytest.approx(b.tip_twist, rel=0.04)
     assert s.power == pytest.approx(b.power, rel=1e-3)
     assert s.thrust == pytest.approx(b.thrust, rel=1e-3)
+
+
+def test_without_the_stress_stiffness_the_state_is_the_same():
+    """``SteadyOptions(stress=False)`` (the deflected shell blade, which has a stress stiffness of its
+    own): ``Ksigma`` None, every other field bit for bit the default's."""
+    from windflutter.steady import SteadyOptions
+
+    L, c, t = 40.0, 2.0, 0.003
+    tb = synthetic_turbine(tube_blade(length=L, chord=c, thick=1.0, t=t, beam=tube_beam_props(L, c, 1.0, t)))
+    g = rotor_geometry(tb)
+    fe, sec = build_model(tb, MeshSettings(model="shell", part="blade", n_span=8, n_chord=12))
+    st = assemble(fe)
+    a = steady_state(fe, st, sec, g, 11.0, 1.2, n_blades=3)
+    b = steady_state(fe, st, sec, g, 11.0, 1.2, n_blades=3, options=SteadyOptions(stress=False))
+    assert a.Ksigma is not None and a.Ksigma.nnz > 0 and b.Ksigma is None
+    assert (a.u == b.u).all() and (a.f_internal == b.f_internal).all() and a.power == b.power

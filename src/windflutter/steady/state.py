@@ -91,6 +91,9 @@ class SteadyOptions:
     rotating_group : node group of the rotating part (centrifugal load, spin softening).
     strict : raise :class:`~windflutter.errors.ModelError` when the iteration does not converge
         (default); False returns the last iterate with ``converged=False``.
+    stress : compute the state's ``Ksigma`` (default); False leaves it None, for a caller that
+        linearizes about the deflected shape with a stress stiffness of its own (the deflected shell
+        blade: the linear structure's, 0.18 s a point on the NREL 5 MW shell blade, went unused).
     bem : extra keywords for :func:`~windflutter.aero.induction.sections_induction`
         (``tip_loss``, ``hub_loss``, ``high_thrust``, ``xtol``).
     """
@@ -106,6 +109,7 @@ class SteadyOptions:
     corotational: bool = True
     rotating_group: str = "rotor"
     strict: bool = True
+    stress: bool = True
     bem: dict | None = None
 
     def __post_init__(self):
@@ -135,7 +139,8 @@ class SteadyState:
     strip_loads : (ns, 6) aerodynamic force (N) and moment (N m) per strip at its elastic-axis
         point, global axes (without the second-order moments).
     load_aero, load_centrifugal : (n_dof,) nodal loads (N, N m); ``load`` is their sum.
-    Ksigma : (n_dof, n_dof) CSR geometric stiffness of the total steady stress (full numbering).
+    Ksigma : (n_dof, n_dof) CSR geometric stiffness of the total steady stress (full numbering);
+        None when not asked for (``SteadyOptions.stress``).
     thrust (N), torque (N m), power (W) : rotor totals for ``n_blades`` blades.
     iterations : fixed-point iterations (0 without deflection).  converged : bool.
     residual : last relative change of the strip motions / loads.
@@ -166,7 +171,7 @@ class SteadyState:
     strip_loads: np.ndarray
     load_aero: np.ndarray
     load_centrifugal: np.ndarray
-    Ksigma: sp.csr_matrix
+    Ksigma: sp.csr_matrix | None
     thrust: float
     torque: float
     power: float
@@ -397,7 +402,7 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
             fe, struct, sections, rotor_geometry, u, (V, om, n_blades, rho, pitch), options)
         iterations += it
         u = ex.configuration_displacement(fe, config)
-    f_internal, Ksigma = _stress(fe, struct, u, config, load_aero + f_cf)
+    f_internal, Ksigma = _stress(fe, struct, u, config, load_aero + f_cf, options.stress)
     frames = pitching_frames(sections, rotor_geometry)
     tip_d, tip_r = tip_motion(sections, aero.defl, frames)
     thrust, torque, power = rotor_totals(aero.sections, rotor_geometry, aero.loads.loads, om, n_blades)
@@ -410,15 +415,16 @@ def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeomet
         configuration=config)
 
 
-def _stress(fe, struct, u, config, load):
+def _stress(fe, struct, u, config, load, stiffness: bool = True):
     """(internal nodal forces (n_dof,), axial-force geometric stiffness Ksigma) of the steady state:
     ``K u`` and the linear elements' axial forces for the linear structure; for a co-rotational
     equilibrium ``config`` its beams' internal forces and axial forces (the linear ones of its
     large-rotation ``u`` would not be its stress).  ``load`` (n_dof,): the state's nodal loads (the
-    shell ribs' term of the geometric stiffness takes the constraint forces ``K u - load``)."""
+    shell ribs' term of the geometric stiffness takes the constraint forces ``K u - load``).
+    ``stiffness`` False: the linear structure's Ksigma is None (not computed)."""
     if config is None:
         f = struct.K @ u
-        return f, geometric_stiffness(fe, u, constraint_forces=f - load)
+        return f, (geometric_stiffness(fe, u, constraint_forces=f - load) if stiffness else None)
 
     tan = beam_tangent(fe, config)
     return internal_forces(fe, config, tan), axial_geometric_stiffness(fe, tan.resultants[:, 6])

@@ -313,8 +313,9 @@ class OperationalModel:
         key = (id(rb), round(float(wind_speed), 9))
         prev = self._last_steady.get(key)
         initial = None if prev is None else prev.u * (omega / prev.omega) ** 2 if prev.omega > 0 else prev.u
+        own_stress = o.structure == "deflected" and len(rb.fe.shell_conn) > 0  # deflected_shell_blade's stress
         so = SteadyOptions(deflection=o.deflection, corotational=bool(o.corotational), tol=STEADY_TOL,
-                           bem={"high_thrust": o.high_thrust})
+                           bem={"high_thrust": o.high_thrust}, stress=not own_stress)
         st = steady_state(rb.fe, rb.struct, rb.sections, self.rotor, wind_speed, omega, n_blades=self.n_blades,
                           air_density=o.air_density, options=so, initial=initial)
         self._last_steady[key] = st  # a warm start for the next rotor speed at this wind speed and pitch
