@@ -36,3 +36,14 @@ def test_no_rigid_rotation_without_its_share():
     the rigid rotation, even where the assignment leaves it that identity."""
     S = np.array([[0.6, 0.0, 0.4], [0.9, 0.0, 0.1], [0.0, 0.0, 1.0]])
     assert not any(r.rigid for r in _named(S))
+
+
+def test_a_round_off_share_is_no_second_participation():
+    """A mode carried by one identity alone (an uncoupled tower wall mode: its other shares 1e-25, which
+    identity by round-off) reports no second participation; a real one, however small, is kept."""
+    S = np.array([[1.0, 1e-25, 0.0], [0.0, 1.0, 0.0], [1e-25, 0.0, 1.0]])
+    assert [r.participation for r in _named(S, heavy=False)] == [[("1st flap collective", 1.0)],
+                                                                 [("drivetrain rigid-body", 1.0)],
+                                                                 [("1st edge BW", 1.0)]]
+    S = np.array([[0.999, 1e-6, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
+    assert _named(S, heavy=False)[0].participation[1] == ("drivetrain rigid-body", 1e-6)

@@ -54,6 +54,9 @@ REFERENCE_MAC = 0.3
 #: than half of its largest participation) is not given to it (the identities that fit it are taken
 #: by modes that fit them better): the mode is named by its two largest participations, as mixed
 MIN_ASSIGNED_SHARE = 0.1
+#: a share at or below this is round-off, reported as no second participation (the uncoupled wall
+#: modes of a shell tower had a "second participant" of share 1e-25, a different one in every run)
+NO_SHARE = 1e-12
 #: along a sweep, a mode that continues the previous point's carrier of an identity (MAC of their
 #: signatures at least this) keeps that identity whatever its share (reported mixed, with its largest
 #: participation): a mode whose own part fades as it couples keeps its name, as HAWCStab2's
@@ -387,6 +390,8 @@ def name_record(rec, ids: list[Identity], shares: np.ndarray, k: int, heavy: boo
     # a wall pair's twin shares the pair's participation (:func:`_wall_pairs`): not a second one
     second = next((i for i in order[1:] if not (ids[i].family == "tower_wall" == ids[first].family
                                                  and ids[i].wave == ids[first].wave and shares[i] == shares[first])), -1)
+    if second >= 0 and shares[second] <= NO_SHARE:  # round-off (an uncoupled tower wall mode: 1e-25), not a participant
+        second = -1
     rec.participation = [(ids[i].name, float(shares[i])) for i in (first, second) if i >= 0]
     kept = continued or (k >= 0 and ids[k].family == "rigid" and shares[k] > 0)
     floor = 0.0 if kept else max(MIN_ASSIGNED_SHARE, 0.5 * shares[first] if heavy else 0.0)
