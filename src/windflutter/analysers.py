@@ -19,7 +19,7 @@ import numpy as np
 
 from windflutter.backends import BUILTIN, backend_factory
 from windflutter.config import AnalysisConfig
-from windflutter.errors import InputError, InputWarning, ModelError, ValidityWarning
+from windflutter.errors import InputError, InputWarning, ModelError, ValidityWarning, WindflutterError
 from windflutter.operating import campbell_model, operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult, point_result
@@ -110,9 +110,16 @@ class TurbinePointAnalyser:
         """Build the Campbell case's solver here, its model's support and reference computed, before
         this analyser is copied to worker processes: the copies assemble their operating points with
         this support basis, so the run's Campbell (on this model, :func:`operating_campbell`) reads
-        them (:attr:`PointResult.operating_system`) as its own."""
-        if self._campbell is not None:
+        them (:attr:`PointResult.operating_system`) as its own.  A model that cannot be built here is
+        left to the workers, whose points then fail with the reason as before, and they keep no
+        operating points (the Campbell evaluates its own)."""
+        if self._campbell is None:
+            return
+        try:
             self._stability(*self._campbell).model.reference()
+        except WindflutterError:
+            self._cases.pop(self._campbell, None)
+            self._campbell = None
 
     def fe_model(self, point: OperatingPoint):
         """The FE model of ``point`` (its blade pitch), for the mode animation (seed's methods)."""

@@ -141,3 +141,19 @@ def test_a_run_on_workers_hands_its_operating_points_to_the_campbell(nrel5mw, tm
     run, own, seen = _run(nrel5mw, tmp_path, monkeypatch, model, workers=2)
     assert seen == []
     _same(own, run)
+
+
+def test_a_model_that_cannot_be_built_is_left_to_the_workers(nrel5mw, monkeypatch):
+    """``share_campbell_model`` on a model whose build fails (here its reference): no error before the
+    run (each worker's point then fails with the reason, as before) and no operating point kept."""
+    import windflutter
+    from windflutter.analysers import TurbinePointAnalyser
+    from windflutter.errors import ModelError
+
+    def fail(self):
+        raise ModelError("no model")
+
+    monkeypatch.setattr(OperationalModel, "reference", fail)
+    an = TurbinePointAnalyser(nrel5mw, windflutter.analysis_config(wind_speeds=[8.0]))
+    an.share_campbell_model()
+    assert an._campbell is None and not an._cases
