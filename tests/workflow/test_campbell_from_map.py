@@ -43,7 +43,7 @@ def _prepared(solver, winds):
 
 
 def _counted(monkeypatch):
-    """The rotor speeds (RPM) of the points the Campbell's own model evaluates."""
+    """The wind speeds of the points evaluated in this process (``OperationalModel.at``) from now on."""
     seen = []
     orig = OperationalModel.at
 
