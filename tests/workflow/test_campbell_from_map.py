@@ -73,19 +73,10 @@ def _same(a, b):
     assert [(t.name, t.index) for t in a.tracks] == [(t.name, t.index) for t in b.tracks]
 
 
-def test_prepared_points_give_the_campbell_without_evaluating_them(nrel5mw, monkeypatch):
-    solver = _solver(nrel5mw, SHELL)
-    own = campbell(nrel5mw, WINDS, max_hz=2.0, workers=1, model=OperationalModel(nrel5mw, SHELL))
-    prepared = _prepared(solver, WINDS)
-    seen = _counted(monkeypatch)
-    got = campbell(nrel5mw, WINDS, max_hz=2.0, workers=1, model=solver.model, prepared=prepared)
-    assert not set(seen) & set(WINDS)  # every point read; evaluated: a refined step's middle (8.5 m/s)
-    _same(own, got)
-
-
-def test_missing_wind_speeds_and_middles_are_evaluated(nrel5mw, monkeypatch):
-    """One wind speed not prepared (a resumed run's stored point) and every step ambiguous (``JUMP``
-    0): the missing point and the two middles are evaluated, the prepared ones are not."""
+def test_prepared_points_are_read_the_rest_evaluated(nrel5mw, monkeypatch):
+    """Two wind speeds prepared, one not (a resumed run's stored point), every step ambiguous (``JUMP``
+    0): the missing point and the two middles are evaluated, the prepared ones are not, and the
+    Campbell is the one the same model gives evaluating every point."""
     monkeypatch.setattr(campbell_module, "JUMP", 0.0)
     own = campbell(nrel5mw, WINDS, max_hz=2.0, workers=1, model=OperationalModel(nrel5mw, SHELL))
     solver = _solver(nrel5mw, SHELL)
