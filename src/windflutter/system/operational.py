@@ -427,9 +427,9 @@ class OperationalModel:
 def _support_basis(st, n_modes: int) -> np.ndarray:
     """Support modes (rotor-less, so the basis does not depend on the operating point) plus the six
     static responses to hub loads, M-orthonormal.  The Lanczos start is fixed: with ARPACK's random
-    one every process had a basis of its own (signs, and a rotation of the tower's degenerate pairs),
-    so the same point's reduced matrices differed from run to run (by 3e-3 of their largest entry on
-    the NREL 5 MW shell turbine; its modes only to round-off)."""
+    one every model had a basis of its own (a rotation of a shell tower's degenerate wall pairs), so
+    the same point's reduced matrices differed from run to run (by 3e-3 of their largest entry on the
+    NREL 5 MW shell turbine; its modes only to round-off)."""
     import scipy.sparse.linalg as spla
 
     K, M = st.Kr.tocsc(), st.Mr.tocsc()
