@@ -125,10 +125,9 @@ def test_a_run_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, mon
 def test_a_run_on_workers_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, monkeypatch, model):
     """The same on two worker processes (nothing evaluated here): their analysers are copies of this
     one, which shared the Campbell case's model first (``share_campbell_model``), so the points they
-    assembled are named through this process's support basis -- a shell tower's wall modes come in
-    degenerate pairs, which two models' eigen-solves may rotate differently: without the sharing the
-    shell case's points are named through another basis (its drivetrain root "5th tower fore-aft +
-    8th tower wall n=3", measured)."""
+    assembled are named through this process's support basis.  (A shell tower's wall modes come in
+    degenerate pairs: with ARPACK's random start for the support basis, and without the sharing, the
+    shell case failed here -- its drivetrain root named "5th tower fore-aft + 8th tower wall n=3".)"""
     run, own, seen = _run(nrel5mw, tmp_path, monkeypatch, model, workers=2)
     assert seen == []
     _same(own, run)
