@@ -20,7 +20,7 @@ import numpy as np
 from windflutter.backends import BUILTIN, backend_factory
 from windflutter.config import AnalysisConfig
 from windflutter.errors import InputError, InputWarning, ModelError, ValidityWarning, WindflutterError
-from windflutter.operating import campbell_model, operating_campbell as service
+from windflutter.operating import campbell_max_hz, campbell_model, operating_campbell as service
 from windflutter.post.aerowork import flutter_mode_diagnostics
 from windflutter.results import OperatingPoint, PointResult, point_result
 from windflutter.system.campbell import campbell_point
@@ -160,7 +160,8 @@ class TurbinePointAnalyser:
         res = point_result(s, info=size,
                            reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
         if keep and ts.operating is not None:
-            res.operating_system, ts.operating = campbell_point(*ts.operating), None
+            limit = campbell_max_hz(self.config, ts.model)  # the Campbell's (the same model's reference)
+            res.operating_system, ts.operating = campbell_point(*ts.operating, max_hz=limit), None
         on = s.onset
         if self.config.output.mode_shapes and on.flutter_vector is not None and s.flutter_rpm is not None:
             if progress is not None:

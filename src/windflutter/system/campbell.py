@@ -324,7 +324,7 @@ def portable_point(ps):
                                ksigma=None, klink=None)
 
 
-def campbell_point(ps, eig: tuple) -> tuple:
+def campbell_point(ps, eig: tuple, max_hz: float | None = None) -> tuple:
     """``(portable_point(ps), eig, steady summary)``: what the Campbell reads of an operating point
     evaluated in another process (:class:`PointEvaluator`, or a stability map's worker, whose
     sweep starts at the operating point) by a copy of the receiver's model made once its reference
@@ -332,10 +332,14 @@ def campbell_point(ps, eig: tuple) -> tuple:
     point was assembled with (the support's modal basis is an iterative eigen-solve's, and the
     tower's fore-aft and side-side pairs are degenerate: two models' bases may differ by a rotation,
     and a point named through another model's support is named wrong).  ``eig`` (:func:`~windflutter.system.modes.state_eig`)
-    keeps the roots with ``Im lambda > 0`` only: naming reads no others
-    (:func:`~windflutter.system.modes.point_modes`), and the rest is half the transfer."""
+    keeps the roots with ``Im lambda > 0`` only, and with ``max_hz`` (the Campbell's limit, Hz) those with
+    ``|lambda| <= 2 pi max_hz``: naming reads no others (:func:`~windflutter.system.modes.point_modes`,
+    the same test), and the rest is most of the transfer and of what a run holds until its Campbell
+    (1126 states on the IEA 22 MW shell: 20 MB of eigenvectors a point, about 2 MB below the limit)."""
     lam, left, right = eig
     up = lam.imag > 0
+    if max_hz is not None:
+        up &= np.abs(lam) <= 2 * np.pi * max_hz
     return portable_point(ps), (lam[up], left[:, up], right[:, up]), _steady_summary(ps.steady)
 
 
