@@ -113,6 +113,7 @@ def _run(nrel5mw, tmp_path, monkeypatch, model: dict, workers: int):
     return got["run"], got["own"], got["evaluated"]
 
 
+@pytest.mark.slow  # the default suite runs the 2-worker shell case below and the reduced run end to end
 def test_a_run_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, monkeypatch):
     """``windflutter run`` (beam, in this process): its Campbell evaluates no point of its own (the
     evaluations seen are the map's) and equals the one its model gives evaluating them."""
@@ -121,7 +122,8 @@ def test_a_run_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, mon
     _same(own, run)
 
 
-@pytest.mark.parametrize("model", [{"n_aero_sections": 12}, {"type": "shell", "n_aero_sections": 12, "mesh_density": 0.5}])
+@pytest.mark.parametrize("model", [pytest.param({"n_aero_sections": 12}, marks=pytest.mark.slow),
+                                   {"type": "shell", "n_aero_sections": 12, "mesh_density": 0.5}])
 def test_a_run_on_workers_hands_its_operating_points_to_the_campbell(nrel5mw, tmp_path, monkeypatch, model):
     """The same on two worker processes (nothing evaluated here): their analysers are copies of this
     one, which shared the Campbell case's model first (``share_campbell_model``), so the points they
