@@ -104,6 +104,8 @@ class TurbinePointAnalyser:
         key = (aero, method)
         if key not in self._cases:
             self._cases[key] = stability_analysis(self.turbine, self.config, aero, method)
+            if key == self._campbell:  # method p's OperationalStability: each sweep's operating point kept
+                self._cases[key].keep_operating = True
         return self._cases[key]
 
     def share_campbell_model(self) -> None:
@@ -148,9 +150,6 @@ class TurbinePointAnalyser:
             progress(0.02, f"{point.label}: model and search")
 
         grid = np.asarray(point.sweep_rpm, float) if search_method(point.method).config_grid else None
-        keep = (point.aero, point.method) == self._campbell and hasattr(ts, "keep_operating")
-        if keep:
-            ts.keep_operating = True
         s, notes = _with_validity_notes(ts.analyse_operating_point, point.wind_speed, rpm_grid=grid)
         size = self._model_size(ts, ts.pitch_at(point.wind_speed))
         if not self._size:
@@ -159,7 +158,7 @@ class TurbinePointAnalyser:
         # the run's attributes do not depend on which points this process computed
         res = point_result(s, info=size,
                            reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
-        if keep and ts.operating is not None:
+        if getattr(ts, "operating", None) is not None:  # the Campbell's case (keep_operating)
             limit = campbell_max_hz(self.config, ts.model)  # the Campbell's (the same model's reference)
             res.operating_system, ts.operating = campbell_point(*ts.operating, max_hz=limit), None
         on = s.onset

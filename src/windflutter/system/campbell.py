@@ -330,8 +330,8 @@ def campbell_point(ps, eig: tuple, max_hz: float | None = None) -> tuple:
     sweep starts at the operating point) by a copy of the receiver's model made once its reference
     was computed: the receiver attaches its own support and reference, which are then the ones the
     point was assembled with (the support's modal basis is an iterative eigen-solve's, and the
-    tower's fore-aft and side-side pairs are degenerate: two models' bases may differ by a rotation,
-    and a point named through another model's support is named wrong).  ``eig`` (:func:`~windflutter.system.modes.state_eig`)
+    tower's degenerate pairs: two models' bases may differ by a rotation, and a point named through
+    another model's support is named wrong).  ``eig`` (:func:`~windflutter.system.modes.state_eig`)
     keeps the roots with ``Im lambda > 0`` only, and with ``max_hz`` (the Campbell's limit, Hz) those with
     ``|lambda| <= 2 pi max_hz``: naming reads no others (:func:`~windflutter.system.modes.point_modes`,
     the same test), and the rest is most of the transfer and of what a run holds until its Campbell
