@@ -100,19 +100,49 @@ def blade_structural_margin(ps) -> float:
     return low
 
 
-def structural_mode_radius(ps) -> float:
-    """r/R of the largest motion of the mode of :func:`blade_structural_margin` (where it lives)."""
+def _structural_mode_motion(ps) -> np.ndarray | None:
+    """(n_nodes,) translation amplitude of the mode of :func:`blade_structural_margin` at the blade's
+    nodes, None without a finite eigenvalue."""
     M, K = ps.blade_structure
     e = slice(6, None)
     w, V = sla.eig(K[e, e], M[e, e])
     ok = np.flatnonzero(np.isfinite(w))
     if not ok.size:
-        return float("nan")
+        return None
     i = ok[np.argmin(w[ok].real)]
-    rb = ps.blade
-    v = np.asarray(rb.basis_full(ps.Phi) @ np.concatenate([np.zeros(6), V[:, i].real])).reshape(-1, 6)
-    r = np.linalg.norm(np.asarray(rb.fe.nodes, float) - rb.apex, axis=1)
-    return float(r[np.argmax(np.linalg.norm(v[:, :3], axis=1))] / r.max())
+    v = np.asarray(ps.blade.basis_full(ps.Phi) @ np.concatenate([np.zeros(6), V[:, i].real])).reshape(-1, 6)
+    return np.linalg.norm(v[:, :3], axis=1)
+
+
+def structural_mode_site(ps) -> str:
+    """Where the mode of :func:`blade_structural_margin` lives, in words: ``"largest at r/R = 0.88"``
+    and, on a shell blade, the laminate of the shell element that moves most (``", where the shell is
+    a 2.2 mm laminate: glass_triax 1.2 mm, Gelcoat 1.0 mm"``): a thin single skin there is a panel
+    that buckles under little compression (the layup's, not the solver's)."""
+    amp = _structural_mode_motion(ps)
+    if amp is None:
+        return "(its shape not computed)"
+    fe = ps.blade.fe
+    r = np.linalg.norm(np.asarray(fe.nodes, float) - ps.blade.apex, axis=1)
+    text = f"largest at r/R = {r[np.argmax(amp)] / r.max():.2f}"
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    if len(conn):
+        p = fe.shell_properties[int(np.asarray(fe.shell_prop)[np.argmax(amp[conn].mean(axis=1))])]
+        plies = ", ".join(f"{getattr(x.material, 'name', '') or 'ply'} {1e3 * x.thickness:.1f} mm" for x in p.plies)
+        text += f", where the shell is a {1e3 * p.thickness:.1f} mm laminate: {plies}"
+    return text
+
+
+def _unstable_at_operating(ps, wind_speed: float, rpm: float) -> ModelError:
+    """The error of a blade structure statically unstable on its own at the operating point: where
+    (:func:`structural_mode_site`) and, for a shell blade, what to do."""
+    shell = len(ps.blade.fe.shell_conn) > 0
+    return ModelError(f"at V = {wind_speed:g} m/s the blade's FE structure under its steady stress is statically "
+                      f"unstable at the operating point ({rpm:.2f} RPM) without aerodynamics: a mode "
+                      f"{structural_mode_site(ps)} -- a local buckling " +
+                      ("(a thin skin panel under compression, or the mesh) is likely; the shell blade cannot be "
+                       "linearized about this state (the beam model, --model beam, has no local modes)" if shell
+                       else "is likely"))
 
 
 def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
@@ -316,9 +346,7 @@ class OperationalStability:
                 break
             struct_margin = blade_structural_margin(ps)
             if i == 0 and struct_margin <= 0:
-                raise ModelError(f"at V = {wind_speed:g} m/s the blade's FE structure under its steady stress is "
-                                 f"statically unstable at the operating point ({rpm:.2f} RPM) without aerodynamics "
-                                 "(a local buckling of the mesh is likely)")
+                raise _unstable_at_operating(ps, wind_speed, rpm)
             if i > 0 and self._structure_lost(ps, (grid[i - 1], structural[-1]), (rpm, struct_margin), on):
                 break
             structural.append(struct_margin)
@@ -353,11 +381,11 @@ class OperationalStability:
                          "(a local buckling of the mesh, e.g. a skin panel under compression, is likely): the sweep "
                          f"stops there; this is not aeroelastic divergence [from {ra:.2f} RPM]")
             return True
-        where = structural_mode_radius(ps)
+        where = structural_mode_site(ps)
         r0 = float(np.sqrt(ra**2 + (rb**2 - ra**2) * ma / (ma - mb))) if ma > 0 else float(ra)
         on.reason = (f"the blade's FE structure under its steady stress loses static stability on its own at about "
-                     f"{r0:.2f} RPM (between {ra:.2f} and {rb:.2f}; a mode without aerodynamics, largest at r/R = "
-                     f"{where:.2f}; a local buckling of the mesh is likely): the sweep stops there; this is not "
+                     f"{r0:.2f} RPM (between {ra:.2f} and {rb:.2f}; a mode without aerodynamics, {where}; a local "
+                     f"buckling of a skin panel or the mesh is likely): the sweep stops there; this is not "
                      f"aeroelastic divergence [from {r0:.2f} RPM]")
         return True
 

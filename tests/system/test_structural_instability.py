@@ -77,3 +77,56 @@ def test_nrel5mw_shell_with_the_tip_rib_stays_structurally_stable():
     assert p.flutter_rpm is not None and 1.5 * 12.1 < p.flutter_rpm < 26.0
     assert "edge" in p.flutter_mode
     assert p.divergence_rpm is None or p.divergence_rpm > 26.0
+
+
+def _fake_point(K_elastic, motion_of_coordinate, nodes, conn=None, props=()):
+    """A point whose blade has ``len(K_elastic)`` elastic coordinates (unit mass); coordinate ``j``
+    moves the nodes by ``motion_of_coordinate[j]`` (n_nodes,) along x; shell elements ``conn`` of
+    properties ``props``."""
+    from types import SimpleNamespace
+
+    from windflutter.structure.fem import IsotropicMaterial, Ply, ShellProperty
+
+    m = len(K_elastic)
+    M, K = np.eye(6 + m), np.diag(np.r_[np.ones(6), K_elastic])
+    n = len(nodes)
+
+    def basis_full(_phi):
+        B = np.zeros((6 * n, 6 + m))
+        for j, a in enumerate(motion_of_coordinate):
+            B[0::6, 6 + j] = a
+        return B
+
+    shell = [ShellProperty(tuple(Ply(IsotropicMaterial(E=1e10, nu=0.3, rho=1000.0, name=nm), t) for nm, t in p))
+             for p in props]
+    fe = SimpleNamespace(nodes=np.asarray(nodes, float), shell_conn=np.zeros((0, 4), int) if conn is None else
+                         np.asarray(conn), shell_prop=np.arange(len(shell)), shell_properties=shell)
+    blade = SimpleNamespace(fe=fe, apex=np.zeros(3), basis_full=basis_full)
+    return SimpleNamespace(blade_structure=(M, K), blade=blade, Phi=None)
+
+
+def test_the_unstable_mode_is_located_with_its_laminate():
+    """The message's site: r/R of the node that moves most in the lowest (negative) mode and, on a
+    shell blade, the laminate of the element that moves most -- two elements along a 4 m blade, the
+    outer one a 2.2 mm single skin; the mode (eigenvalue -5) moves the outer element's nodes, the
+    stable one (+3) the inner's.  Swapping the two modes' shapes names the other element."""
+    nodes = [[0, 0, z] for z in (1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0)]
+    conn = [[0, 1, 3, 2], [4, 5, 7, 6]]
+    props = [(("glass_triax", 0.0012), ("foam", 0.02), ("glass_triax", 0.0012)), (("glass_triax", 0.0012), ("Gelcoat", 0.001))]
+    inner, outer = np.r_[1, 1, 1, 1, 0, 0, 0, 0.0], np.r_[0, 0, 0, 0, 0.5, 0.5, 1, 1.0]
+    site = op.structural_mode_site(_fake_point([-5.0, 3.0], [outer, inner], nodes, conn, props))
+    assert site == "largest at r/R = 1.00, where the shell is a 2.2 mm laminate: glass_triax 1.2 mm, Gelcoat 1.0 mm"
+    site = op.structural_mode_site(_fake_point([3.0, -5.0], [outer, inner], nodes, conn, props))
+    assert site.startswith("largest at r/R = 0.25, where the shell is a 22.4 mm laminate: glass_triax 1.2 mm, foam")
+    assert op.structural_mode_site(_fake_point([-5.0, 3.0], [outer, inner], nodes)) == "largest at r/R = 1.00"
+
+
+def test_a_structure_unstable_at_the_operating_point_is_refused_with_its_site(monkeypatch):
+    """The structure alone unstable at the operating point (faked on the beam rotor: every margin
+    negative): the wind speed is refused with one ModelError saying where the mode lives."""
+    from windflutter.errors import ModelError
+
+    monkeypatch.setattr(op, "blade_structural_margin", lambda ps: -1.0)
+    with pytest.raises(ModelError, match=r"statically unstable at the operating point \(11\.92 RPM\) without "
+                                         r"aerodynamics: a mode largest at r/R = [01]\.\d\d -- a local buckling is likely$"):
+        windflutter.stability("nrel5mw", [11.4], model={"part": "rotor"})

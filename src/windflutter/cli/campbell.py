@@ -124,8 +124,9 @@ def _print_table(res) -> None:
     if local:
         winds = sorted({p.wind_speed for p, _ in local})
         print("the blade's FE structure under its steady stress is statically unstable on its own at "
-              f"{', '.join(f'{v:g}' for v in winds)} m/s (a local buckling of the mesh, without aerodynamics: not "
-              "an aeroelastic instability; refine the blade mesh, e.g. --n-span)")
+              f"{', '.join(f'{v:g}' for v in winds)} m/s (a local buckling without aerodynamics, not an "
+              "aeroelastic instability: a thin skin panel under compression, which no mesh refinement removes, "
+              "or a coarse mesh, --n-span)")
     bad = res.unstable()
     print("every mode damped in operation" if not bad else
           f"UNSTABLE: {bad[0][1].name} at {bad[0][0].wind_speed:g} m/s (zeta {100 * bad[0][1].damping_ratio:.2f} %)")
