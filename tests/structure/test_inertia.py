@@ -73,3 +73,27 @@ def test_spd_factor_of_an_indefinite_matrix_is_refused():
     A = _laplacian_2d(6) - 1.0 * sp.eye(36)
     with pytest.raises(linalg.NotPositiveDefinite):
         linalg.SPDFactor(A, backend="superlu")
+
+
+def test_the_campbell_warns_of_a_structure_unstable_at_its_operating_point():
+    """A Campbell point whose blade structure is statically unstable on its own -- a negative mode of
+    the basis (the IEA 15 MW shell's outboard skin) or negative eigenvalues of the full-order stiffness
+    outside it -- is named with a ValidityWarning; a stable one is not."""
+    import warnings
+
+    from windflutter.errors import ValidityWarning
+    from windflutter.system.campbell import warn_indefinite_blade
+
+    def point(k, negative):
+        return SimpleNamespace(blade_structure=(np.eye(8), np.diag([1e9] * 6 + [k, 50.0])), blade_negative=negative,
+                               wind_speed=8.0, omega=0.6)
+
+    for k, negative, said in [(-20.0, None, "a mode of its basis with a negative stiffness"),
+                              (35.0, 2, "2 negative eigenvalue(s) of its full-order stiffness")]:
+        with pytest.warns(ValidityWarning, match="statically unstable at the operating point") as got:
+            warn_indefinite_blade(point(k, negative))
+        assert said in str(got[0].message) and "at V = 8.0 m/s" in str(got[0].message)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        warn_indefinite_blade(point(35.0, 0))
+        warn_indefinite_blade(SimpleNamespace(blade_negative=None))  # a point source without a blade structure

@@ -105,6 +105,31 @@ class PointSystem:
     klink: np.ndarray | None = field(default=None, repr=False)
 
 
+def lowest_elastic(K: np.ndarray, M: np.ndarray) -> float:
+    """Smallest finite eigenvalue (real part) of ``K x = w M x`` on a blade's elastic coordinates
+    (the six hub coordinates held), ``inf`` if there is none."""
+    import scipy.linalg as sla
+
+    e = slice(6, None)
+    w = sla.eigvals(K[e, e], M[e, e])
+    w = w[np.isfinite(w)]
+    return float(np.min(w.real)) if w.size else float("inf")
+
+
+def structural_margin(ps: PointSystem) -> float:
+    """Smallest eigenvalue (1/s^2) of the blade's structural static stiffness over its mass at the
+    point ``ps`` -- rotating-frame and steady-stress terms, no aerodynamics, hub clamped (its reduced
+    ``blade_structure``).  Negative: the FE structure under its steady stress is statically unstable
+    on its own (e.g. a local buckling of shell elements).  ``-inf`` where the reduced structure is
+    positive but the full-order stiffness is not (``ps.blade_negative``: a local mode far from the
+    basis's lowest modes, whose eigenvalue is not computed)."""
+    M, K = ps.blade_structure
+    low = lowest_elastic(K, M)
+    if low > 0 and ps.blade_negative:
+        return float("-inf")
+    return low
+
+
 class OperationalModel:
     """A turbine ready for operating-point (Campbell) analyses; parts cached."""
 
