@@ -268,8 +268,8 @@ def warn_indefinite_blade(ps) -> None:
     stiffness outside the basis, ``ps.blade_negative``): a local buckling under the steady stress (a thin
     skin panel, or the mesh), so the point's modes are linearized about a statically unstable structure,
     and its divergent root is not among the Campbell's oscillating modes.  Found at every operating point
-    of the IEA 15 MW shell (its outboard single skin, docs/verification.md sec. 11 item 5); point
-    sources without a blade structure (duck-typed in tests) are not checked."""
+    of the IEA 15 MW shell (its outboard single skin; docs/verification.md, "Not verified, or known to
+    disagree", item 5); point sources without a blade structure (duck-typed in tests) are not checked."""
     if getattr(ps, "blade_structure", None) is None:
         return
     margin = structural_margin(ps)
