@@ -147,3 +147,16 @@ def test_sweep_instability_in_operation_and_a_damped_campbell_do_not_contradict(
     assert "the instability above is the rotor-speed sweep's at V = 10 m/s" in lines[2]
     # a stable verdict keeps the plain line
     assert "every mode damped" not in headline(synthetic_run(flutter_rpm=(20.0, 19.0)), stable_campbell)
+
+
+def test_a_run_whose_points_all_failed_has_no_result_whatever_its_campbell(stable_campbell):
+    """Every map point failed (the IEA 15 MW shell: each wind speed refused, its blade structure
+    unstable on its own): the damped Campbell does not make it "no instability found"; one point done
+    is a result again, and the Campbell alone (no map) still is."""
+    ds = synthetic_run(flutter_rpm=(float("nan"), float("nan")))
+    ds["status"] = ("point", ["failed", "failed"])
+    v = verdict(ds, stable_campbell)
+    assert v.status == "no result" and v.least_damped is not None
+    ds["status"] = ("point", ["failed", "ok"])
+    assert verdict(ds, stable_campbell).status == "no instability found"
+    assert verdict(None, stable_campbell).status == "no instability found"

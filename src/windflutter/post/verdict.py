@@ -141,8 +141,10 @@ def verdict(ds: xr.Dataset | None = None, campbell=None) -> Verdict:
     if camp is not None:
         info[OPERATING] = assumptions(camp)
     v = Verdict(NO_RESULT, None, ld, rated, over, searched, searched_max, info)
-    has_result = (ds is not None and "point" in ds.dims and ds.sizes["point"] > 0
-                  and any(str(s) == "ok" for s in ds["status"].values)) or (camp is not None and ld is not None)
+    # a run whose map points all failed has no result: its Campbell alone does not make the overspeed
+    # range "searched" (the IEA 15 MW shell: every point refused, its Campbell damped)
+    mapped = ds is not None and "point" in ds.dims and ds.sizes["point"] > 0
+    has_result = any(str(s) == "ok" for s in ds["status"].values) if mapped else (camp is not None and ld is not None)
     if found:
         v.first = min(found, key=lambda x: (x.rotor_speed_rpm, x.kind != "negative damping"))
         f = v.first
