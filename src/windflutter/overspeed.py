@@ -86,7 +86,9 @@ def blade_structural_margin(ps) -> float:
 
 def _structural_mode_motion(ps) -> np.ndarray | None:
     """(n_nodes,) translation amplitude of the mode of :func:`blade_structural_margin` at the blade's
-    nodes, None without a finite eigenvalue."""
+    nodes; None without a finite eigenvalue, and where the basis's lowest mode is stable but the
+    full-order stiffness is not (``ps.blade_negative``: the unstable mode is outside the basis, its
+    shape not computed)."""
     M, K = ps.blade_structure
     e = slice(6, None)
     w, V = sla.eig(K[e, e], M[e, e])
@@ -94,6 +96,8 @@ def _structural_mode_motion(ps) -> np.ndarray | None:
     if not ok.size:
         return None
     i = ok[np.argmin(w[ok].real)]
+    if w[i].real > 0 and getattr(ps, "blade_negative", None):
+        return None
     v = np.asarray(ps.blade.basis_full(ps.Phi) @ np.concatenate([np.zeros(6), V[:, i].real])).reshape(-1, 6)
     return np.linalg.norm(v[:, :3], axis=1)
 
@@ -105,7 +109,7 @@ def structural_mode_site(ps) -> str:
     that buckles under little compression (the layup's, not the solver's)."""
     amp = _structural_mode_motion(ps)
     if amp is None:
-        return "(its shape not computed)"
+        return "(its shape not computed: outside the blade basis's modes)"
     fe = ps.blade.fe
     r = np.linalg.norm(np.asarray(fe.nodes, float) - ps.blade.apex, axis=1)
     text = f"largest at r/R = {r[np.argmax(amp)] / r.max():.2f}"

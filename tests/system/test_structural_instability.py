@@ -119,6 +119,12 @@ def test_the_unstable_mode_is_located_with_its_laminate():
     site = op.structural_mode_site(_fake_point([3.0, -5.0], [outer, inner], nodes, conn, props))
     assert site.startswith("largest at r/R = 0.25, where the shell is a 22.4 mm laminate: glass_triax 1.2 mm, foam")
     assert op.structural_mode_site(_fake_point([-5.0, 3.0], [outer, inner], nodes)) == "largest at r/R = 1.00"
+    # the basis stable, the full-order stiffness not (negative pivots outside the basis): the basis's
+    # lowest mode is not the unstable one, so no site is given
+    stable = _fake_point([3.0, 5.0], [outer, inner], nodes, conn, props)
+    assert op.structural_mode_site(stable).startswith("largest at r/R = 1.00")
+    stable.blade_negative = 2
+    assert op.structural_mode_site(stable) == "(its shape not computed: outside the blade basis's modes)"
 
 
 def test_a_structure_unstable_at_the_operating_point_is_refused_with_its_site(monkeypatch):
