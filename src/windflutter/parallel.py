@@ -38,6 +38,7 @@ from dataclasses import dataclass
 from typing import Any, Callable, Iterable, Iterator, Sequence
 
 from windflutter.errors import InputError, one_line
+from windflutter.heap import keep_freed_memory
 from windflutter.threads import blas_limit, set_process_threads
 
 try:  # cloudpickle ships with dask; fall back to pickle (module-level functions only)
@@ -212,6 +213,7 @@ def _init_worker(fn_bytes: bytes, blas_threads: int | None) -> None:
     _die_with_parent()
     # for the life of the worker process, also for BLAS libraries it loads later (windflutter.threads)
     set_process_threads(blas_threads)
+    keep_freed_memory()  # the arrays of each point reused, not mapped again (windflutter.heap)
     worker_warning_display()
     _WORKER_FN = _cp.loads(fn_bytes)
 

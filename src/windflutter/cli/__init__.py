@@ -20,6 +20,7 @@ import sys
 
 from windflutter import __version__, threads
 from windflutter.errors import InputError, ModelError, WindflutterError, one_line
+from windflutter.heap import keep_freed_memory
 
 #: Sub-command modules, in the order shown by ``--help``.
 COMMANDS = ("section", "simple", "wing", "modes", "mesh", "beam_properties", "stability", "campbell", "sensitivity",
@@ -61,8 +62,10 @@ def main(argv: list[str] | None = None) -> int:
 
     The command runs with ``WINDFLUTTER_BLAS_THREADS`` BLAS threads (default 1; ``auto``: the
     BLAS library's default), undone afterwards for an in-process call
-    (:func:`windflutter.threads.policy_scope`).
+    (:func:`windflutter.threads.policy_scope`); freed memory is kept for reuse
+    (:func:`windflutter.heap.keep_freed_memory`).
     """
+    keep_freed_memory()
     with threads.policy_scope():
         return _main(argv)
 
