@@ -266,13 +266,20 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
     neighbouring modes of its family (its quasi-static response to the aerodynamic load, weighted up by
     their stiffness): for modes damped above :data:`KINETIC_DAMPING` (``damping_ratios``) the shares are
     those of the modal kinetic energies ``|a_j|^2`` instead -- heavy aerodynamic damping is the blades'
-    flap, with little hub motion."""
+    flap, with little hub motion.  So are a root's below :data:`RIGID_HZ` (whatever its damping; the
+    rotor-speed root, unstable where the aerodynamic torque rises with the rotor speed, included): the
+    blades' deformation is quasi-static there too."""
     mb = ps.mbc
     nF, m, N = mb.n_fixed, mb.n_eta, mb.n_blades
     labels = ps.labels
     ns = sum(1 for lb in labels if lb.startswith("support"))
     w = 2 * np.pi * np.asarray(frequencies_hz, float)
     heavy = np.zeros(Q.shape[1], bool) if damping_ratios is None else np.asarray(damping_ratios) > KINETIC_DAMPING
+    # a root below RIGID_HZ is quasi-static for every elastic mode: its blades' deformation is their
+    # static response to its loads, as a heavily damped mode's, and its strain says nothing of what
+    # moves (the rotor-speed root, all of its kinetic energy in the rotor's rotation, had 80 % of its
+    # strain in the 1st flap collective on the IEA 22 MW shell at 6 m/s, 8 RPM, and passed for it)
+    heavy |= w < 2 * np.pi * RIGID_HZ
     ids: list[Identity] = []
     cols: list[np.ndarray] = []
     twins: list = []
