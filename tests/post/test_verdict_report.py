@@ -62,8 +62,12 @@ def test_verdict_levels_from_the_overspeed_search_alone():
     none["rotor_speed"] = none["rotor_speed"].copy(data=r)
     top = float(np.nanmax(r[1]))
     assert top < 16.0
+    # ... and, a sweep having ended below rated (or overspeed), so does the claim's scope: "none found"
+    # covers less than the turbine's range there
+    assert top < RATED_RPM
     assert headline(none).splitlines()[1] == (f"first instability: none found up to {top:.2f} RPM at every wind "
-                                              "speed (24.00 RPM at most; see the points' notes)")
+                                              "speed (24.00 RPM at most; see the points' notes), below rated "
+                                              f"{RATED_RPM:.2f} RPM: not searched up to it at every wind speed")
 
 
 @pytest.mark.parametrize("label, words", [

@@ -174,12 +174,19 @@ def _sweep_ends(ds: xr.Dataset | None) -> tuple[float, float]:
 
 
 def searched_text(v: Verdict) -> str:
-    """`` up to 14 RPM at every wind speed (22 RPM at most)`` (empty without sweeps)."""
+    """`` up to 14 RPM at every wind speed (22 RPM at most)`` (empty without sweeps); where a sweep
+    ended below overspeed (or rated), that too: "no instability found" then covers less than the
+    turbine's range (the IEA 22 MW shell's sweeps stop at 6.2-8 RPM, where its tip skin buckles,
+    below its 8.59 RPM overspeed)."""
     if not math.isfinite(v.searched_rpm):
         return ""
     text = f" up to {fmt.qty(v.searched_rpm, 'RPM')}"
     if math.isfinite(v.searched_max_rpm) and v.searched_max_rpm > v.searched_rpm + 1e-6:
         text += f" at every wind speed ({fmt.qty(v.searched_max_rpm, 'RPM')} at most; see the points' notes)"
+    short = next(((name, ref) for name, ref in (("rated", v.rated_rpm), ("overspeed", v.overspeed_rpm))
+                  if math.isfinite(ref) and v.searched_rpm < ref - 1e-6), None)
+    if short is not None:
+        text += f", below {short[0]} {fmt.qty(short[1], 'RPM')}: not searched up to it at every wind speed"
     return text
 
 
