@@ -47,9 +47,11 @@ MAX_TRIALS = 20
 #: the flutter search takes the followed mode's damping at the sweep point before its bracket as a
 #: sample for its first trial where that point has a mode of at least this MAC with it
 KNOWN_MAC = 0.9
-#: a mode's frequency does not change by this factor or more across one sweep step: two modes so far
-#: apart are not one mode's two ends, whatever their signatures' MAC (the IEA 22 MW shell's 4.72 Hz
-#: edge collective and the 0.009 Hz rotor-speed root, both mostly drivetrain motion: MAC 0.72)
+#: a mode's frequency in the rotating frame does not change by this factor or more across one sweep
+#: step: two modes so far apart are not one mode's two ends, whatever their signatures' MAC (the IEA
+#: 22 MW shell's 4.72 Hz edge collective and the 0.009 Hz rotor-speed root, both mostly drivetrain
+#: motion: MAC 0.72).  In the rotating frame, so that a backward whirl whose ground-fixed frequency
+#: passes near zero (its rotating one near the rotor speed) stays one mode
 SAME_MODE_RATIO = 2.0
 #: operating points (models and modes) kept by OperationalStability: the bracket of a root search
 #: and its last trial points
@@ -137,12 +139,16 @@ def _unstable_at_operating(ps, wind_speed: float, rpm: float) -> ModelError:
                        else "is likely"))
 
 
-def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
-    """The mode's rotating-frame frequency is (about) zero: ``omega_r = omega -+ Omega`` for FW/BW,
+def _rotating_frequency(mode, omega: float) -> float:
+    """The mode's damped frequency in the rotating frame (rad/s): ``|omega -+ Omega|`` for FW/BW,
     ``omega`` for collective (and non-blade) modes."""
     w = abs(mode.eigenvalue.imag)
-    w_r = {"FW": w - omega, "BW": w + omega}.get(mode.whirl, w)
-    return abs(w_r) < rel * max(omega, 1e-9)
+    return abs({"FW": w - omega, "BW": w + omega}.get(mode.whirl, w))
+
+
+def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
+    """The mode's rotating-frame frequency is (about) zero."""
+    return _rotating_frequency(mode, omega) < rel * max(omega, 1e-9)
 
 
 def _model_root(pts: dict, lo: float, hi: float, near: float) -> float:
@@ -400,7 +406,8 @@ class OperationalStability:
         A root whose rotating-frame frequency is about zero (a cyclic mode at the rotor speed in the
         ground-fixed frame, a collective one at zero) is the blades' static divergence seen from
         the ground, not flutter: left to the divergence search.  Two modes paired by their
-        signatures whose frequencies differ by :data:`SAME_MODE_RATIO` or more are not one mode.
+        signatures whose rotating-frame frequencies differ by :data:`SAME_MODE_RATIO` or more are not one
+        mode.
         """
         (ra, ma), (rb, mb) = prev, cur
         if not ma or not mb:
@@ -411,7 +418,7 @@ class OperationalStability:
             i = int(np.argmax(mac[:, j]))
             if not (m.damping_ratio < 0 <= ma[i].damping_ratio) or _static_image(m, rb * RPM):
                 continue
-            ratio = m.frequency_hz / max(ma[i].frequency_hz, 1e-300)
+            ratio = _rotating_frequency(m, rb * RPM) / max(_rotating_frequency(ma[i], ra * RPM), 1e-300)
             if not 1 / SAME_MODE_RATIO < ratio < SAME_MODE_RATIO:  # not the same mode: no crossing of one
                 continue
             ref = m.signature
