@@ -22,6 +22,7 @@ environment tunables, which then decide).
 from __future__ import annotations
 
 import ctypes
+import functools
 import os
 import sys
 
@@ -33,21 +34,16 @@ MMAP_THRESHOLD = 512 * 2**20
 TRIM_THRESHOLD = 2**31 - 1
 _M_TRIM_THRESHOLD, _M_MMAP_THRESHOLD = -1, -3  # glibc's malloc.h
 _USER_TUNABLES = ("MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_", "GLIBC_TUNABLES")
-_APPLIED: list[bool] = []
 
 
+@functools.cache
 def keep_freed_memory() -> bool:
     """Set the thresholds once per process; True where they are (now or before) set."""
-    if _APPLIED:
-        return _APPLIED[0]
-    ok = False
-    if sys.platform.startswith("linux") and not any(os.environ.get(v) for v in _USER_TUNABLES):
-        try:
-            mallopt = ctypes.CDLL(None).mallopt
-        except (OSError, AttributeError):  # no C library symbols, or not glibc (musl has no mallopt)
-            mallopt = None
-        if mallopt is not None:
-            mallopt.argtypes, mallopt.restype = (ctypes.c_int, ctypes.c_int), ctypes.c_int
-            ok = mallopt(_M_MMAP_THRESHOLD, MMAP_THRESHOLD) == 1 and mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD) == 1
-    _APPLIED.append(ok)
-    return ok
+    if not sys.platform.startswith("linux") or any(os.environ.get(v) for v in _USER_TUNABLES):
+        return False
+    try:
+        mallopt = ctypes.CDLL(None).mallopt
+    except (OSError, AttributeError):  # no C library symbols, or not glibc (musl has no mallopt)
+        return False
+    mallopt.argtypes, mallopt.restype = (ctypes.c_int, ctypes.c_int), ctypes.c_int
+    return mallopt(_M_MMAP_THRESHOLD, MMAP_THRESHOLD) == 1 and mallopt(_M_TRIM_THRESHOLD, TRIM_THRESHOLD) == 1

@@ -261,8 +261,8 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
     energy in their 1st flap shape (the shape with the largest base-motion participation) but little
     strain.  Each part's strain energy is ``sum_j omega_j^2 |a_j|^2`` over its own modes
     (frequencies ``omega_j``, mass-normalized amplitudes ``a_j``); the drivetrain's that of its shaft
-    spring; its rigid rotation (an identity only below :data:`RIGID_HZ`) counts with ``omega^2``
-    times its kinetic energy.  A heavily damped mode (70 % flap in operation) spreads its strain over
+    spring; its rigid rotation (an identity only below :data:`RIGID_HZ`, where every share is a
+    kinetic one, below) counts with its kinetic energy.  A heavily damped mode (70 % flap in operation) spreads its strain over
     neighbouring modes of its family (its quasi-static response to the aerodynamic load, weighted up by
     their stiffness): for modes damped above :data:`KINETIC_DAMPING` (``damping_ratios``) the shares are
     those of the modal kinetic energies ``|a_j|^2`` instead -- heavy aerodynamic damping is the blades'
@@ -298,7 +298,7 @@ def participations(ps, Q: np.ndarray, own: PointOwnModes | None, reference: Stru
         Md = 0.5 * (Md + Md.T)
         r = np.ones(len(dt))
         mr = r @ Md @ r
-        e_rig = np.where(heavy, 1.0, w**2) * np.abs((r @ Md @ qd) / mr) ** 2 * mr
+        e_rig = np.abs((r @ Md @ qd) / mr) ** 2 * mr  # kinetic: it counts only where ``heavy`` holds
         ids.append(Identity("rigid", 0))
         cols.append(np.where(w < 2 * np.pi * RIGID_HZ, e_rig, 0.0))
         if len(dt) > 1 and ps.fixed is not None:
