@@ -166,8 +166,8 @@ def mesh_settings(values: dict[str, Any], name=lambda key: key):
                                  "shell)")
     kw = dict(model=v["model"], part=v["part"], pitch=math.radians(v["pitch"]), azimuth=math.radians(v["azimuth"]),
               tower_model=v["tower_model"] or "shell")
-    kw.update({k: v[k] for k in ("n_chord", "n_span", "tip_closure", "element_length", "reference_surface")
-               if v[k] is not None})
+    kw.update({k: v[k] for k in ("n_chord", "n_span", "tip_closure", "element_length", "reference_surface",
+                                 "shell_shear") if v[k] is not None})
     return MeshSettings(**kw)
 
 

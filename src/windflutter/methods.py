@@ -41,6 +41,7 @@ def mesh_settings(config) -> dict:
         return out
     out["tip_closure"] = m.tip_closure
     out["reference_surface"] = m.reference_surface
+    out["shell_shear"] = m.shell_shear
     if m.n_aero_sections is None:
         if m.element_length is not None:
             out["element_length"] = m.element_length / d

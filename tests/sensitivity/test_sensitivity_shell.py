@@ -89,7 +89,9 @@ def test_iea15mw_regions_against_reanalyses():
     from windflutter.sensitivity.eigen import mode_vectors
     from windflutter.system.modes import point_modes
 
-    cfg = analysis_config(model={"type": "shell", "n_aero_sections": 12, "mesh_density": 0.5, "part": "rotor"})
+    # pyfe3d's one-point shear: the coarse blade's roots well separated (test_sensitivity_shell_cli.py)
+    cfg = analysis_config(model={"type": "shell", "n_aero_sections": 12, "mesh_density": 0.5, "part": "rotor",
+                                 "shell_shear": "one-point"})
     om = campbell_model(load_turbine("iea15mw"), cfg)
     ps = om.at(10.0)
     modes = point_modes(ps, 1.2)

@@ -204,14 +204,16 @@ def test_rigid_section_wing_flutter_distributions_converge_together():
     # interpolated field), an O(h^2) difference.  Refinement study (docs/aero_distribution.md):
     # gap 4.22, 1.01, 0.255, 0.064 m/s at n_span 4, 8, 16, 32 (ratio 4.0).  Checked here: the gap
     # shrinks by > 3x from 4 to 8 strips (2nd order gives 4) and both are within 1.5 % of the
-    # refined 425.8 m/s (Richardson extrapolation of the n_span = 16/32 results).
+    # refined 429.2 m/s (Richardson extrapolation of the n_span = 16/32 results; MITC4 shear.  With
+    # pyfe3d's one-point shear 423.8 m/s: 1.3 % lower on this 12-element section, which converges
+    # to the same limit around the section, 437.4 / 438.9 m/s at 24 and 441.3 / 442.0 at 36).
     v = {(n, d): wing_flutter(n, d) for n in (4, 8) for d in ("spline", "skin")}
     gap4 = abs(v[4, "skin"] - v[4, "spline"])
     gap8 = abs(v[8, "skin"] - v[8, "spline"])
     assert gap8 < gap4 / 3.0
     assert gap8 / v[8, "spline"] < 0.005
     for x in v.values():
-        assert abs(x - 425.8) / 425.8 < 0.015
+        assert abs(x - 429.2) / 429.2 < 0.015
 
 
 def test_deformable_sections_gap_is_the_local_skin_slope():

@@ -36,7 +36,9 @@ def test_cached_pattern_matches_scipy_on_moved_shell():
         assert A.shape == B.shape and A.has_sorted_indices
         assert abs(A - B).max() <= 1e-14 * scale  # summation order only
         assert (A != A.T).nnz == 0
-        assert A.nnz == B.nnz
+        # SciPy's sum drops the entries that cancel to exactly 0 (MITC4's shear on the unmoved tube),
+        # where the cached pattern keeps them with their round-off (the values are checked above)
+        assert A.nnz >= B.nnz
 
 
 def test_same_size_other_pattern_is_not_reused():

@@ -52,11 +52,12 @@ def test_a_round_off_share_is_no_second_participation():
 
 def test_the_rotor_speed_root_is_named_by_what_moves():
     """The IEA 22 MW shell (the seed's coarse mesh, to be quick) above its operating rotor speed at 6
-    and 8 m/s: the rotor-speed root (0.013 / 0.026 Hz, -64 / -78 % damped: the aerodynamic torque
-    rises with the rotor speed there, and no controller holds it) has 89-98 % of its kinetic energy
-    in the drivetrain's rotation (the mode's energy by block, :func:`windflutter.system.modes.classify`,
+    and 8 m/s: the rotor-speed root (0.012 / 0.024 Hz at 7 / 8.5 RPM, -56 / -60 % damped: the
+    aerodynamic torque rises with the rotor speed there, and no controller holds it) has 95-98 % of
+    its kinetic energy in the drivetrain's rotation (the mode's energy by block, :func:`windflutter.system.modes.classify`,
     not the naming's participations), while 80-86 % of its strain sat in the blades' 1st flap
-    collective, their quasi-static response: it was named "1st flap collective", not rigid, and a
+    collective (with pyfe3d's one-point shear, at 7 / 9 RPM), their quasi-static response: it was named
+    "1st flap collective", not rigid, and a
     stability sweep took it for a flutter onset (the IEA 22 MW shell at 6 m/s, "3rd edge collective +
     4th edge collective at 6.47 RPM", a false alarm).  Below RIGID_HZ the naming now uses kinetic
     shares: the root is the rigid rotation, never an instability."""
@@ -68,7 +69,7 @@ def test_the_rotor_speed_root_is_named_by_what_moves():
     om = OperationalModel(load_turbine("iea22mw"), OperationalOptions(model="shell", structure="deflected",
                                                                       mesh=dict(SEED_MESH)))
     seen = 0
-    for v, rpm in ((6.0, 7.0), (8.0, 9.0)):
+    for v, rpm in ((6.0, 7.0), (8.0, 8.5)):  # at 9 RPM this coarse blade's structure is far from stable
         ps = om.at(v, rpm=rpm, pitch=om.operating_point(v)[1])
         for m in point_modes(ps, max_hz=1.0):
             if m.frequency_hz < 0.15 and m.energy["drivetrain"] >= 0.85:

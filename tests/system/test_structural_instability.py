@@ -136,3 +136,22 @@ def test_a_structure_unstable_at_the_operating_point_is_refused_with_its_site(mo
     with pytest.raises(ModelError, match=r"statically unstable at the operating point \(11\.92 RPM\) without "
                                          r"aerodynamics: a mode largest at r/R = [01]\.\d\d -- a local buckling is likely$"):
         windflutter.stability("nrel5mw", [11.4], model={"part": "rotor"})
+
+
+@pytest.mark.slow
+def test_nrel5mw_shell_blade_has_no_hourglass_instability():
+    """The NREL 5 MW shell blade (the default mesh) deflected at 16 m/s and 30 RPM: with pyfe3d's
+    one-point transverse shear its full-order stiffness has one negative eigenvalue (-1.6e5 1/s^2,
+    91 % of its normal motion the elements' w-hourglass pattern, alternating node to node on a
+    chordwise line at r/R 0.65-0.8; docs/mesh.md "Transverse shear"), which stopped the sweeps at
+    14-18 m/s between 26 and 28 RPM; with MITC4's shear (the default) the stiffness is positive
+    definite and its lowest eigenvalue (35.6 1/s^2, the 1st flap) moves by 0.05 %.  About 80 s."""
+    from windflutter.methods import operational_options
+    from windflutter.system.operational import OperationalModel
+
+    negative = {}
+    for shear in ("one-point", "mitc4"):
+        cfg = windflutter.analysis_config(model={"type": "shell", "shell_shear": shear})
+        om = OperationalModel(windflutter.load_turbine("nrel5mw"), operational_options(cfg, "viscous"))
+        negative[shear] = om.at(16.0, rpm=30.0).blade_negative
+    assert negative == {"one-point": 1, "mitc4": 0}

@@ -214,6 +214,7 @@ SOLVER_FLAGS = (
          "along the span"),
     Flag("--part", "model.part"),
     Flag("--tip-closure", "model.tip_closure"),
+    Flag("--shell-shear", "model.shell_shear"),
     Flag("--reduction", "solver.reduction"),
     Flag("--basis-modes", "solver.basis_modes", metavar="N"),
     Flag("--n-tracked", "solver.n_tracked", metavar="N"),

@@ -21,7 +21,7 @@ MESH_PARTS = ("turbine", "blade", "tower", "rotor")
 #: the model every command builds unless told otherwise
 DEFAULT_MODEL = "beam"
 #: the options that only the shell model has
-SHELL_ONLY = ("n_chord", "tower_model", "tip_closure", "element_length", "reference_surface")
+SHELL_ONLY = ("n_chord", "tower_model", "tip_closure", "element_length", "reference_surface", "shell_shear")
 
 #: options of :func:`modes` and ``windflutter mesh`` (keyword -> check); the CLI flag of each is the
 #: keyword with ``--`` and ``-`` for ``_`` (``n_span`` is the config field ``model.n_aero_sections``)
@@ -39,10 +39,11 @@ MESH_OPTIONS: dict[str, Spec] = {
     "tip_closure": dataclasses.replace(field_spec("model.tip_closure"), nullable=True),
     "element_length": field_spec("model.element_length"),
     "reference_surface": dataclasses.replace(field_spec("model.reference_surface"), nullable=True),
+    "shell_shear": dataclasses.replace(field_spec("model.shell_shear"), nullable=True),
 }
 MESH_DEFAULTS: dict[str, Any] = {"part": "turbine", "model": DEFAULT_MODEL, "pitch": 0.0, "azimuth": 0.0,
                                  "n_chord": None, "n_span": None, "tower_model": None, "tip_closure": None,
-                                 "element_length": None, "reference_surface": None}
+                                 "element_length": None, "reference_surface": None, "shell_shear": None}
 
 #: the options of :func:`modes` besides the mesh
 MODES_OPTIONS: dict[str, Spec] = {

@@ -25,6 +25,7 @@ MODEL_TYPES = ("shell", "beam", "section")
 MODEL_PARTS = ("turbine", "rotor")
 TIP_CLOSURES = ("rib", "rigid", "open")
 REFERENCE_SURFACES = ("midsurface", "outer")
+SHELL_SHEAR_MODELS = ("mitc4", "one-point")
 #: beam blades: elements along the span unless told
 BEAM_SPAN_ELEMENTS = 30
 #: shell blades without an element length: the target length along the span is the blade length over
@@ -160,6 +161,10 @@ class ModelConfig:
                            "rib: the section keeps its shape in its plane, warping free), rigid (a rigid section) or "
                            "open (the skin's free edge; it buckles locally under the steady compression at overspeed, "
                            "docs/mesh.md)", choices=TIP_CLOSURES)
+    shell_shear: str = setting("mitc4", "choice", "shell models: the elements' transverse shear -- mitc4 (assumed "
+                           "covariant shear strains, Dvorkin and Bathe 1984: no spurious mode) or one-point (pyfe3d's "
+                           "Quad4 as it is, windflutter's element before Dec 2026: its hourglass mode turns unstable "
+                           "under compressive steady stress; docs/mesh.md)", choices=SHELL_SHEAR_MODELS)
     drivetrain: str = setting("flexible", "choice", "method p: flexible (shaft spring and generator inertia of the "
                           "turbine file), rigid (one rotor azimuth freedom) or locked (the rotor locked to the "
                           "nacelle, as the seed's model; pk and thesis always lock it)", choices=DRIVETRAINS)

@@ -9,8 +9,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from windflutter.config.declarations import (BEAM_SPAN_ELEMENTS, REFERENCE_SURFACES, SHELL_SPAN_ELEMENTS,
-                                             TIP_CLOSURES)
+from windflutter.config.declarations import (BEAM_SPAN_ELEMENTS, REFERENCE_SURFACES, SHELL_SHEAR_MODELS,
+                                             SHELL_SPAN_ELEMENTS, TIP_CLOSURES)
 from windflutter.errors import InputError, check_choice
 
 PARTS = ("turbine", "blade", "tower", "rotor", "rotor_blade", "support")
@@ -71,6 +71,10 @@ class MeshSettings:
         free), ``"rigid"`` (the whole section a rigid body, warping restrained) or ``"open"`` (no
         closure: the skin's free edge, whose thin, nearly flat tip section buckles locally under the
         steady compression at overspeed; docs/mesh.md).
+    shell_shear : the shells' transverse shear: ``"mitc4"`` (default; assumed covariant shear
+        strains, Dvorkin and Bathe 1984) or ``"one-point"`` (pyfe3d's Quad4 as it is, the element of
+        windflutter before Dec 2026: one-point shear, whose hourglass mode a compressive steady stress
+        turns unstable; docs/mesh.md).
     """
 
     model: str = "shell"
@@ -87,6 +91,7 @@ class MeshSettings:
     tip_closure: str = "rib"
     element_length: float | None = None
     reference_surface: str = "midsurface"
+    shell_shear: str = "mitc4"
 
     def __post_init__(self) -> None:
         check_choice("mesh.model", self.model, MODELS)
@@ -94,6 +99,7 @@ class MeshSettings:
         check_choice("mesh.tower_model", self.tower_model, MODELS)
         check_choice("mesh.tip_closure", self.tip_closure, TIP_CLOSURES)
         check_choice("mesh.reference_surface", self.reference_surface, REFERENCE_SURFACES)
+        check_choice("mesh.shell_shear", self.shell_shear, SHELL_SHEAR_MODELS)
         for name, lo in (("n_chord", 8), ("n_span", 2), ("n_web", 1), ("n_tower_circ", 8), ("n_tower_axial", 2)):
             v = getattr(self, name)
             if v is None and name in ("n_chord", "n_span"):

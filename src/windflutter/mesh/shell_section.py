@@ -75,7 +75,7 @@ def extruded_station(fe: FEModel, st: np.ndarray, on: np.ndarray, j: int, ref: n
     m = len(quads)
     prism = FEModel(nodes=nodes, shell_conn=cells, shell_prop=np.tile(np.asarray(fe.shell_prop)[row], rows),
                     shell_matdir=np.tile(np.asarray(fe.shell_matdir)[row], (rows, 1)),
-                    shell_properties=list(fe.shell_properties))
+                    shell_properties=list(fe.shell_properties), shell_shear=fe.shell_shear)
     assert prism.shell_conn.shape == (rows * m, 4)
     return prism, np.arange((rows + 1) * n).reshape(rows + 1, n)
 

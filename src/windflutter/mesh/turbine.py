@@ -97,6 +97,7 @@ def build_model(turbine, settings: MeshSettings | None = None):
         rot = [b.groups[f"blade{k}"] for k in blade_ids] + ([b.groups["hub"]] if "hub" in b.groups else [])
         b.groups["rotor"] = np.concatenate(rot).astype(np.int64)
     fe = b.fe_model()
+    fe.shell_shear = st.shell_shear
     fe.check()
     return fe, b.sections(turbine, fe.n_dof)
 

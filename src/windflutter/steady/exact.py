@@ -66,7 +66,9 @@ def centrifugal_loads(fe, omega: float, apex: np.ndarray, axis: np.ndarray, grou
 def _blocks(motion_map: sp.spmatrix):
     """(strip, node) pairs of a motion map and their 6x6 blocks ``W``."""
     mm = sp.coo_matrix(motion_map)
-    blocks, inv = np.unique(np.stack([mm.row // 6, mm.col // 6], axis=1), axis=0, return_inverse=True)
+    nodes = -(-mm.shape[1] // 6)  # one integer key a (strip, node) pair, in the same order as the pairs:
+    keys, inv = np.unique((mm.row // 6).astype(np.int64) * nodes + mm.col // 6, return_inverse=True)
+    blocks = np.stack([keys // nodes, keys % nodes], axis=1)  # a row-wise unique took 0.1 s a point
     W = np.zeros((len(blocks), 6, 6))
     np.add.at(W, (inv.ravel(), mm.row % 6, mm.col % 6), mm.data)
     return blocks, W

@@ -251,6 +251,9 @@ class FEModel:
         part, used for Coriolis/centrifugal terms).
     element_regions : named region id per element kind for plotting/exports, e.g.
         ``{"shell": (ns,) int}`` with names in ``region_names``.
+    shell_shear : the shells' transverse shear, ``"mitc4"`` (assumed covariant strains, default) or
+        ``"one-point"`` (pyfe3d's Quad4 as it is: one-point shear, with its hourglass mode);
+        :mod:`windflutter.structure.shell_shear`.
     """
 
     nodes: np.ndarray
@@ -270,6 +273,7 @@ class FEModel:
     node_groups: dict[str, np.ndarray] = field(default_factory=dict)
     element_regions: dict[str, np.ndarray] = field(default_factory=dict)
     region_names: list[str] = field(default_factory=list)
+    shell_shear: str = "mitc4"
 
     @property
     def n_nodes(self) -> int:
@@ -295,7 +299,7 @@ class FEModel:
         new[used] = np.arange(len(used))
         part = FEModel(nodes=np.asarray(self.nodes, float)[used], shell_conn=new[conn[keep]],
                        shell_prop=np.asarray(self.shell_prop)[keep], shell_matdir=np.asarray(self.shell_matdir)[keep],
-                       shell_properties=list(self.shell_properties))
+                       shell_properties=list(self.shell_properties), shell_shear=self.shell_shear)
         return part, new
 
     @property

@@ -17,6 +17,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.structure.fem import FEModel, IsotropicMaterial, OrthotropicMaterial, ShellProperty
+from windflutter.structure.shell_shear import SHEAR_MODELS, mitc4_correction
 
 
 def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
@@ -118,7 +119,10 @@ def _quad4_coo(fe: FEModel, mtype: int | None):
     probe = Quad4Probe()
     q = Quad4(probe)
     c6 = 6 * conn
-    cs = material_rotation(np.asarray(fe.nodes, dtype=float)[conn], matdir)
+    Xe = np.asarray(fe.nodes, dtype=float)[conn]
+    cs = material_rotation(Xe, matdir)
+    mitc4 = shear_model(fe) == "mitc4"
+    Ats, h = (np.zeros((ne, 2, 2)), np.zeros(ne)) if mitc4 else (None, None)
     for e in range(ne):
         q.c1, q.c2, q.c3, q.c4 = int(c6[e, 0]), int(c6[e, 1]), int(c6[e, 2]), int(c6[e, 3])
         q.init_k_KC0 = e * nk
@@ -131,14 +135,37 @@ def _quad4_coo(fe: FEModel, mtype: int | None):
         q.update_probe_xe(x)
         prop = props[pid[e]]
         q.update_KC0(Kr, Kc, Kv, prop)
+        if mitc4:  # the element's own transverse shear stiffness, for its MITC4 shear below
+            Ats[e] = prop.calc_Ats_element(np.degrees(np.arctan2(sn, c)))
+            h[e] = prop.h
         if mtype is not None:
             q.update_M(Mr, Mc, Mv, prop, mtype)
+    if mitc4 and ne:
+        _add_blocks(Kv, Kr, Kc, conn, mitc4_correction(Xe, Ats, h))
     if mtype is None:
         return (Kr, Kc, Kv), None
     if mtype == 1:  # lumped mass writes only the first 120 entries per element
         keep = (np.arange(ne * nm) % nm) < 120
         Mr, Mc, Mv = Mr[keep], Mc[keep], Mv[keep]
     return (Kr, Kc, Kv), (Mr, Mc, Mv)
+
+
+def shear_model(fe: FEModel) -> str:
+    """The shells' transverse shear formulation of ``fe``, checked (:data:`~windflutter.structure.
+    shell_shear.SHEAR_MODELS`)."""
+    if fe.shell_shear not in SHEAR_MODELS:
+        raise InputError("shell_shear", fe.shell_shear, f"one of {', '.join(SHEAR_MODELS)}")
+    return fe.shell_shear
+
+
+def _add_blocks(Kv: np.ndarray, Kr: np.ndarray, Kc: np.ndarray, conn: np.ndarray, D: np.ndarray) -> None:
+    """Add the (ne, 24, 24) element blocks ``D`` (global axes, DOFs node by node in ``conn``
+    order) to pyfe3d's triplet values ``Kv`` in place, entry by entry at pyfe3d's own positions."""
+    ne = conn.shape[0]
+    rows, cols = Kr.reshape(ne, -1), Kc.reshape(ne, -1)
+    li = np.argmax(rows[:, :, None] // 6 == conn[:, None, :], axis=2) * 6 + rows % 6
+    lj = np.argmax(cols[:, :, None] // 6 == conn[:, None, :], axis=2) * 6 + cols % 6
+    Kv += np.take_along_axis(D.reshape(ne, -1), li * 24 + lj, axis=1).ravel()
 
 
 def material_rotation(X: np.ndarray, matdir: np.ndarray) -> np.ndarray:

@@ -111,7 +111,8 @@ def _local_stiffness(fe: FEModel, Rf: np.ndarray, X: np.ndarray, cache: bool) ->
     the largest)."""
     conn = np.asarray(fe.shell_conn, dtype=np.int64)
     local = np.einsum("eij,enj->eni", Rf, X - X.mean(axis=1, keepdims=True))
-    key = (conn.tobytes(), np.asarray(fe.shell_prop, dtype=np.int64).tobytes(), tuple(fe.shell_properties))
+    key = (conn.tobytes(), np.asarray(fe.shell_prop, dtype=np.int64).tobytes(), tuple(fe.shell_properties),
+           fe.shell_shear)
     tol = 1e-9 * max(float(np.abs(local).max()), 1e-300)
     for k, loc, K in _KLOC if cache else ():
         if k == key and np.abs(loc - local).max() <= tol:
