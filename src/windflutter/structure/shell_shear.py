@@ -60,8 +60,9 @@ def _cartesian(J: np.ndarray, Bnat: np.ndarray) -> np.ndarray:
 
 
 def _energy(B: np.ndarray, C: np.ndarray, weight: np.ndarray) -> np.ndarray:
-    """``weight B^T C B`` per element (ne, 24, 24)."""
-    return np.einsum("e,eai,eab,ebj->eij", weight, B, C, B)
+    """``weight B^T C B`` per element (ne, 24, 24), batched matrix products (an einsum of the four
+    operands took 0.1 s a call on 4600 elements)."""
+    return np.matmul(np.swapaxes(B, 1, 2), weight[:, None, None] * np.matmul(C, B))
 
 
 def _shear_c(Ats: np.ndarray) -> np.ndarray:
