@@ -76,3 +76,30 @@ def test_command_line_errors_before_work(capsys, tmp_path):
     assert "--csv" in capsys.readouterr().err
     assert main(["beam-properties", "iea22mw", "--stations", "1"]) == 2
     assert main(["beam-properties", "iea22mw", "--element-length", "-1"]) == 2
+
+
+def test_a_station_whose_stiffness_reading_fails_keeps_its_mass(monkeypatch):
+    """``shell_blade_properties``: a station whose compliance reading is not usable (asymmetric) keeps
+    its own mass and twist and takes the stiffness interpolated between the usable stations (held
+    beyond the last); before, it was dropped whole, and the beam held the last usable station's mass
+    to the tip (the IEA 22 MW's two tip stations with MITC4's shear: its 2nd flap 8 % low).  A
+    synthetic table: four stations, the two outer ones unusable."""
+    import dataclasses
+
+    from windflutter.mesh import shell_beam
+    from windflutter.model.turbine import BeamProperties
+
+    s = np.array([0.1, 0.5, 0.8, 0.95])
+    K = np.array([np.diag(np.full(6, k)) for k in (8.0, 4.0, 2.0, 1.0)])
+    M = np.array([np.diag(np.full(6, m)) for m in (300.0, 200.0, 80.0, 20.0)])
+    beam = BeamProperties(s=s, stiffness=K, mass=M, twist=np.zeros(4), length=60.0, source="synthetic")
+    z = np.zeros((4, 2))
+    tab = shell_beam.ShellBeamTable(s=s, beam=beam, tension_centre=z, shear_centre=z, mass_centre=z,
+                                    clipped=np.zeros(4, bool), asymmetry=np.array([0.1, 0.1, 0.9, 14.0]))
+    monkeypatch.setattr(shell_beam, "shell_beam_table", lambda *a, **k: tab)
+    bp = shell_beam.shell_blade_properties(None, 4)
+    assert np.array_equal(bp.s, s) and np.array_equal(bp.mass, M)
+    np.testing.assert_allclose(bp.stiffness[:, 0, 0], [8.0, 4.0, 4.0, 4.0])
+    tab = dataclasses.replace(tab, asymmetry=np.array([0.1, 0.9, 0.1, 0.1]))  # an interior one: interpolated
+    bp = shell_beam.shell_blade_properties(None, 4)
+    np.testing.assert_allclose(bp.stiffness[:, 0, 0], [8.0, 8.0 + (2.0 - 8.0) * 0.4 / 0.7, 2.0, 1.0])
