@@ -84,14 +84,18 @@ def test_no_flutter_from_the_rotor_speed_root_in_a_sweep():
     (default mesh) paired the 4.72 Hz "3rd edge collective + 4th edge collective" at 6 RPM with the
     unstable rotor-speed root at 8 RPM (signature MAC 0.72), then searched its "damping" to 6.47 RPM,
     below rated (7.16), and the run's verdict read INSTABILITY BELOW RATED.  Every point of that search
-    has the edge mode at +4.5 % (checked point by point then).  Now the sweep finds no flutter before
-    the blade's structure loses static stability on its own (about 8 RPM, its tip panels), which it
-    reports instead.  About 70 s."""
+    has the edge mode at +4.5 % (checked point by point then).  Now no flutter below the overspeed
+    (8.59 RPM): with pyfe3d's one-point shear the sweep stopped where the blade's structure lost
+    static stability on its own (about 8 RPM: the elements' hourglass mode, docs/mesh.md); with
+    MITC4's shear it goes on to the 1st edge BW's flutter at 9.26 RPM (0.353 Hz), an elastic mode's
+    onset as the beam's (8.48 RPM at 10 m/s), not the rigid rotation's.  About 90 s."""
     import windflutter
     from windflutter import methods
 
     cfg = windflutter.analysis_config(model="shell")
     s = methods.stability_analysis(windflutter.load_turbine("iea22mw"), cfg, "viscous", "p")
     p = s.analyse_operating_point(6.0)
-    assert p.flutter_rpm is None, (p.flutter_rpm, p.flutter_mode)
-    assert "loses static stability on its own" in p.onset.reason
+    assert p.flutter_rpm is None or p.flutter_rpm > 8.59, (p.flutter_rpm, p.flutter_mode)
+    if p.flutter_rpm is not None:
+        assert "drivetrain" not in p.flutter_mode and "rigid" not in p.flutter_mode, p.flutter_mode
+        assert p.flutter_frequency_hz > 0.15, p.flutter_frequency_hz

@@ -159,8 +159,7 @@ class ModelConfig:
                                  choices=REFERENCE_SURFACES)
     tip_closure: str = setting("rib", "choice", "shell models: how each blade's end section is closed -- rib (a thin "
                            "rib: the section keeps its shape in its plane, warping free), rigid (a rigid section) or "
-                           "open (the skin's free edge; it buckles locally under the steady compression at overspeed, "
-                           "docs/mesh.md)", choices=TIP_CLOSURES)
+                           "open (the skin's free edge, windflutter's mesh until Dec 2026; docs/mesh.md)", choices=TIP_CLOSURES)
     shell_shear: str = setting("mitc4", "choice", "shell models: the elements' transverse shear -- mitc4 (assumed "
                            "covariant shear strains, Dvorkin and Bathe 1984: no spurious mode) or one-point (pyfe3d's "
                            "Quad4 as it is, windflutter's element before Dec 2026: its hourglass mode turns unstable "

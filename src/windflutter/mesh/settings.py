@@ -69,8 +69,8 @@ class MeshSettings:
     tip_closure : how a shell blade's end section is closed: ``"rib"`` (default; a thin rib, a
         :class:`~windflutter.structure.fem.Diaphragm` keeping the section's shape in its plane, warping
         free), ``"rigid"`` (the whole section a rigid body, warping restrained) or ``"open"`` (no
-        closure: the skin's free edge, whose thin, nearly flat tip section buckles locally under the
-        steady compression at overspeed; docs/mesh.md).
+        closure: the skin's free edge, whose thin, nearly flat tip section buckled under the steady
+        compression at overspeed with the one-point shear; docs/mesh.md).
     shell_shear : the shells' transverse shear: ``"mitc4"`` (default; assumed covariant shear
         strains, Dvorkin and Bathe 1984) or ``"one-point"`` (pyfe3d's Quad4 as it is, the element of
         windflutter before Dec 2026: one-point shear, whose hourglass mode a compressive steady stress
