@@ -17,7 +17,7 @@ import numpy as np
 
 from windflutter.errors import InputError
 from windflutter.structure.fem import FEModel, IsotropicMaterial, OrthotropicMaterial, ShellProperty
-from windflutter.structure.shell_shear import SHEAR_MODELS, mitc4_correction
+from windflutter.structure.shell_shear import SHEAR_MODELS, element_frames, mitc4_correction
 
 
 def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
@@ -196,13 +196,8 @@ def material_rotation(X: np.ndarray, matdir: np.ndarray) -> np.ndarray:
     X : (ne, 4, 3) node coordinates of each quad (m).
     matdir : (ne, 3) material direction vectors (any length).
     """
-    v13 = X[:, 2] - X[:, 0]
-    v42 = X[:, 1] - X[:, 3]
-    z = np.cross(v42, v13)
-    z /= np.linalg.norm(z, axis=1, keepdims=True)
-    ex = v13 + v42
-    ex /= np.linalg.norm(ex, axis=1, keepdims=True)
-    ey = np.cross(z, ex)
+    R, _ = element_frames(X)
+    ex, ey = R[:, 0], R[:, 1]
     md = np.asarray(matdir, dtype=float)
     a, b = np.sum(md * ex, axis=1), np.sum(md * ey, axis=1)
     normal = np.hypot(a, b) <= 1e-10 * np.maximum(np.linalg.norm(md, axis=1), 1e-300)
