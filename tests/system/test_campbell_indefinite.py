@@ -39,3 +39,27 @@ def test_an_indefinite_blade_at_an_operating_point_warns(monkeypatch):
     assert not none
     f = [m.frequency_hz for m in res.points[0].modes]
     np.testing.assert_array_equal(f, [m.frequency_hz for m in ref.points[0].modes])
+
+
+def test_an_aperiodic_root_at_a_buckled_point_is_the_structure_s():
+    """At a point whose blade structure is statically unstable on its own (a ``buckling`` mode there),
+    a root growing aperiodically (zeta <= -APERIODIC) is that instability, not an aeroelastic one: the
+    IEA 15 MW shell at 12 m/s with MITC4's shear named such a root "1st flap FW" (0.19 Hz, -78 %) and
+    the table read UNSTABLE.  An oscillating negative root there, and an aperiodic one at a point
+    without buckling, stay unstable."""
+    from types import SimpleNamespace
+
+    from windflutter.system.campbell import CampbellPoint, CampbellResult
+
+    def mode(name, zeta, family):
+        return SimpleNamespace(name=name, damping_ratio=zeta, family=family, rigid=False)
+
+    flap, edge = mode("1st flap FW", -0.78, "flap"), mode("2nd edge FW", -0.01, "edge")
+    buckled = CampbellPoint(12.0, 7.56, 3.6, [flap, edge, mode("blade structure unstable 9", -0.99, "buckling")])
+    clean = CampbellPoint(8.0, 5.7, 0.0, [mode("1st flap FW", -0.78, "flap")])
+    res = CampbellResult("T", "turbine", [buckled, clean])
+    bad = [(p.wind_speed, m.name) for p, m in res.unstable()]
+    assert bad == [(12.0, "2nd edge FW"), (8.0, "1st flap FW")]
+    assert [(p.wind_speed, m.name) for p, m in res.structure_unstable()] == [
+        (12.0, "1st flap FW"), (12.0, "blade structure unstable 9")]
+    assert res.least_damped()[0] is clean
