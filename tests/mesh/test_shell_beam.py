@@ -69,6 +69,11 @@ def test_beamdyn_file_reads_back_and_csv(iea22_table, tmp_path):
     write_csv(c, rows)
     lines = c.read_text().splitlines()
     assert len(lines) == len(rows) + 1 and lines[0].split(",")[0] == "s [-]" and len(lines[1].split(",")) == len(COLUMNS)
+    # the reading's check per station (a failed one is not used by the beam of the shell's blade)
+    from windflutter.mesh.shell_beam import usable_stations
+
+    assert lines[0].split(",")[-1] == "usable [-]"
+    assert [int(ln.split(",")[-1]) for ln in lines[1:]] == usable_stations(tab).astype(int).tolist()
 
 
 def test_command_line_errors_before_work(capsys, tmp_path):

@@ -46,7 +46,8 @@ def run(args: argparse.Namespace) -> int:
     from windflutter.errors import InputError  # noqa: PLC0415
     from windflutter.files import check_output_file, prepare_output_file  # noqa: PLC0415
     from windflutter.mesh.settings import MeshSettings  # noqa: PLC0415
-    from windflutter.mesh.shell_beam import shell_beam_table, table_rows, write_beamdyn_blade, write_csv  # noqa: PLC0415
+    from windflutter.mesh.shell_beam import (  # noqa: PLC0415
+        shell_beam_table, table_rows, usable_stations, write_beamdyn_blade, write_csv)
 
     v = command_values(args, FLAGS)
     for flag, path, ext in (("--csv", args.csv, (".csv",)), ("--beamdyn", args.beamdyn, (".dat", ".inp", ".txt"))):
@@ -67,14 +68,16 @@ def run(args: argparse.Namespace) -> int:
                                              ("EI_flap", "file_EI_flap"), ("EI_edge", "file_EI_edge"))]
         txt = " ".join("   -  " if not np.isfinite(x) else f"{x:+5.0%}" for x in ratio)
         print(f"{r['s']:6.3f} {r['mass']:9.1f} {r['EA']:9.3g} {r['GJ']:8.3g} {r['EI_flap']:8.3g} {r['EI_edge']:8.3g} "
-              f"{r['sc_flap']:+8.3f} {r['sc_edge']:+8.3f}   {txt}{'  (end)' if r['clipped'] else ''}")
+              f"{r['sc_flap']:+8.3f} {r['sc_edge']:+8.3f}   {txt}{'  (end)' if r['clipped'] else ''}"
+              f"{'' if r['usable'] else '  (reading failed: not used)'}")
     if args.csv:
         write_csv(prepare_output_file(args.csv), rows)
         print(f"wrote {args.csv}")
     if args.beamdyn:
-        keep = ~table.clipped
+        keep = ~table.clipped & usable_stations(table)
         if keep.sum() < 2:
-            raise InputError("--stations", v["stations"], "more stations (fewer than two away from the blade ends)")
+            raise InputError("--stations", v["stations"], "more stations (fewer than two usable ones away from the "
+                             "blade ends)")
         b = table.beam
         inner = dataclasses.replace(b, s=b.s[keep], stiffness=b.stiffness[keep], mass=b.mass[keep], twist=b.twist[keep])
         write_beamdyn_blade(prepare_output_file(args.beamdyn), inner, title=f"{turbine.name}: {b.source}")

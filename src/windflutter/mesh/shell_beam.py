@@ -202,12 +202,15 @@ COLUMNS = (("s", "-", "span fraction of the reference axis"), ("r", "m", "distan
            ("GA_flap", "N", "flapwise shear stiffness"), ("GA_edge", "N", "chordwise shear stiffness"),
            ("file_mass", "kg/m", "the turbine file's mass per length"), ("file_EA", "N", "the file's K[axial]"),
            ("file_GJ", "N m^2", "the file's K[torsion]"), ("file_EI_flap", "N m^2", "the file's flapwise K"),
-           ("file_EI_edge", "N m^2", "the file's edgewise K"), ("clipped", "-", "1: segment cut by a blade end"))
+           ("file_EI_edge", "N m^2", "the file's edgewise K"), ("clipped", "-", "1: segment cut by a blade end"),
+           ("usable", "-", "1: the stiffness reading passed its checks (positive definite, compliance asymmetry "
+                           "at most ASYMMETRY_LIMIT); 0: failed, not used by shell_blade_properties"))
 
 
 def table_rows(table: ShellBeamTable, file_beam: BeamProperties | None) -> list[dict]:
     """One dict per station with :data:`COLUMNS` (the file's columns NaN without a 6 x 6)."""
     out = []
+    ok = usable_stations(table)
     for i, s in enumerate(table.s):
         K, M = table.beam.stiffness[i], table.beam.mass[i]
         C = np.linalg.inv(K)
@@ -217,7 +220,8 @@ def table_rows(table: ShellBeamTable, file_beam: BeamProperties | None) -> list[
              "tc_flap": table.tension_centre[i, 0], "tc_edge": table.tension_centre[i, 1],
              "sc_flap": table.shear_centre[i, 0], "sc_edge": table.shear_centre[i, 1],
              "EA": K[0, 0], "GJ": 1.0 / C[3, 3], "EI_flap": Kb[1, 1], "EI_edge": Kb[0, 0],
-             "GA_flap": 1.0 / C[1, 1], "GA_edge": 1.0 / C[2, 2], "clipped": int(table.clipped[i])}
+             "GA_flap": 1.0 / C[1, 1], "GA_edge": 1.0 / C[2, 2], "clipped": int(table.clipped[i]),
+             "usable": int(ok[i])}
         f = {k: np.nan for k in ("file_mass", "file_EA", "file_GJ", "file_EI_flap", "file_EI_edge")}
         if file_beam is not None:
             Kf = np.array([np.interp(s, file_beam.s, file_beam.stiffness[:, a, b]) for a in range(6) for b in range(6)])
