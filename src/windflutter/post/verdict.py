@@ -176,8 +176,8 @@ def _sweep_ends(ds: xr.Dataset | None) -> tuple[float, float]:
 def searched_text(v: Verdict) -> str:
     """`` up to 14 RPM at every wind speed (22 RPM at most)`` (empty without sweeps); where a sweep
     ended below overspeed (or rated), that too: "no instability found" then covers less than the
-    turbine's range (the IEA 22 MW shell's sweeps stop at 6.2-8 RPM, where its tip skin buckles,
-    below its 8.59 RPM overspeed)."""
+    turbine's range (the IEA 22 MW shell's sweep at 10 m/s stops between 6.2 and 8 RPM, where its
+    blade structure alone loses stability, below its 8.59 RPM overspeed)."""
     if not math.isfinite(v.searched_rpm):
         return ""
     text = f" up to {fmt.qty(v.searched_rpm, 'RPM')}"

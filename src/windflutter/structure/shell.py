@@ -164,16 +164,17 @@ def _add_blocks(Kv: np.ndarray, Kr: np.ndarray, Kc: np.ndarray, conn: np.ndarray
     ne = conn.shape[0]
     rows, cols = Kr.reshape(ne, -1), Kc.reshape(ne, -1)
     dofs = (6 * conn[:, :, None] + np.arange(6)).reshape(ne, 24)
-    li, lj = _local_dof(rows[:1], conn[:1])[0], _local_dof(cols[:1], conn[:1])[0]
+    li, lj = element_local_dof(rows[:1], conn[:1])[0], element_local_dof(cols[:1], conn[:1])[0]
     if np.array_equal(dofs[:, li], rows) and np.array_equal(dofs[:, lj], cols):  # one layout: the first's
         Kv += D.reshape(ne, -1)[:, li * 24 + lj].ravel()
     else:
-        li, lj = _local_dof(rows, conn), _local_dof(cols, conn)
+        li, lj = element_local_dof(rows, conn), element_local_dof(cols, conn)
         Kv += np.take_along_axis(D.reshape(ne, -1), li * 24 + lj, axis=1).ravel()
 
 
-def _local_dof(dof: np.ndarray, conn: np.ndarray) -> np.ndarray:
-    """Each global DOF of ``dof`` (ne, m) as its element's local index (node in ``conn`` x 6 + component)."""
+def element_local_dof(dof: np.ndarray, conn: np.ndarray) -> np.ndarray:
+    """Each global DOF of ``dof`` (ne, m), one row an element's (pyfe3d's triplets of one element), as
+    its local index in that element (its node's place in ``conn`` x 6 + component)."""
     return np.argmax(dof[:, :, None] // 6 == conn[:, None, :], axis=2) * 6 + dof % 6
 
 

@@ -67,7 +67,8 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew
 from windflutter.structure.fem import FEModel
-from windflutter.structure.shell import check_quads, membrane_element_matrices, shell_frames, shell_kc0_coo
+from windflutter.structure.shell import (check_quads, element_local_dof, membrane_element_matrices, shell_frames,
+                                         shell_kc0_coo)
 
 __all__ = ["shell_element_forces", "shell_complete_kg", "rotate_element_forces"]
 
@@ -121,11 +122,8 @@ def _local_stiffness(fe: FEModel, Rf: np.ndarray, X: np.ndarray, cache: bool) ->
     Kr, Kc, Kv = shell_kc0_coo(fe)
     nk = Kr.size // ne
 
-    def local_index(dof):
-        pos = np.argmax((dof.reshape(ne, nk) // 6)[:, :, None] == conn[:, None, :], axis=2)
-        return 6 * pos + dof.reshape(ne, nk) % 6
-
-    flat = (np.arange(ne)[:, None] * 576 + 24 * local_index(Kr) + local_index(Kc)).ravel()
+    li, lj = (element_local_dof(dof.reshape(ne, nk), conn) for dof in (Kr, Kc))
+    flat = (np.arange(ne)[:, None] * 576 + 24 * li + lj).ravel()
     K = np.bincount(flat, weights=Kv, minlength=576 * ne).reshape(ne, 24, 24)
     B = np.zeros((ne, 8, 3, 8, 3))
     for k in range(8):
