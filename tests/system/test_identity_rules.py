@@ -6,7 +6,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from windflutter.system.identity import Identity, assign, name_record
+from windflutter.system.identity import Identity, assign, continues, name_record
 from windflutter.system.modes import ModeRecord
 
 IDS = [Identity("flap", 1, "collective"), Identity("rigid", 0), Identity("edge", 1, "BW")]
@@ -48,6 +48,27 @@ def test_a_round_off_share_is_no_second_participation():
                                                                  [("1st edge BW", 1.0)]]
     S = np.array([[0.999, 1e-6, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]])
     assert _named(S, heavy=False)[0].participation[1] == ("drivetrain rigid-body", 1e-6)
+
+
+def test_a_continued_name_leaves_a_mode_whose_content_another_mode_took():
+    """A veering spread over many wind speeds: the branch that carried the 1st torsion FW (index 0) has
+    become mostly 4th flap FW (index 1), its torsion share 0.05, while the other branch carries 25 %
+    torsion.  Continuation (MAC 0.95 to each branch's previous point) had kept the torsion's name on
+    the branch -- the IEA 22 MW shell's "1st torsion FW" at 4.08 Hz with 52 % 4th flap FW (10 m/s)
+    -- now the name goes to the mode that carries it (the old rule's totals: branch 0.89, content 0.85)."""
+    S = np.array([[0.25, 0.46],    # the lower branch: 4th flap FW before, now 25 % torsion
+                  [0.05, 0.52]])   # the upper branch: 1st torsion FW before, its torsion now 5 %
+    C = np.array([[0.2, 0.95],
+                  [0.95, 0.2]])
+    assert list(assign(S, C)) == [0, 1]
+    assert not continues(S, C)[1, 0] and continues(S, C)[0, 1]
+    # the same continuation kept the name while the content was not elsewhere (a fading part keeps
+    # its name: no other mode carries 10 % of it), and where the other mode carries more than the
+    # carrier's share but not four times it (hysteresis, the veering's middle)
+    assert list(assign(np.array([[0.05, 0.0], [0.0, 0.9]]), np.array([[0.95, 0.0], [0.0, 0.95]]))) == [0, 1]
+    S_mid = np.array([[0.25, 0.46], [0.1, 0.52]])
+    assert continues(S_mid, C)[1, 0] and list(assign(S_mid, C)) == [1, 0]
+    assert list(assign(S)) == [0, 1]  # without continuity: by content
 
 
 def test_the_rotor_speed_root_is_named_by_what_moves():
