@@ -15,7 +15,8 @@ from __future__ import annotations
 
 import numpy as np
 from windflutter.structure.labels import blade_motion_components, label_modes
-from windflutter.system.identity import frozen_blade_identities, identity_name
+from windflutter.system.identity import identity_name
+from windflutter.system.reference import StructuralReference
 
 __all__ = ["real_shapes", "mode_names", "has_torsion"]
 
@@ -65,3 +66,38 @@ def mode_names(fe, M, shapes: np.ndarray, frequencies: np.ndarray, sections, ref
 def has_torsion(name: str) -> bool:
     """A blade-torsion name (``"1st torsion asymmetric"``)."""
     return " torsion" in f" {name}" and "tower" not in name
+
+
+def frozen_blade_identities(sections, comps: np.ndarray, reference: StructuralReference) -> list:
+    """``(family, order, whirl)`` of each mode of a frozen-azimuth rotor model by its blades' strip
+    motion ``comps`` (3, ns, n: :func:`~windflutter.structure.labels.blade_motion_components` of the
+    whole model, strips tagged by ``sections.blade``): each blade's motion is expanded in the
+    reference modes' strip signatures (least squares), the reference mode with the largest summed
+    square amplitude over the blades names it (meant for structural modes, nearly pure: the strain
+    weighting of :func:`participations` would weight up the least-squares noise of the high
+    reference modes), and its blade amplitudes ``c_b`` give the whirl --
+    ``collective`` when the collective part carries more than half (``N mean(c)^2 > sum c^2 / 2``),
+    else ``asymmetric`` (a frozen azimuth has no whirl).  None for every mode when the blades' strips
+    do not match the reference's."""
+    blade = np.asarray(sections.blade)
+    nb = int(blade.max()) + 1 if blade.size else 0
+    w = np.sqrt(np.asarray(sections.width, float))
+    per = [np.flatnonzero(blade == b) for b in range(nb)]
+    if not nb or any(3 * len(ix) != reference.signatures.shape[0] for ix in per):
+        return [None] * comps.shape[-1]
+    # the lowest reference modes, at most one per strip: the fit stays three times overdetermined
+    R = reference.signatures[:, :len(per[0])]
+    C = []
+    for ix in per:
+        s = (comps[:, ix, :] * w[ix][None, :, None]).reshape(3 * len(ix), -1)
+        C.append(np.linalg.lstsq(R, s, rcond=None)[0])  # (n_ref, n)
+    C = np.stack(C)  # (nb, n_ref, n)
+    energy = np.sum(np.abs(C) ** 2, axis=0)
+    out = []
+    for i in range(comps.shape[-1]):
+        j = int(np.argmax(energy[:, i]))
+        c = C[:, j, i]
+        fam, order, _ = reference.blade[j]
+        whirl = "collective" if nb * abs(np.mean(c)) ** 2 > 0.5 * np.sum(np.abs(c) ** 2) else "asymmetric"
+        out.append((fam, order, whirl))
+    return out
