@@ -48,6 +48,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from windflutter.aero.compressibility import warn_compressible
 from windflutter.aero.flow import OperatingPoint, section_flow
 from windflutter.aero.momentum import axial_from_k, buhl_axial, high_thrust_model
 from windflutter.aero.sections import AeroSections, Polar, RotorGeometry
@@ -406,7 +407,8 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
     cone : each strip sees the normal wind projected on its own plane, ``V cos gamma_j`` with the
         local cone angle ``sin gamma_j = e_span . shaft`` (``normal_factor`` of
         :func:`bem_induction`; the coned BEM of a deflected blade); False (default): ``V``.
-    warn : warn when the result leaves momentum theory (:func:`warn_outside_momentum_theory`);
+    warn : warn when the result leaves momentum theory (:func:`warn_outside_momentum_theory`) or its
+        fastest strip the incompressible range (:func:`~windflutter.aero.compressibility.warn_compressible`);
         False for a caller that warns when it uses the result (a cache).
 
     The wind component normal to the rotor plane, ``V |wind . shaft|``, drives the momentum
@@ -437,6 +439,7 @@ def sections_induction(sections: AeroSections, rotor: RotorGeometry, wind_speed:
                         int(B), r_tip, r_hub, dr=dr / present, air_density=air_density, **kw)
     if warn:
         warn_outside_momentum_theory(res, float(wind_speed), float(omega))
+        warn_compressible(res.W, float(wind_speed), float(omega))
     return res
 
 

@@ -16,6 +16,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.sparse as sp
 
+from windflutter.aero.compressibility import warn_compressible
 from windflutter.aero.induction import sections_induction, warn_outside_momentum_theory
 from windflutter.aero.sections import AeroSections, RotorGeometry
 from windflutter.aero.strip import AeroOptions, OperatingPoint, StripAero, lift_drag_slopes
@@ -199,6 +200,7 @@ class AeroelasticModel:
                 pitch=self.pitch, air_density=self.air_density, high_thrust=self.high_thrust, warn=False)
         res = self._induction_cache[key]
         warn_outside_momentum_theory(res, float(wind_speed), float(omega_rot))
+        warn_compressible(res.W, float(wind_speed), float(omega_rot))
         return res
 
     def operating_point(self, wind_speed: float, omega_rot: float) -> OperatingPoint:
