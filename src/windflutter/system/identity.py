@@ -27,7 +27,8 @@ point, which fail at high pitch, high damping and strong coupling.
    shaft torsion.
 4. **Assignment**: the identities are given to the point's aeroelastic modes by the assignment of
    largest total share (Hungarian algorithm), so a name is used once per operating point, and a
-   crossing or veering keeps the names by participation.  A mode whose assigned identity carries less
+   crossing or veering keeps the names by participation; along a sweep continuation keeps a name on
+   its branch, but where modes exchange character it moves with the content (:func:`exchanges`).  A mode whose assigned identity carries less
    than :data:`MIXED_SHARE` of it is *mixed* and named by its two largest participations
    (``"2nd edge BW + 2nd tower side-side"``), not guessed.
 """
@@ -61,7 +62,7 @@ NO_SHARE = 1e-12
 #: signatures at least this) keeps that identity whatever its share (reported mixed, with its largest
 #: participation): a mode whose own part fades as it couples keeps its name, as HAWCStab2's
 #: continuation keeps it (the IEA 15 MW's tower torsion, 16-27 % damped at 16-25 m/s, its kinetic
-#: energy more and more the blades' flap)
+#: energy more and more the blades' flap) -- unless it moves in an exchange (:func:`exchanges`)
 CONTINUED_MAC = 0.8
 #: along a sweep, a continued own-mode name is given back to the reference (:func:`reanchor`) when
 #: another own mode resembles the name's reference mode (standstill shape) with a MAC of at least this
