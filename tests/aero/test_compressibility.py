@@ -34,7 +34,7 @@ def test_one_note_above_the_limit_with_its_rotor_speed():
 
 def test_the_note_starts_where_the_tip_passes_mach_half(nrel5mw):
     cfg = config_from_dict({"wind_speeds": [11.4], "model": {"type": "beam", "n_aero_sections": 12, "part": "rotor"},
-                            "rotor_speed": {"min_rpm": 4, "max_rpm": 40, "n_points": 10},
+                            "rotor_speed": {"min_rpm": 4, "max_rpm": 32, "n_points": 8},
                             "campbell": {"enabled": False}, "output": {"mode_shapes": False}})
     (point,) = plan_points(cfg)
     with warnings.catch_warnings():
