@@ -74,7 +74,7 @@ def frozen_blade_identities(sections, comps: np.ndarray, reference: StructuralRe
     whole model, strips tagged by ``sections.blade``): each blade's motion is expanded in the
     reference modes' strip signatures (least squares), the reference mode with the largest summed
     square amplitude over the blades names it (meant for structural modes, nearly pure: the strain
-    weighting of :func:`participations` would weight up the least-squares noise of the high
+    weighting of :func:`windflutter.system.identity.participations` would weight up the least-squares noise of the high
     reference modes), and its blade amplitudes ``c_b`` give the whirl --
     ``collective`` when the collective part carries more than half (``N mean(c)^2 > sum c^2 / 2``),
     else ``asymmetric`` (a frozen azimuth has no whirl).  None for every mode when the blades' strips

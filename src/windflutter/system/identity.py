@@ -28,9 +28,9 @@ point, which fail at high pitch, high damping and strong coupling.
 4. **Assignment**: the identities are given to the point's aeroelastic modes by the assignment of
    largest total share (Hungarian algorithm), so a name is used once per operating point, and a
    crossing or veering keeps the names by participation; along a sweep continuation keeps a name on
-   its branch, but where modes exchange character it moves with the content (:func:`exchanges`).  A mode whose assigned identity carries less
-   than :data:`MIXED_SHARE` of it is *mixed* and named by its two largest participations
-   (``"2nd edge BW + 2nd tower side-side"``), not guessed.
+   its branch, but where modes exchange character it moves with the content (:func:`exchanges`).  A
+   mode whose assigned identity carries less than :data:`MIXED_SHARE` of it is *mixed* and named by
+   its two largest participations (``"2nd edge BW + 2nd tower side-side"``), not guessed.
 """
 
 from __future__ import annotations
