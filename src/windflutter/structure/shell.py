@@ -15,9 +15,10 @@ import functools
 
 import numpy as np
 
-from windflutter.errors import InputError
+from windflutter.config.declarations import SHELL_SHEAR_MODELS
+from windflutter.errors import InputError, check_choice
 from windflutter.structure.fem import FEModel, IsotropicMaterial, OrthotropicMaterial, ShellProperty
-from windflutter.structure.shell_shear import SHEAR_MODELS, element_frames, mitc4_correction
+from windflutter.structure.shell_shear import element_frames, mitc4_correction
 
 
 def pyfe3d_shellprop(p: ShellProperty, index: int = 0):
@@ -151,11 +152,9 @@ def _quad4_coo(fe: FEModel, mtype: int | None):
 
 
 def shear_model(fe: FEModel) -> str:
-    """The shells' transverse shear formulation of ``fe``, checked (:data:`~windflutter.structure.
-    shell_shear.SHEAR_MODELS`)."""
-    if fe.shell_shear not in SHEAR_MODELS:
-        raise InputError("shell_shear", fe.shell_shear, f"one of {', '.join(SHEAR_MODELS)}")
-    return fe.shell_shear
+    """The shells' transverse shear formulation of ``fe``, checked (:data:`~windflutter.config.
+    declarations.SHELL_SHEAR_MODELS`)."""
+    return check_choice("shell_shear", fe.shell_shear, SHELL_SHEAR_MODELS)
 
 
 def _add_blocks(Kv: np.ndarray, Kr: np.ndarray, Kc: np.ndarray, conn: np.ndarray, D: np.ndarray) -> None:

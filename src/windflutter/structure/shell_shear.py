@@ -22,8 +22,6 @@ from __future__ import annotations
 
 import numpy as np
 
-from windflutter.config.declarations import SHELL_SHEAR_MODELS as SHEAR_MODELS  # noqa: F401 (re-exported)
-
 _XI = np.array([-1.0, 1.0, 1.0, -1.0])
 _ETA = np.array([-1.0, -1.0, 1.0, 1.0])
 _GP = np.array([-1.0, 1.0]) / np.sqrt(3.0)
