@@ -38,7 +38,7 @@ from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.results import Onset, PointSummary
 from windflutter.system.campbell import CampbellPoint, ambiguous, track_modes
-from windflutter.system.modes import point_modes, state_eig
+from windflutter.system.modes import point_modes, rotating_frequency, state_eig
 from windflutter.system.operational import OperationalModel, lowest_elastic, structural_margin
 
 RPM = math.pi / 30.0
@@ -139,16 +139,9 @@ def _unstable_at_operating(ps, wind_speed: float, rpm: float) -> ModelError:
                        else "is likely"))
 
 
-def _rotating_frequency(mode, omega: float) -> float:
-    """The mode's damped frequency in the rotating frame (rad/s): ``|omega -+ Omega|`` for FW/BW,
-    ``omega`` for collective (and non-blade) modes."""
-    w = abs(mode.eigenvalue.imag)
-    return abs({"FW": w - omega, "BW": w + omega}.get(mode.whirl, w))
-
-
 def _static_image(mode, omega: float, rel: float = 0.05) -> bool:
     """The mode's rotating-frame frequency is (about) zero."""
-    return _rotating_frequency(mode, omega) < rel * max(omega, 1e-9)
+    return rotating_frequency(mode, omega) < rel * max(omega, 1e-9)
 
 
 def _model_root(pts: dict, lo: float, hi: float, near: float) -> float:
@@ -418,7 +411,7 @@ class OperationalStability:
             i = int(np.argmax(mac[:, j]))
             if not (m.damping_ratio < 0 <= ma[i].damping_ratio) or _static_image(m, rb * RPM):
                 continue
-            ratio = _rotating_frequency(m, rb * RPM) / max(_rotating_frequency(ma[i], ra * RPM), 1e-300)
+            ratio = rotating_frequency(m, rb * RPM) / max(rotating_frequency(ma[i], ra * RPM), 1e-300)
             if not 1 / SAME_MODE_RATIO < ratio < SAME_MODE_RATIO:  # not the same mode: no crossing of one
                 continue
             ref = m.signature

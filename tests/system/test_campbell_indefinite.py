@@ -51,15 +51,42 @@ def test_an_aperiodic_root_at_a_buckled_point_is_the_structure_s():
 
     from windflutter.system.campbell import CampbellPoint, CampbellResult
 
-    def mode(name, zeta, family):
-        return SimpleNamespace(name=name, damping_ratio=zeta, family=family, rigid=False)
-
-    flap, edge = mode("1st flap FW", -0.78, "flap"), mode("2nd edge FW", -0.01, "edge")
-    buckled = CampbellPoint(12.0, 7.56, 3.6, [flap, edge, mode("blade structure unstable 9", -0.99, "buckling")])
-    clean = CampbellPoint(8.0, 5.7, 0.0, [mode("1st flap FW", -0.78, "flap")])
+    flap, edge = _mode("1st flap FW", -0.78, 0.19, "flap"), _mode("2nd edge FW", -0.01, 2.3, "edge")
+    buckled = CampbellPoint(12.0, 7.56, 3.6, [flap, edge, _mode("blade structure unstable 9", -0.99, 2.7, "buckling")])
+    clean = CampbellPoint(8.0, 5.7, 0.0, [_mode("1st flap FW", -0.78, 0.19, "flap")])
     res = CampbellResult("T", "turbine", [buckled, clean])
     bad = [(p.wind_speed, m.name) for p, m in res.unstable()]
     assert bad == [(12.0, "2nd edge FW"), (8.0, "1st flap FW")]
     assert [(p.wind_speed, m.name) for p, m in res.structure_unstable()] == [
         (12.0, "1st flap FW"), (12.0, "blade structure unstable 9")]
     assert res.least_damped()[0] is clean
+
+
+def _mode(name, zeta, f_hz, family, whirl="FW"):
+    """A mode record's fields the Campbell's verdict reads: damped frequency ``f_hz`` (Hz), ratio ``zeta``."""
+    from types import SimpleNamespace
+
+    w = 2 * np.pi * f_hz
+    lam = complex(-zeta * w / np.sqrt(1 - zeta**2), w)
+    return SimpleNamespace(name=name, damping_ratio=zeta, family=family, rigid=False, eigenvalue=lam, whirl=whirl)
+
+
+def test_a_root_static_in_the_rotating_frame_at_a_buckled_point_is_the_structure_s():
+    """The IEA 15 MW shell at 10 m/s (7.10 RPM, 0.1183 Hz): a "1st flap FW" at 0.1147 Hz, -28.9 % in the
+    ground-fixed frame, printed as UNSTABLE beside the buckled blade; in the rotating frame it is at
+    0.0036 Hz, growing aperiodically (-99.5 %): the buckled structure's static instability seen from the
+    ground.  The same root as BW (1.1 x the rotor speed in the rotating frame, oscillating), and an
+    oscillating FW root (-29 % at 0.6 Hz), stay aeroelastic; at a point without buckling so does the first."""
+    from windflutter.system.campbell import CampbellPoint, CampbellResult
+
+    rpm = 7.10
+    buckle = _mode("blade structure unstable 7", -0.9998, 5.52, "buckling")
+    static_fw = _mode("1st flap FW", -0.2894, 0.1147, "flap")
+    as_bw = _mode("1st flap BW", -0.2894, 0.1147, "flap", "BW")
+    oscillating = _mode("2nd flap FW", -0.29, 0.6, "flap")
+    res = CampbellResult("T", "turbine", [CampbellPoint(10.0, rpm, 0.0, [static_fw, as_bw, oscillating, buckle]),
+                                          CampbellPoint(8.0, rpm, 0.0, [_mode("1st flap FW", -0.2894, 0.1147, "flap")])])
+    assert [(p.wind_speed, m.name) for p, m in res.structure_unstable()] == [
+        (10.0, "1st flap FW"), (10.0, "blade structure unstable 7")]
+    assert [(p.wind_speed, m.name) for p, m in res.unstable()] == [
+        (10.0, "1st flap BW"), (10.0, "2nd flap FW"), (8.0, "1st flap FW")]

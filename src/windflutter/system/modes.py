@@ -131,6 +131,23 @@ class ModeRecord:
                 "participation_2": part[1][0], "participation_2_share": part[1][1]}
 
 
+def rotating_frequency(mode, omega: float) -> float:
+    """The mode's damped frequency in the rotating frame (rad/s): ``|w -+ Omega|`` for FW / BW
+    (``w = |Im lambda|``, the ground-fixed damped frequency; ``Omega`` = ``omega``, rad/s), ``w`` for
+    collective and non-blade modes."""
+    w = abs(mode.eigenvalue.imag)
+    return abs({"FW": w - omega, "BW": w + omega}.get(mode.whirl, w))
+
+
+def rotating_damping_ratio(mode, omega: float) -> float:
+    """``-Re lambda / |Re lambda + i w_r|`` with ``w_r`` the :func:`rotating_frequency`: the damping
+    ratio of the motion the blades see.  A root that is static in the rotating frame (a cyclic blade
+    mode growing without oscillating) shows in the ground-fixed frame at the rotor speed, with a
+    moderate ground-fixed damping ratio; here it is -1."""
+    s = float(mode.eigenvalue.real)
+    return -s / max(float(np.hypot(s, rotating_frequency(mode, omega))), 1e-300)
+
+
 def _block_energy(q: np.ndarray, M: np.ndarray, sl: slice) -> float:
     v = q[sl]
     return float(np.real(np.vdot(v, M[sl, sl] @ v))) if v.size else 0.0
