@@ -351,8 +351,8 @@ def _iterate(static: _Static, sections, rotor, V, omega, n_blades, rho, pitch, o
     if not options.strict:
         return u, aero, options.max_iterations, res, False
     raise ModelError(f"the steady state at V = {V:.4g} m/s, Omega = {omega:.4g} rad/s did not converge in "
-                     f"{options.max_iterations} iterations (last relative change {res:.3g} > tol {options.tol:g}); "
-                     "raise steady.max_iterations or lower steady.relaxation")
+                     f"{options.max_iterations} iterations (last relative change {res:.3g} > tol {options.tol:g}): "
+                     "no steady state found there (API: SteadyOptions max_iterations, relaxation)")
 
 
 def steady_state(fe, struct, sections: AeroSections, rotor_geometry: RotorGeometry, wind_speed: float,
@@ -447,6 +447,7 @@ def _exact(fe, struct, sections, rotor, u, point, options: SteadyOptions):
         raise ModelError(f"no co-rotational steady state at V = {V:.4g} m/s, Omega = {om:.4g} rad/s: {err}") from None
     if not ok and options.strict:
         raise ModelError(f"the co-rotational steady state at V = {V:.4g} m/s, Omega = {om:.4g} rad/s did not converge "
-                         f"in {options.max_iterations} iterations (last relative change {res:.3g} > tol {options.tol:g}); "
-                         "raise steady.max_iterations, or set steady corotational false")
+                         f"in {options.max_iterations} iterations (last relative change {res:.3g} > tol {options.tol:g}): "
+                         "no steady state found there (solver.corotational false: the linear structure's; API: "
+                         "SteadyOptions max_iterations)")
     return config, aero, f_aero, cf(config)[0], it, res, ok
