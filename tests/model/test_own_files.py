@@ -105,3 +105,29 @@ def test_wind_speed_outside_the_operating_curve_warns():
     ts.turbine = Stub()
     with pytest.warns(ValidityWarning, match="V = 2 m/s is outside"):
         assert ts.pitch_at(2.0) == 0.0
+
+
+def test_rated_rotor_speed_is_the_operating_curves_where_the_file_s_is_not_reached(tmp_path):
+    """One rated rotor speed per turbine: the IEA 22 MW's windIO control gives 7.162 RPM (its overview
+    table's "Maximum rotor speed"), the HAWCStab2 operating curve of its supplement runs at 7.0611 RPM above
+    rated (the last row of ``iea_22mw_rwt_hawc2.opt``, read here with numpy): the analyses run at the
+    curve's, so the margins to rated and overspeed refer to it, and a note says why.  An explicit
+    ``rated_rotor_speed_rpm`` in the supplement is kept; a file and curve that agree (IEA 15 MW, 7.56 and
+    7.559987 RPM) keep the file's."""
+    import numpy as np
+
+    from windflutter.units import RPM
+
+    opt = np.loadtxt(DATA / "iea22mw" / "iea_22mw_rwt_hawc2.opt", skiprows=1)
+    t = load_turbine("iea22mw")
+    assert t.rated_rotor_speed / RPM == pytest.approx(opt[:, 2].max(), rel=1e-12)
+    assert any("7.162 RPM is not reached" in n for n in t.notes)
+    assert load_turbine("iea15mw").rated_rotor_speed / RPM == 7.56
+    src = DATA / "turbines"
+    shutil.copy(src / "IEA-22-280-RWT.yaml", tmp_path)
+    supp = (src / "IEA-22-280-RWT.windflutter.yaml").read_text()
+    supp = supp.replace("../iea22mw/iea_22mw_rwt_hawc2.opt", str(DATA / "iea22mw" / "iea_22mw_rwt_hawc2.opt"))
+    (tmp_path / "IEA-22-280-RWT.windflutter.yaml").write_text(supp.replace("windflutter:\n", "windflutter:\n  rated_rotor_speed_rpm: 7.162\n", 1))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        assert load_turbine(str(tmp_path / "IEA-22-280-RWT.yaml")).rated_rotor_speed / RPM == pytest.approx(7.162)

@@ -158,6 +158,8 @@ def _curves_and_tables(turbine: Turbine, supp: dict, r: Reader, fdir: Path, file
     oc = r.mapping(supp, p, "operating_curve", default=None)
     if oc is not None:
         turbine = dataclasses.replace(turbine, operating_curve=_curve(oc, r, f"{p}.operating_curve", fdir, files))
+        if "rated_rotor_speed_rpm" not in supp:
+            turbine = _rated_from_curve(turbine)
     tw = r.mapping(supp, p, "tower", default=None)
     if tw is not None:
         turbine = _tower_override(turbine, tw, r, f"{p}.tower")
@@ -176,6 +178,27 @@ def _curves_and_tables(turbine: Turbine, supp: dict, r: Reader, fdir: Path, file
         bp = dataclasses.replace(bp, mass=bp.mass * f, source=f"{bp.source} x mass_factor {f}")
         turbine = dataclasses.replace(turbine, blade=dataclasses.replace(turbine.blade, beam=bp))
     return turbine
+
+
+#: a turbine file's rated rotor speed and its operating curve's maximum differing by more than this
+#: fraction: the curve's is the rated speed (the file's is then a controller limit the curve never reaches)
+RATED_MISMATCH = 0.005
+
+
+def _rated_from_curve(turbine: Turbine) -> Turbine:
+    """The rated rotor speed of a turbine given an operating curve by its supplement: the curve's
+    maximum, the speed every analysis runs at above rated, where the turbine file's value differs from
+    it by more than :data:`RATED_MISMATCH` (the IEA 22 MW: windIO's control maximum 7.162 RPM, its
+    HAWCStab2 operating curve 7.061 RPM), so that the margins "to rated" and "to overspeed" refer to
+    the rotor speed the turbine is analysed at; a note says so.  An explicit
+    ``rated_rotor_speed_rpm`` is kept."""
+    curve, rated = turbine.operating_curve, turbine.rated_rotor_speed
+    top = curve.rated_rotor_speed
+    if np.isfinite(rated) and abs(top - rated) <= RATED_MISMATCH * rated:
+        return turbine
+    note = (f"rated rotor speed {top / RPM:.4g} RPM: the operating curve's above rated"
+            + (f" (the turbine file's {rated / RPM:.4g} RPM is not reached on it)" if np.isfinite(rated) else ""))
+    return dataclasses.replace(turbine, rated_rotor_speed=float(top), notes=turbine.notes + (note,))
 
 
 def _damping(turbine: Turbine, supp: dict, r: Reader, notes: pl.Notes) -> Turbine:
