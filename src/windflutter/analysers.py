@@ -156,8 +156,7 @@ class TurbinePointAnalyser:
             self._size = {k: v for k, v in size.items() if k != "n_reduced_dof"}
         # the model size goes with each point (the reduced size may depend on its pitch), so
         # the run's attributes do not depend on which points this process computed
-        res = point_result(s, info=size,
-                           reason="; ".join(notes + ([s.onset.reason] if getattr(s.onset, "reason", "") else []))[:500])
+        res = point_result(s, info=size, reason=point_reason(notes, getattr(s.onset, "reason", "") or ""))
         if getattr(ts, "operating", None) is not None:  # the Campbell's case (keep_operating)
             limit = campbell_max_hz(self.config, ts.model)  # the Campbell's (the same model's reference)
             res.operating_system, ts.operating = campbell_point(*ts.operating, max_hz=limit), None
@@ -212,6 +211,24 @@ def operating_campbell(turbine: Any, config: AnalysisConfig, analyser: Any = Non
     model = case.model if case is not None else campbell_model(turbine, config)
     workers = min(int(workers), len(winds)) if model.options.model == "shell" else 1
     return service(turbine, config, winds, model=model, workers=workers, prepared=prepared)
+
+
+#: a point's ``reason`` (its validity notes and the search's own reason) is cut to this many characters
+MAX_REASON = 2000
+
+
+def point_reason(notes: list[str], onset: str = "") -> str:
+    """A point's ``reason``: its validity notes whole -- each ends with the rotor speed it was found
+    from (``[from 27.00 RPM]``), which the command's summary line reads back
+    (:func:`windflutter.cli.warn.gather_notes`) -- then the search's own reason (where and why its
+    sweep stopped), at most :data:`MAX_REASON` characters, the search's reason shortened first.  (A cut at
+    500 characters took the second of two notes' rotor speed, and the run's summary lost that note.)"""
+    head = "; ".join(notes)
+    if not onset:
+        return head[:MAX_REASON]
+    room = MAX_REASON - len(head) - (2 if head else 0)
+    tail = onset if len(onset) <= room else onset[:max(room - 3, 0)] + "..."
+    return ("; ".join([head, tail]) if head else tail)[:MAX_REASON]
 
 
 def _with_validity_notes(fn: Callable, *args, **kw):
