@@ -119,6 +119,8 @@ def test_cli_bad_workers_names_the_flag(tmp_path, capsys, bad):
     assert len(err.strip().splitlines()) == 1
 
 
+@pytest.mark.slow  # 10 s; the default suite's real runs on workers: workflow/test_campbell_from_map.py,
+# system/test_campbell_workers.py (the same model, serial = parallel); the toy runs below
 def test_nrel5mw_beam_two_workers_equal_serial(tmp_path):
     """Reduced real run through the CLI: bundled NREL 5 MW beam model (coarse: 10 strips and
     elements per blade, 15 modes per reference speed), two wind speeds, 4 rotor speeds; the
