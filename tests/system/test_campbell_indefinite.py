@@ -47,8 +47,6 @@ def test_an_aperiodic_root_at_a_buckled_point_is_the_structure_s():
     IEA 15 MW shell at 12 m/s with MITC4's shear named such a root "1st flap FW" (0.19 Hz, -78 %) and
     the table read UNSTABLE.  An oscillating negative root there, and an aperiodic one at a point
     without buckling, stay unstable."""
-    from types import SimpleNamespace
-
     from windflutter.system.campbell import CampbellPoint, CampbellResult
 
     flap, edge = _mode("1st flap FW", -0.78, 0.19, "flap"), _mode("2nd edge FW", -0.01, 2.3, "edge")

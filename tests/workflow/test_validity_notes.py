@@ -33,7 +33,6 @@ def test_validity_note_is_kept_with_the_point(nrel5mw):
     assert sum(issubclass(w.category, ValidityWarning) for w in shown) == 1
 
 
-
 def test_two_notes_and_a_stop_keep_both_rotor_speeds_for_the_summary():
     """The NREL 5 MW beam map (`make run`) at 4 m/s carries two validity notes (the Mach number, the BEM's
     propeller-brake state), at 22 m/s a note and the steady state's stop; a cut at 500 characters took the
