@@ -109,7 +109,7 @@ def search_settings(config):
     r = config.rotor_speed
     step = (r.max_rpm - r.min_rpm) / max(r.n_points - 1, 1)
     return SearchSettings(max_rpm=r.max_rpm, rpm_step=step, tolerance_rpm=r.tolerance_rpm,
-                          max_hz=config.campbell.max_hz, full_sweep=r.full_sweep)
+                          max_hz=config.campbell.max_hz, full_sweep=r.full_sweep, max_tip_mach=r.max_tip_mach)
 
 
 def turbine_options(config, aero: str, method: str):

@@ -34,6 +34,7 @@ import numpy as np
 import scipy.linalg as sla
 from scipy.optimize import brentq
 
+from windflutter.aero.compressibility import SPEED_OF_SOUND
 from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.results import Onset, PointSummary
@@ -63,13 +64,30 @@ class SearchSettings:
     """Rotor-speed sweep of method p: up to ``max_rpm`` (RPM) in steps of ``rpm_step`` from the
     operating rotor speed; onsets to ``tolerance_rpm``; modes up to ``max_hz`` (Hz; None: the
     model's default, :meth:`windflutter.system.reference.StructuralReference.default_max_hz`);
-    ``full_sweep`` False stops past both onsets."""
+    ``full_sweep`` False stops past both onsets; ``max_tip_mach`` (None: no bound) ends the sweep
+    where the tip's speed relative to the wind reaches this Mach number (:func:`tip_mach_rpm`)."""
 
     max_rpm: float = 40.0
     rpm_step: float = 2.0
     tolerance_rpm: float = 0.01
     max_hz: float | None = None
     full_sweep: bool = False
+    max_tip_mach: float | None = None
+
+
+#: the sweep's first and last steps are at least this fraction of a grid step: a grid point closer
+#: above the operating rotor speed is left out, one closer below the sweep's end (:meth:`top_rpm`) is
+#: replaced by the end
+MIN_STEP = 0.5
+
+
+def tip_mach_rpm(mach: float, tip_radius: float, wind_speed: float) -> float:
+    """The rotor speed (RPM) at which the blade tip's speed relative to the wind,
+    ``sqrt((Omega R)^2 + V^2)``, is ``mach`` times the speed of sound (the strips' own relative speeds
+    are a few per cent lower there: the fastest strip's centre lies inside ``R``, the tangential
+    induction is negative at overspeed).  0 where the wind alone is that fast."""
+    w = mach * SPEED_OF_SOUND
+    return math.sqrt(max(w * w - wind_speed * wind_speed, 0.0)) / tip_radius / RPM
 
 
 def blade_static_margin(ps) -> float:
@@ -257,13 +275,24 @@ class OperationalStability:
     def pitch_at(self, wind_speed: float) -> float:
         return self.model.operating_point(wind_speed)[1]
 
-    def grid(self, wind_speed: float, rpm_grid=None) -> np.ndarray:
-        """Rotor speeds (RPM): the operating one, then the grid above it."""
-        om_op = self.model.operating_point(wind_speed)[0] / RPM
+    def top_rpm(self, wind_speed: float) -> float:
+        """The sweep's end (RPM): ``max_rpm``, or below it where the tip reaches ``max_tip_mach``."""
         s = self.search
-        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), s.max_rpm + 1e-9, s.rpm_step) \
-            if rpm_grid is None else np.asarray(rpm_grid, float)
-        return np.concatenate([[om_op], g[g > om_op + 1e-9]])
+        if s.max_tip_mach is None:
+            return float(s.max_rpm)
+        return min(float(s.max_rpm), tip_mach_rpm(s.max_tip_mach, float(self.turbine.tip_radius), wind_speed))
+
+    def grid(self, wind_speed: float, rpm_grid=None) -> np.ndarray:
+        """Rotor speeds (RPM): the operating one, then the multiples of the step above it up to
+        :meth:`top_rpm`, which ends it; the first and last steps at least :data:`MIN_STEP` of a step."""
+        om_op = self.model.operating_point(wind_speed)[0] / RPM
+        if rpm_grid is not None:
+            g = np.asarray(rpm_grid, float)
+            return np.concatenate([[om_op], g[g > om_op + 1e-9]])
+        s, top = self.search, self.top_rpm(wind_speed)
+        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), top + 1e-9, s.rpm_step)
+        g = g[(g >= om_op + MIN_STEP * s.rpm_step) & (g < top - MIN_STEP * s.rpm_step)]
+        return np.concatenate([[om_op], g, [top]]) if top > om_op + 1e-9 else np.array([om_op])
 
     def _modes(self, wind_speed: float, rpm: float, pitch: float, previous=None, eig=None):
         """``(PointSystem, modes)`` at a rotor speed, the last :data:`POINT_CACHE` kept: the root

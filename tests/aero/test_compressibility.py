@@ -34,7 +34,7 @@ def test_one_note_above_the_limit_with_its_rotor_speed():
 
 def test_the_note_starts_where_the_tip_passes_mach_half(nrel5mw):
     cfg = config_from_dict({"wind_speeds": [11.4], "model": {"type": "beam", "n_aero_sections": 12, "part": "rotor"},
-                            "rotor_speed": {"min_rpm": 4, "max_rpm": 32, "n_points": 8},
+                            "rotor_speed": {"min_rpm": 4, "max_rpm": 32, "n_points": 8, "max_tip_mach": None},
                             "campbell": {"enabled": False}, "output": {"mode_shapes": False}})
     (point,) = plan_points(cfg)
     with warnings.catch_warnings():
@@ -46,3 +46,61 @@ def test_the_note_starts_where_the_tip_passes_mach_half(nrel5mw):
     assert above.size, "the sweep must pass the limit for the test to mean something"
     note = re.search(r"Mach number exceeds[^\[]*\[from ([0-9.]+) RPM\]", r.reason)
     assert note and float(note.group(1)) == pytest.approx(above[0], abs=0.005), (r.reason, grid)
+
+
+def _rotor_point(turbine, wind: float, **rotor_speed):
+    cfg = config_from_dict({"wind_speeds": [wind], "model": {"type": "beam", "part": "rotor"},
+                            "rotor_speed": rotor_speed, "campbell": {"enabled": False},
+                            "output": {"mode_shapes": False}})
+    (point,) = plan_points(cfg)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        return make_analyser(turbine, cfg)(point)
+
+
+@pytest.mark.parametrize("wind", [4.0, 25.0])
+def test_method_p_search_ends_before_the_strips_reach_mach_half(nrel5mw, wind):
+    """Method p's default search ends where the tip's speed relative to the wind, ``sqrt((Omega R)^2 +
+    V^2)``, reaches Mach 0.5 (``rotor_speed.max_tip_mach``): the strips' own relative speeds (the BEM's,
+    with induction, at the strips' centres inside the tip) stay below it -- no note up to the end -- and
+    reach it within 10 % above it: with the bound raised by 10 % the note appears between the two ends
+    (measured: the fastest strip 4-6 % slower than ``Omega R``: its centre inside the tip, the
+    tangential induction negative at overspeed).  Fails with a bound made on the diameter, without the
+    wind or in the wrong unit."""
+    r = _rotor_point(nrel5mw, wind)
+    grid = np.asarray(r.sweep_rpm)
+    top = math.sqrt((MACH_LIMIT * SPEED_OF_SOUND) ** 2 - wind**2) / 63.0 * 30 / math.pi
+    assert grid[-1] == pytest.approx(top, abs=1e-9) and "Mach" not in r.reason, (grid, r.reason)
+    steps = np.diff(grid)
+    assert 1.0 <= steps[0] <= 3.0 and 1.0 <= steps[-1] <= 3.0 and np.allclose(steps[1:-1], 2.0), grid
+    r = _rotor_point(nrel5mw, wind, max_tip_mach=1.1 * MACH_LIMIT)
+    note = re.search(r"Mach number exceeds[^\[]*\[from ([0-9.]+) RPM\]", r.reason)
+    assert note and top < float(note.group(1)) <= r.sweep_rpm[-1] + 1e-9, (r.sweep_rpm, r.reason)
+
+
+def test_without_the_bound_the_search_reaches_max_rpm(nrel5mw):
+    r = _rotor_point(nrel5mw, 11.4, max_rpm=30.0, max_tip_mach=None, full_sweep=True)
+    assert np.asarray(r.sweep_rpm)[-1] == pytest.approx(30.0) and "Mach" in r.reason
+
+
+@pytest.mark.parametrize("value, expected", [("none", None), ("0.6", 0.6)])
+def test_max_tip_mach_flag_reaches_the_config(value, expected):
+    from windflutter.cli import build_parser
+    from windflutter.cli.stability import options_from_args
+
+    args = build_parser().parse_args(["stability", "nrel5mw", "--max-tip-mach", value])
+    from windflutter.methods import search_settings
+
+    config, _ = options_from_args(args)
+    assert config.rotor_speed.max_tip_mach == expected and search_settings(config).max_tip_mach == expected
+
+
+def test_a_bad_max_tip_mach_names_the_flag():
+    from windflutter.cli import build_parser
+    from windflutter.cli.stability import options_from_args
+    from windflutter.errors import InputError
+
+    args = build_parser().parse_args(["stability", "nrel5mw", "--max-tip-mach", "0"])
+    with pytest.raises(InputError) as e:
+        options_from_args(args)
+    assert e.value.field == "--max-tip-mach" and "0.05" in str(e.value), str(e.value)

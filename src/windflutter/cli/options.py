@@ -183,8 +183,9 @@ def flag_error(exc: InputError, args: argparse.Namespace, flags: tuple[Flag, ...
 # --------------------------------------------------------------------------------------------
 # the flags shared by `run` and `stability` (each sets a config field)
 # --------------------------------------------------------------------------------------------
-#: config fields set by ``--rpm MIN MAX STEP``
-RPM_PATHS = {"rotor_speed.min_rpm": "--rpm", "rotor_speed.max_rpm": "--rpm", "rotor_speed.n_points": "--rpm"}
+#: config fields set by ``--rpm MIN MAX STEP`` and ``--max-tip-mach``
+RPM_PATHS = {"rotor_speed.min_rpm": "--rpm", "rotor_speed.max_rpm": "--rpm", "rotor_speed.n_points": "--rpm",
+             "rotor_speed.max_tip_mach": "--max-tip-mach"}
 #: output files of figures: the config's ``output.formats``
 PLOT_EXTENSIONS = tuple(f".{x}" for x in PLOT_FORMATS)
 
@@ -200,6 +201,17 @@ def rpm_flag(default: list | None = None) -> Flag:
                 help="rotor-speed grid (RPM): search range and step of the sweep (config rotor_speed.min_rpm, "
                      "max_rpm and n_points)")
 
+
+def _tip_mach(v: Any) -> dict:
+    none = isinstance(v, str) and v.strip().lower() in ("none", "null")
+    return {"rotor_speed": {"max_tip_mach": None if none else v}}
+
+
+#: ``--max-tip-mach M`` (``none``: no bound), beside ``--rpm`` in the commands that search
+TIP_MACH_FLAG = Flag("--max-tip-mach", metavar="M", to_config=_tip_mach,
+                     help="method p: the search also ends where the blade tip's speed relative to the wind reaches "
+                          "this Mach number (default 0.5, where the incompressible strips end; none: --rpm's MAX "
+                          "alone; config rotor_speed.max_tip_mach)")
 
 PHYSICS = Flag("--physics", spec=Spec("choice", choices=("full", "thesis"),
                                       doc="full: with the centrifugal stress stiffness K_sigma and the rigid-section "

@@ -12,7 +12,8 @@ import argparse
 import sys
 from pathlib import Path
 
-from windflutter.cli.options import RUN_FLAGS, SOLVER_FLAGS, Flag, add_flags, config_overrides, flag_error, rpm_flag
+from windflutter.cli.options import (RUN_FLAGS, SOLVER_FLAGS, TIP_MACH_FLAG, Flag, add_flags, config_overrides,
+                                     flag_error, rpm_flag)
 from windflutter.config import load_config
 from windflutter.errors import InputError
 
@@ -23,6 +24,7 @@ FLAGS = (
     Flag("--method", "method", nargs="+", help="override the search methods"),
     Flag("--model", "model.type", help="override the model type"),
     rpm_flag(),
+    TIP_MACH_FLAG,
 ) + SOLVER_FLAGS + RUN_FLAGS
 
 

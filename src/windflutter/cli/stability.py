@@ -12,8 +12,8 @@ from __future__ import annotations
 import argparse
 import json
 
-from windflutter.cli.options import (PLOT_EXTENSIONS, RPM_PATHS, SOLVER_FLAGS, Flag, add_flags, config_overrides,
-                                     flag_error, rpm_flag)
+from windflutter.cli.options import (PLOT_EXTENSIONS, RPM_PATHS, SOLVER_FLAGS, TIP_MACH_FLAG, Flag, add_flags,
+                                     config_overrides, flag_error, rpm_flag)
 from windflutter.errors import InputError
 
 FLAGS = (
@@ -23,6 +23,7 @@ FLAGS = (
          "aerodynamic states; pk, thesis: the seed's model)"),
     Flag("--model", "model.type", help="structural model (shell or beam)"),
     rpm_flag(default=[2.0, 40.0, 2.0]),
+    TIP_MACH_FLAG,
 ) + SOLVER_FLAGS
 
 

@@ -122,6 +122,11 @@ class RotorSpeedConfig:
                          upper_open=True, **_RPM)
     max_rpm: float = setting(40.0, "float", "upper end of the search; the onset is looked for in (min_rpm, max_rpm]",
                          lower=0.0, lower_open=True, upper=MAX_RPM, **_RPM)
+    max_tip_mach: float | None = setting(0.5, "float", "method p: the search also ends where the blade tip's speed "
+                                     "relative to the wind, sqrt((rotor speed x tip radius)^2 + V^2), reaches this "
+                                     "Mach number (340 m/s): above 0.5 the incompressible strips are outside their "
+                                     "range (docs/induction.md); null: max_rpm alone", lower=0.05, upper=3.0,
+                                     nullable=True, unit="-")
     n_points: int = setting(20, "int", "rotor speeds of the sweep (evenly spaced, ends included): the Campbell "
                         "diagram and the brackets of the onset search", lower=2, upper=MAX_GRID_POINTS)
     tolerance_rpm: float = setting(0.01, "float", "onset located to this rotor-speed tolerance; at most the sweep step",
