@@ -86,10 +86,13 @@ def run(args: argparse.Namespace) -> int:
         f"{'on' if s.rigid_sections else 'off'}")
     print(f"{turbine.name}: {config.model.type} model, {config.aero[0]} aero, {config.method[0]} search, "
           f"{physics} physics")
-    print(f"{'V (m/s)':>8} {'pitch':>6} {'flutter RPM':>12} {'f (Hz)':>7} {'divergence RPM':>15}  mode")
+    # "-": none up to where the sweep ended ("searched to": max_rpm, the tip-Mach bound, or a stop)
+    print(f"{'V (m/s)':>8} {'pitch':>6} {'flutter RPM':>12} {'f (Hz)':>7} {'divergence RPM':>15} "
+          f"{'searched to':>12}  mode")
     for p in points:
         fr = "-" if p.flutter_rpm is None else f"{p.flutter_rpm:.2f}"
         ff = "-" if p.flutter_frequency_hz is None else f"{p.flutter_frequency_hz:.3f}"
         dv = "-" if p.divergence_rpm is None else f"{p.divergence_rpm:.2f}"
-        print(f"{p.wind_speed:8.2f} {p.pitch_deg:6.2f} {fr:>12} {ff:>7} {dv:>15}  {p.flutter_mode or ''}")
+        end = f"{max(p.sweep_rpm):.2f}" if len(p.sweep_rpm) else "-"
+        print(f"{p.wind_speed:8.2f} {p.pitch_deg:6.2f} {fr:>12} {ff:>7} {dv:>15} {end:>12}  {p.flutter_mode or ''}")
     return 0
