@@ -1,5 +1,6 @@
 """The incompressible strips' range (aero/compressibility.py): a point whose sweep takes the blade's fastest
-strip above Mach 0.5 keeps a note from the rotor speed where it happens.
+strip above Mach 0.5 keeps a note from the rotor speed where it happens; method p's search ends at the tips'
+Mach 0.5 by default (``rotor_speed.max_tip_mach``, overspeed.py), checked against the strips' own speeds.
 
 Independent reference: the rotor's geometry.  The fastest strip moves at about ``Omega R`` (its radius a
 little inside the tip radius R, its inflow ``sqrt((Omega r (1 + a'))^2 + (V (1 - a))^2)``), so on a grid
