@@ -102,3 +102,34 @@ def table(rows: list[dict], cols: list[str]) -> None:
     print("  ".join("-" * w[i] for i in range(len(cols))))
     for x in cells:
         print("  ".join(x[i].ljust(w[i]) for i in range(len(cols))))
+
+
+def map_rows(solver, winds, **label) -> list[dict]:
+    """Method p's onsets (``solver.analyse_operating_point``) at each wind speed of ``winds``, with
+    the CPU and wall time of each and the full operating points it evaluated (``OperationalModel.at``
+    counted: sweep points, refined steps' middles, root-search trials); ``label``: columns added to
+    every row.  Meant for a benchmark case's child process (:func:`isolated`): the count patches
+    ``OperationalModel.at`` for the rest of the process."""
+    import warnings
+
+    from windflutter.system import operational
+
+    count = {"n": 0}
+    orig = operational.OperationalModel.at
+
+    def at(self, *a, **k):
+        count["n"] += 1
+        return orig(self, *a, **k)
+
+    operational.OperationalModel.at = at
+    rows = []
+    for V in winds:
+        count["n"] = 0
+        c0, t0 = time.process_time(), time.perf_counter()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            p = solver.analyse_operating_point(V)
+        rows.append(dict(**label, wind=V, cpu=time.process_time() - c0, wall=time.perf_counter() - t0,
+                         evaluations=count["n"], end=float(max(p.sweep_rpm)), flutter=p.flutter_rpm,
+                         mode=p.flutter_mode, freq=p.flutter_frequency_hz, divergence=p.divergence_rpm))
+    return rows

@@ -17,12 +17,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
-import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _benchutil import header, isolated, table  # noqa: E402
+from _benchutil import header, isolated, map_rows, table  # noqa: E402
 
 TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 
@@ -30,31 +28,11 @@ TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 def run(model: str, tip_mach, winds: list[float]) -> list[dict]:
     import windflutter
     from windflutter import methods
-    from windflutter.system import operational
 
-    count = {"n": 0}
-    orig = operational.OperationalModel.at
-
-    def at(self, *a, **k):
-        count["n"] += 1
-        return orig(self, *a, **k)
-
-    operational.OperationalModel.at = at
     t = windflutter.load_turbine("nrel5mw")
     cfg = windflutter.analysis_config(model=model, rotor_speed={"max_tip_mach": tip_mach})
     solver = methods.stability_analysis(t, cfg, cfg.aero[0], "p")
-    rows = []
-    for V in winds:
-        count["n"] = 0
-        c0, t0 = time.process_time(), time.perf_counter()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            p = solver.analyse_operating_point(V)
-        rows.append(dict(case="to 40 RPM [baseline]" if tip_mach is None else f"to tip Mach {tip_mach:g}", wind=V,
-                         cpu=time.process_time() - c0, wall=time.perf_counter() - t0, evaluations=count["n"],
-                         end=float(max(p.sweep_rpm)), flutter=p.flutter_rpm, mode=p.flutter_mode,
-                         divergence=p.divergence_rpm))
-    return rows
+    return map_rows(solver, winds, case="to 40 RPM [baseline]" if tip_mach is None else f"to tip Mach {tip_mach:g}")
 
 
 def _kept(old: float | None, new: float | None, end: float) -> bool:

@@ -16,12 +16,10 @@ from __future__ import annotations
 
 import argparse
 import sys
-import time
-import warnings
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _benchutil import header, isolated, table  # noqa: E402
+from _benchutil import header, isolated, map_rows, table  # noqa: E402
 
 TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 
@@ -29,32 +27,13 @@ TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 def run(model: str, search: str, winds: list[float]) -> list[dict]:
     import windflutter
     from windflutter import methods
-    from windflutter.system import operational
 
-    count = {"n": 0}
-    orig = operational.OperationalModel.at
-
-    def at(self, *a, **k):
-        count["n"] += 1
-        return orig(self, *a, **k)
-
-    operational.OperationalModel.at = at
     t = windflutter.load_turbine("nrel5mw")
     cfg = windflutter.analysis_config(model=model)
     aero = cfg.aero[0] if isinstance(cfg.aero, (list, tuple)) else cfg.aero
     solver = methods.stability_analysis(t, cfg, aero, "p")
     solver.root_search = search
-    rows = []
-    for V in winds:
-        count["n"] = 0
-        c0, t0 = time.process_time(), time.perf_counter()
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore")
-            p = solver.analyse_operating_point(V)
-        rows.append(dict(search=search, wind=V, cpu=time.process_time() - c0, wall=time.perf_counter() - t0,
-                         evaluations=count["n"], flutter=p.flutter_rpm, mode=p.flutter_mode,
-                         freq=p.flutter_frequency_hz, divergence=p.divergence_rpm))
-    return rows
+    return map_rows(solver, winds, search=search)
 
 
 def _diff(a, b):
