@@ -133,3 +133,15 @@ def map_rows(solver, winds, **label) -> list[dict]:
                          evaluations=count["n"], end=float(max(p.sweep_rpm)), flutter=p.flutter_rpm,
                          mode=p.flutter_mode, freq=p.flutter_frequency_hz, divergence=p.divergence_rpm))
     return rows
+
+
+def map_arguments(argv, doc: str, winds: list[float]) -> tuple[str, list[float]]:
+    """``(model, wind speeds)`` of a map benchmark's command line: ``--wind V ...`` (default ``winds``)
+    and ``--beam`` (the beam model instead of the shell)."""
+    import argparse
+
+    ap = argparse.ArgumentParser(description=doc.splitlines()[0])
+    ap.add_argument("--wind", type=float, nargs="+", default=list(winds))
+    ap.add_argument("--beam", action="store_true", help="the beam model instead of the shell")
+    args = ap.parse_args(argv)
+    return ("beam" if args.beam else "shell"), args.wind

@@ -15,12 +15,11 @@ baseline below the bound must be the bounded search's (same mode, the rotor spee
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _benchutil import header, isolated, map_rows, table  # noqa: E402
+from _benchutil import header, isolated, map_arguments, map_rows, table  # noqa: E402
 
 TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 
@@ -44,14 +43,10 @@ def _kept(old: float | None, new: float | None, end: float) -> bool:
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--wind", type=float, nargs="+", default=[14.0, 22.0])
-    ap.add_argument("--beam", action="store_true", help="the beam model instead of the shell")
-    args = ap.parse_args(argv)
-    model = "beam" if args.beam else "shell"
-    header(f"bench_search_range: NREL 5 MW {model}, method p, the search's end", wind=args.wind)
-    base = isolated(run, model, None, args.wind)[0]
-    new = isolated(run, model, 0.5, args.wind)[0]
+    model, winds = map_arguments(argv, __doc__, [14.0, 22.0])
+    header(f"bench_search_range: NREL 5 MW {model}, method p, the search's end", wind=winds)
+    base = isolated(run, model, None, winds)[0]
+    new = isolated(run, model, 0.5, winds)[0]
     ok = all(_kept(a["flutter"], b["flutter"], b["end"]) and _kept(a["divergence"], b["divergence"], b["end"])
              and (b["flutter"] is None or a["mode"] == b["mode"]) for a, b in zip(base, new))
     exact = ("flutter", "divergence")

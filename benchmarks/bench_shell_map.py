@@ -14,12 +14,11 @@ onsets and their differences (RPM; they must agree within the search's tolerance
 
 from __future__ import annotations
 
-import argparse
 import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _benchutil import header, isolated, map_rows, table  # noqa: E402
+from _benchutil import header, isolated, map_arguments, map_rows, table  # noqa: E402
 
 TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 
@@ -41,13 +40,9 @@ def _diff(a, b):
 
 
 def main(argv=None) -> int:
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("--wind", type=float, nargs="+", default=[10.0, 22.0])
-    ap.add_argument("--beam", action="store_true", help="the beam model instead of the shell")
-    args = ap.parse_args(argv)
-    model = "beam" if args.beam else "shell"
-    header(f"bench_shell_map: NREL 5 MW {model}, method p, root searches", wind=args.wind)
-    res = {s: isolated(run, model, s, args.wind)[0] for s in ("brent", "smooth")}
+    model, winds = map_arguments(argv, __doc__, [10.0, 22.0])
+    header(f"bench_shell_map: NREL 5 MW {model}, method p, root searches", wind=winds)
+    res = {s: isolated(run, model, s, winds)[0] for s in ("brent", "smooth")}
     rows, ok = [], True
     for old, new in zip(res["brent"], res["smooth"]):
         new["d_flutter"], new["d_divergence"] = _diff(new["flutter"], old["flutter"]), _diff(new["divergence"],
