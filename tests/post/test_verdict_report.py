@@ -70,6 +70,20 @@ def test_verdict_levels_from_the_overspeed_search_alone():
                                               f"{RATED_RPM:.2f} RPM: not searched up to it at every wind speed")
 
 
+def test_sweeps_ending_within_two_per_cent_searched_one_range():
+    """Method p's sweeps end on the tips' Mach 0.5, 1 % lower at 25 m/s than at 4 m/s (the wind adds to the
+    tip's speed): "none found up to" the lower end, without sending the reader to notes the points do not
+    have; a sweep ending 3 % lower still does (the test above: a stop)."""
+    for factor, spread in ((0.99, False), (0.97, True)):
+        none = synthetic_run(flutter_rpm=(float("nan"), float("nan")))
+        r = none["rotor_speed"].values.copy()
+        r[1, np.nanargmax(r[1])] *= factor
+        none["rotor_speed"] = none["rotor_speed"].copy(data=r)
+        line = headline(none).splitlines()[1]
+        assert line.startswith(f"first instability: none found up to {24.0 * factor:.2f} RPM"), line
+        assert ("at most; see the points' notes" in line) == spread, line
+
+
 @pytest.mark.parametrize("label, words", [
     ("flap-edge b3 r/R=1.00", "flap-edge, blade 3"),
     ("torsion b2 r/R=0.60", "torsion, blade 2, peak at r/R 0.60"),
