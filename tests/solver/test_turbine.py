@@ -64,3 +64,13 @@ def test_stability_cli_table_says_where_each_sweep_ended(capsys):
     head = next(i for i, x in enumerate(lines) if "searched to" in x)
     row = lines[head + 1].split()
     assert float(row[0]) == 10.0 and abs(float(row[5]) - 25.72) < 0.005, lines
+
+
+@pytest.mark.slow
+def test_full_turbine_beam_map(nrel5mw):
+    # whole turbine (tower, nacelle, hub), 20 elements per blade, 4-25 m/s: onsets above rated
+    ts = TurbineStability(nrel5mw, TurbineOptions(model="beam", min_rpm=10, max_rpm=40, rpm_step=2,
+                                                  mesh={"n_span": 20}))
+    for v in (4.0, 10.0, 25.0):
+        p = ts.analyse_operating_point(v)
+        assert p.flutter_rpm is None or p.flutter_rpm > 12.1
