@@ -90,10 +90,9 @@ def test_without_the_bound_the_search_reaches_max_rpm(nrel5mw):
 def test_max_tip_mach_flag_reaches_the_config(value, expected):
     from windflutter.cli import build_parser
     from windflutter.cli.stability import options_from_args
-
-    args = build_parser().parse_args(["stability", "nrel5mw", "--max-tip-mach", value])
     from windflutter.methods import search_settings
 
+    args = build_parser().parse_args(["stability", "nrel5mw", "--max-tip-mach", value])
     config, _ = options_from_args(args)
     assert config.rotor_speed.max_tip_mach == expected and search_settings(config).max_tip_mach == expected
 
