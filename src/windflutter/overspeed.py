@@ -290,7 +290,7 @@ class OperationalStability:
             g = np.asarray(rpm_grid, float)
             return np.concatenate([[om_op], g[g > om_op + 1e-9]])
         s, top = self.search, self.top_rpm(wind_speed)
-        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), top + 1e-9, s.rpm_step)
+        g = np.arange(s.rpm_step * math.floor(om_op / s.rpm_step + 1), top, s.rpm_step)
         g = g[(g >= om_op + MIN_STEP * s.rpm_step) & (g < top - MIN_STEP * s.rpm_step)]
         return np.concatenate([[om_op], g, [top]]) if top > om_op + 1e-9 else np.array([om_op])
 
