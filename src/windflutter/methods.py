@@ -89,7 +89,7 @@ def operational_options(config, aero: str):
                               deflection=bool(s.deflection), corotational=bool(s.corotational), structure=structure, induction=bool(s.induction),
                               high_thrust=s.high_thrust, damping=config.damping.model,
                               tower_damping=config.damping.tower_ratio,
-                              air_density=config.air_density)
+                              air_density=config.air_density, aero_state_tol=s.aero_state_tol)
 
 
 def resolved_structure(config) -> str:

@@ -248,6 +248,10 @@ class SolverConfig:
     n_lag: int = setting(4, "int", "method p, circulation rfa: lag poles of the Roger fit", lower=1, upper=8)
     dynamic_stall: bool = setting(False, "bool", "method p: the separation-point lag of Oye's dynamic-stall model "
                               "(one more state per strip)")
+    aero_state_tol: float | None = setting(1e-7, "float", "method p: each blade's aerodynamic lag states reduced by "
+                                       "balanced truncation -- Hankel singular values below this fraction of the "
+                                       "largest dropped, their static part kept; null: every state (the reference)",
+                                       lower=1e-14, upper=1.0, upper_open=True, nullable=True, unit="-")
 
 
 @dataclass(frozen=True)

@@ -222,12 +222,12 @@ def global_derivatives(om, ps, mvs: list[ModeVectors], names, models: dict | Non
 def changed_strips_point(om, ps, strips, s: float, Phi="nominal"):
     """The point ``ps`` rebuilt with the blade's strips changed by ``strips(sections, s)`` (the
     deflected blade's and the steady state's alike), the steady state held; ``Phi`` the blade basis
-    (default the point's; None: recomputed)."""
+    (default the point's; None: recomputed); the aerodynamic states reduced as the point's."""
     rb, st = ps.blade, ps.steady
     rb2 = RotorBlade(rb.fe, rb.struct, strips(rb.sections, s), rb.apex, rb.axis, damping=rb.damping)
     st2 = None if st is None else dataclasses.replace(st, sections=strips(st.sections, s))
     return om.assemble_point(rb2, st2, ps.ksigma, ps.klink, ps.wind_speed, ps.omega, ps.pitch, tip_frame=ps.tip_frame,
-                             Phi=ps.Phi if isinstance(Phi, str) else Phi)
+                             Phi=ps.Phi if isinstance(Phi, str) else Phi, aero_projection=ps.aero_projection)
 
 
 def _fixed_derivative(mv: ModeVectors, ps, plus, minus, h: float) -> complex:

@@ -120,6 +120,8 @@ def mode_kick(dyn, turbine, name: str, wind_speed: float, pitch_deg: float | Non
     q, v = mode_state(ps, mode, dyn.T, dyn.b.fe.n_nodes, dyn.g.labels)
     phase = -0.5 * np.angle(np.sum(q * q))  # the real part of e^{i phase} q is the largest
     q, v = q * np.exp(1j * phase), v * np.exp(1j * phase)
+    if q.real[np.argmax(np.abs(q.real))] < 0:  # the sign fixed (the largest component positive), not the
+        q, v = -q, -v                          # eigen-solver's: a record's start transient adds to either
     size = _largest_translation(dyn, q.real)
     if not size > 0:
         raise InputError("--kick", name, "a mode with a translation of a blade or support node")

@@ -36,7 +36,8 @@ from windflutter.steady.geometry import pitching_frames
 from windflutter.structure.assembly import assemble
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
-from windflutter.system.blade_aero import blade_system, project_blade_aero, quasi_steady_blocks
+from windflutter.system.blade_aero import (balanced_projection, blade_system, project_blade_aero, quasi_steady_blocks,
+                                           reduced_blade_system)
 from windflutter.system.blade_basis import BladeBasis
 from windflutter.system.damping import (blade_damping_matrix, blade_mu, shell_modal_damping, support_modal_damping,
                                         tower_ratios)
@@ -103,6 +104,9 @@ class PointSystem:
     #: linearized with (what :meth:`OperationalModel.assemble_point` takes)
     ksigma: object = field(default=None, repr=False)
     klink: np.ndarray | None = field(default=None, repr=False)
+    #: the reduction of the blade's aerodynamic states in ``blade_system`` and ``mbc``
+    #: (:class:`~windflutter.system.blade_aero.AeroStateProjection`), None: every state
+    aero_projection: object = field(default=None, repr=False)
 
 
 def lowest_elastic(K: np.ndarray, M: np.ndarray) -> float:
@@ -368,12 +372,14 @@ class OperationalModel:
         return self.assemble_point(rb, st, ksig, klink, wind_speed, omega, pitch, tip_frame=tip_frame)
 
     def assemble_point(self, rb: RotorBlade, st, ksig, klink, wind_speed: float, omega: float, pitch: float, *,
-                       tip_frame=None, Phi=None) -> PointSystem:
+                       tip_frame=None, Phi=None, aero_projection=None) -> PointSystem:
         """The :class:`PointSystem` of the blade ``rb`` linearized about the steady state ``st`` (its
         full-numbering initial-stress matrix ``ksig`` and hub-link term ``klink``) on this model's
         support, hub and drivetrain: the second half of :meth:`at`.  ``Phi``: the blade basis to use
-        (None: computed at the point).  Design sensitivities (:mod:`windflutter.sensitivity`) call it
-        with a blade or a support of changed data and the steady state held fixed."""
+        (None: computed at the point); ``aero_projection`` the reduction of the blade's aerodynamic
+        states to use (None: the options' ``aero_state_tol`` at the point).  Design sensitivities
+        (:mod:`windflutter.sensitivity`) call it with a blade or a support of changed data, the steady
+        state held fixed and the nominal point's basis and projection (the same coordinates)."""
         blocks, strip_P = self._aero_blocks(rb, st, wind_speed, omega)
         negative = None
         if Phi is None:
@@ -386,12 +392,17 @@ class OperationalModel:
             B = rb.basis_full(Phi)
             aero = project_blade_aero(blocks, strip_P @ B, strip_P @ (rb.St @ B), omega)
         blade = blade_system(M, C, K, aero)
+        tol = self.options.aero_state_tol
+        if blade.n_states and (aero_projection is not None or tol is not None):
+            aero_projection = aero_projection or balanced_projection(blade, tol)
+            blade = reduced_blade_system(blade, aero_projection)
         ff = fixed_frame(self.support(), self.hub_mass(), self.rotor.shaft_axis, self.drivetrain())
         mbc = multiblade_system(ff, blade, self.n_blades, omega, self.rotor.shaft_axis)
         return PointSystem(wind_speed=float(wind_speed), omega=omega, pitch=pitch, mbc=mbc, blade=rb, Phi=Phi,
                            support=self.support(), steady=st, n_blades=self.n_blades, labels=ff.labels,
                            blade_system=blade, blade_structure=(M, K), blade_negative=negative, blade_damping=C,
-                           fixed=ff, tip_frame=tip_frame, reference=self.reference(), ksigma=ksig, klink=klink)
+                           fixed=ff, tip_frame=tip_frame, reference=self.reference(), ksigma=ksig, klink=klink,
+                           aero_projection=aero_projection)
 
     # -- pieces ------------------------------------------------------------------------------
     def _prestress(self, rb: RotorBlade, st, omega: float):

@@ -67,6 +67,9 @@ class OperationalOptions:
     tower_damping : modal damping ratio (-) of every tower mode in place of the files' ratios
         (``None``: the files'; e.g. to match another code's tower model).
     air_density : kg/m^3.
+    aero_state_tol : each blade's aerodynamic lag states reduced by balanced truncation, Hankel
+        singular values below this fraction of the largest dropped, their static part kept
+        (:func:`~windflutter.system.blade_aero.balanced_projection`); ``None``: every state (the reference).
     """
 
     model: str = "beam"
@@ -86,6 +89,7 @@ class OperationalOptions:
     damping: str = "file"
     tower_damping: float | None = None
     air_density: float = 1.225
+    aero_state_tol: float | None = None
 
     def __post_init__(self):
         check_choice("model", self.model, ("beam", "shell"))
@@ -106,5 +110,7 @@ class OperationalOptions:
                 raise InputError(name, v, "a positive number of modes, or None (full order)")
         if not (np.isfinite(self.air_density) and self.air_density > 0):
             raise InputError("air_density", self.air_density, "a positive density (kg/m^3)")
+        if self.aero_state_tol is not None and not (np.isfinite(self.aero_state_tol) and 0 < self.aero_state_tol < 1):
+            raise InputError("solver.aero_state_tol", self.aero_state_tol, "a relative cut-off in (0, 1), or null (every state)")
         if self.tower_damping is not None and not (np.isfinite(self.tower_damping) and 0 <= self.tower_damping < 1):
             raise InputError("damping.tower_ratio", self.tower_damping, "a damping ratio in [0, 1) or null")
