@@ -16,6 +16,7 @@ session): the shell map in 2 min 5 s - 2 min 25 s").
 from __future__ import annotations
 
 import numpy as np
+import scipy.sparse as sp
 
 from windflutter.solve import symmetric  # module access: tests patch symmetric.refine_modes
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
@@ -28,19 +29,24 @@ DENSE_BASIS_LIMIT = 1500
 SINGULAR_MASS = 1e-10
 
 
-def dense_modes(K: np.ndarray, M: np.ndarray, n: int) -> np.ndarray:
-    """The ``n`` lowest modes of a small blade (dense ``K``, ``M``).  A singular mass (massless DOFs:
-    the drilling rotations of a coarse shell) takes the inverted form ``M v = mu K v``, whose finite
-    roots are the blade's modes; ``eigh(K, M)`` would return round-off modes of the massless DOFs.
-    A stiffness that is not positive definite (a coarse shell's panel buckled under the steady
-    stress) keeps the ordinary form."""
+def dense_pairs(K: np.ndarray, M: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The ``n`` lowest eigenpairs ``(w2, V)`` of a small blade (dense ``K``, ``M``).  A singular mass
+    (massless DOFs: the drilling rotations of a coarse shell) takes the inverted form ``M v = mu K v``,
+    whose finite roots are the blade's modes; ``eigh(K, M)`` would return round-off modes of the
+    massless DOFs.  A stiffness that is not positive definite (a coarse shell's panel buckled under
+    the steady stress) keeps the ordinary form."""
     m = np.linalg.eigvalsh(0.5 * (M + M.T))
     if m[0] < SINGULAR_MASS * max(m[-1], 1e-300):
         try:
-            return symmetric_eigs(K, M, n, inverted=True)[1]
+            return symmetric_eigs(K, M, n, inverted=True)
         except np.linalg.LinAlgError:  # the inverted form needs K positive definite (a buckled panel
             pass                       # under steady stress is not): the ordinary form, as before
-    return symmetric_eigs(K, M, n)[1]
+    return symmetric_eigs(K, M, n)
+
+
+def dense_modes(K: np.ndarray, M: np.ndarray, n: int) -> np.ndarray:
+    """The ``n`` lowest modes of a small blade (:func:`dense_pairs`)."""
+    return dense_pairs(K, M, n)[1]
 
 
 #: large blades: modes computed beyond the wanted ones, the guard of the next point's subspace
@@ -48,6 +54,30 @@ def dense_modes(K: np.ndarray, M: np.ndarray, n: int) -> np.ndarray:
 #: its frequency to about 1e-4, the low modes far better)
 GUARD_MODES = 10
 MODES_TOL = 1e-2
+
+
+#: blades below this many free DOFs (beams) get their clamped modes from a dense eigen-solve; above
+#: (coarse shells too) a Lanczos run of 40 modes is faster (as :func:`~windflutter.solve.reduction.
+#: structural_modes` does)
+DENSE_CLAMPED_LIMIT = 600
+
+
+def clamped_modes(struct, k: int) -> tuple[np.ndarray, np.ndarray]:
+    """The ``k`` lowest modes ``(w2, X)`` of an assembled blade's clamped pencil ``(Kr, Mr)`` (its
+    reduced coordinates; dense below :data:`DENSE_CLAMPED_LIMIT` DOFs, above shift-invert Lanczos from a
+    fixed start vector), computed once per structure and kept on it: the blade's reference modes
+    (:func:`~windflutter.system.reference.blade_reference`) and a shell blade's modal damping
+    (:func:`~windflutter.system.damping.shell_modal_damping`) are read from them, and every wind
+    speed's first shell-blade basis is refined from them.  A larger ``k`` than kept computes them again."""
+    cache = struct.__dict__.get("_clamped_modes")
+    if cache is None or cache[1].shape[1] < k:
+        Kr, Mr = sp.csc_matrix(struct.Kr), sp.csc_matrix(struct.Mr)
+        if Kr.shape[0] < DENSE_CLAMPED_LIMIT:
+            cache = dense_pairs(Kr.toarray(), Mr.toarray(), k)
+        else:
+            cache = symmetric_eigs(Kr, Mr, k, shift=0.0, opinv=symmetric.spd_operator(Kr), v0=np.ones(Kr.shape[0]))
+        struct.__dict__["_clamped_modes"] = cache
+    return cache[0][:k], cache[1][:, :k]
 
 
 class BladeBasis:
@@ -68,9 +98,15 @@ class BladeBasis:
         #: None not known (a small blade's dense basis holds its lowest modes, negative ones included)
         self.negative: int | None = None
 
-    def restart(self) -> None:
-        """Forget the last modes: the next large-blade basis is computed from scratch."""
+    def restart(self, struct=None) -> None:
+        """Forget the last modes: the next large-blade basis is refined from the clamped modes of
+        ``struct`` (the undeformed blade at rest, :func:`clamped_modes`: the same start whatever ran
+        before), or computed from scratch without it."""
         self.start = None
+        n = self.n_modes
+        if struct is not None and n is not None and struct.Kr.shape[0] > DENSE_BASIS_LIMIT:
+            p = min(n + GUARD_MODES, struct.Kr.shape[0] - 2)
+            self.start = clamped_modes(struct, p)[1]
 
     def __call__(self, rb, omega: float, ksigma, blocks, strip_P):
         """The basis of the :class:`~windflutter.system.blade.RotorBlade` ``rb`` at ``omega`` (rad/s)

@@ -32,7 +32,7 @@ from dataclasses import replace
 import numpy as np
 import scipy.sparse as sp
 
-from windflutter.solve.symmetric import spd_operator
+from windflutter.system.blade_basis import clamped_modes
 from windflutter.structure.assembly import assemble_matrices
 from windflutter.structure.modal import split_directions, symmetric_eigs
 
@@ -215,9 +215,9 @@ def shell_modal_damping(fe, struct, sections, mu: np.ndarray | None,
     if mu is None:
         return None
     mu = np.asarray(mu, float)
-    Kr, Mr = sp.csc_matrix(struct.Kr), sp.csc_matrix(struct.Mr)
-    k = int(min(n_modes, Kr.shape[0] - 2))
-    w2, X = symmetric_eigs(Kr, Mr, k, shift=0.0, opinv=spd_operator(Kr), v0=np.ones(Kr.shape[0]))
+    Mr = sp.csc_matrix(struct.Mr)
+    k = int(min(n_modes, Mr.shape[0] - 2))
+    w2, X = clamped_modes(struct, k)
     X = X / np.sqrt(np.einsum("im,im->m", X, Mr @ X))
     Phi = np.asarray(struct.T @ X)
     w = np.sqrt(np.maximum(w2, 0.0))

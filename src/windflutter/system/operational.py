@@ -454,10 +454,13 @@ class OperationalModel:
         return self._basis(rb, omega, ksig, blocks, strip_P)
 
     def restart_modes(self) -> None:
-        """Compute the next shell-blade modes from scratch (:meth:`BladeBasis.restart`): called at
+        """Start the next shell-blade modes afresh (:meth:`BladeBasis.restart`): called at
         the start of each wind speed of a stability map, so that its onsets do not depend on which
-        points a worker ran before (they differ by about 1e-7 RPM otherwise)."""
-        self._basis.restart()
+        points a worker ran before (they differ by about 1e-7 RPM otherwise): a shell blade's from its
+        clamped modes at rest (:func:`~windflutter.system.blade_basis.clamped_modes`, kept with the
+        blade since its modal damping was built on them), which a sweep's first point refines in a few
+        block solves instead of a Lanczos run from scratch."""
+        self._basis.restart(self._blade0()[1] if self.options.model == "shell" else None)
 
 
 def _support_basis(st, n_modes: int) -> np.ndarray:

@@ -14,9 +14,9 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from windflutter.solve.reduction import structural_modes
 from windflutter.structure.labels import blade_motion_components, wall_waves
-from windflutter.structure.modal import split_directions, symmetric_eigs
+from windflutter.structure.modal import mass_normalize, split_directions, symmetric_eigs
+from windflutter.system.blade_basis import clamped_modes
 
 #: the blade's reference modes: its lowest this many standstill modes
 REFERENCE_MODES = 24
@@ -80,10 +80,9 @@ def blade_reference(struct, sections) -> StructuralReference:
     standstill (``struct``: its assembled, root-clamped :class:`~windflutter.structure.assembly.
     Structural`), named and with their strip signatures."""
 
-    K, M = struct.Kr, struct.Mr
-    basis = structural_modes(0.5 * (M + M.T), 0.5 * (K + K.T), min(REFERENCE_MODES, K.shape[0] - 1))
-    f = basis.omega / (2 * np.pi)
-    comps = blade_motion_components(sections, np.asarray(struct.T @ basis.Phi))
+    w2, X = clamped_modes(struct, min(REFERENCE_MODES, struct.Kr.shape[0] - 2))  # shared with the damping
+    f = np.sqrt(np.maximum(w2, 0.0)) / (2 * np.pi)
+    comps = blade_motion_components(sections, np.asarray(struct.T @ mass_normalize(X, struct.Mr)))
     fams = strip_family(sections, comps)
     named = [(fam, o, float(fk)) for fam, o, fk in zip(fams, _ordered(fams), f)]
     return StructuralReference(blade=named, signatures=strip_signatures(sections, comps))
