@@ -182,18 +182,17 @@ def shear_centre(skin_yz: np.ndarray, skin_Et: np.ndarray, skin_Gt: np.ndarray, 
         loops[1 + k, int(w[0]):int(w[1])] = 1.0
         loops[1 + k, n + k] = -1.0
     A = np.vstack([balance, loops * (L / np.maximum(Gt, 1e-30))[None, :]])
-    rows, rhs = [], []
-    for load in ((0.0, 1.0, 0.0), (0.0, 0.0, 1.0)):
+    f = np.zeros((n + 1 + nw, 2))  # the two unit bending-moment gradients, solved together
+    for j, load in enumerate(((0.0, 1.0, 0.0), (0.0, 0.0, 1.0))):
         e0, ky, kz = C @ np.array(load)
         dn = Et * (e0 + mid[:, 1] * ky - mid[:, 0] * kz) * L  # axial force gradient of each wall
-        f = np.zeros(n)
-        np.add.at(f, a, 0.5 * dn)
-        np.add.at(f, b, 0.5 * dn)
-        q = np.linalg.lstsq(A, np.concatenate([f, np.zeros(1 + nw)]), rcond=None)[0]
-        F = q @ (P1 - P0)
-        rows.append([F[1], -F[0]])  # moment = y_s F_z - z_s F_y
-        rhs.append(float(q @ (P0[:, 0] * P1[:, 1] - P0[:, 1] * P1[:, 0])))
-    ys, zs = np.linalg.solve(np.array(rows), np.array(rhs))
+        np.add.at(f[:, j], a, 0.5 * dn)
+        np.add.at(f[:, j], b, 0.5 * dn)
+    q = np.linalg.lstsq(A, f, rcond=None)[0]  # (ne, 2)
+    F = q.T @ (P1 - P0)  # (2, 2): each load's resultant force (F_y, F_z)
+    rows = np.stack([F[:, 1], -F[:, 0]], axis=1)  # moment = y_s F_z - z_s F_y
+    rhs = q.T @ (P0[:, 0] * P1[:, 1] - P0[:, 1] * P1[:, 0])
+    ys, zs = np.linalg.solve(rows, rhs)
     return float(ys), float(zs)
 
 
