@@ -104,6 +104,17 @@ def table(rows: list[dict], cols: list[str]) -> None:
         print("  ".join(x[i].ljust(w[i]) for i in range(len(cols))))
 
 
+def nrel5mw_solver(model: str, **config):
+    """Method p's stability solver of the bundled NREL 5 MW (``model`` beam or shell) with the config
+    sections ``config`` changed (``windflutter.analysis_config`` keywords), for :func:`map_rows`."""
+    import windflutter
+    from windflutter import methods
+
+    t = windflutter.load_turbine("nrel5mw")
+    cfg = windflutter.analysis_config(model=model, **config)
+    return methods.stability_analysis(t, cfg, cfg.aero[0], "p")
+
+
 def map_rows(solver, winds, **label) -> list[dict]:
     """Method p's onsets (``solver.analyse_operating_point``) at each wind speed of ``winds``, with
     the CPU and wall time of each and the full operating points it evaluated (``OperationalModel.at``
@@ -133,6 +144,15 @@ def map_rows(solver, winds, **label) -> list[dict]:
                          evaluations=count["n"], end=float(max(p.sweep_rpm)), flutter=p.flutter_rpm,
                          mode=p.flutter_mode, freq=p.flutter_frequency_hz, divergence=p.divergence_rpm))
     return rows
+
+
+def pair_table(base: list[dict], new: list[dict], cols: list[str]) -> tuple[float, float]:
+    """Print the :func:`map_rows` of a baseline and a new case side by side, wind speed by wind speed
+    (onsets to 1e-4 RPM); returns their CPU sums ``(new, base)``."""
+    exact = ("flutter", "divergence")
+    table([{k: (f"{v:.4f}" if k in exact and v is not None else v) for k, v in r.items()} for pair in zip(base, new)
+           for r in pair], cols)
+    return sum(r["cpu"] for r in new), sum(r["cpu"] for r in base)
 
 
 def map_arguments(argv, doc: str, winds: list[float]) -> tuple[str, list[float]]:

@@ -17,7 +17,7 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _benchutil import header, isolated, map_arguments, map_rows, table  # noqa: E402
+from _benchutil import header, isolated, map_arguments, map_rows, nrel5mw_solver, pair_table  # noqa: E402
 
 TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 
@@ -25,12 +25,7 @@ TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 def run(model: str, tol, winds: list[float]) -> list[dict]:
     import warnings
 
-    import windflutter
-    from windflutter import methods
-
-    t = windflutter.load_turbine("nrel5mw")
-    cfg = windflutter.analysis_config(model=model, solver={"aero_state_tol": tol})
-    solver = methods.stability_analysis(t, cfg, cfg.aero[0], "p")
+    solver = nrel5mw_solver(model, solver={"aero_state_tol": tol})
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         ps = solver.model.at(10.0)
@@ -52,11 +47,7 @@ def main(argv=None) -> int:
     base = isolated(run, model, None, winds)[0]
     new = isolated(run, model, 1e-7, winds)[0]
     ok = all(_same(a, b) for a, b in zip(base, new))
-    exact = ("flutter", "divergence")
-    table([{k: (f"{v:.4f}" if k in exact and v is not None else v) for k, v in r.items()} for pair in zip(base, new)
-           for r in pair],
-          ["case", "wind", "states", "cpu", "evaluations", "flutter", "mode", "divergence"])
-    cb, cn = sum(r["cpu"] for r in base), sum(r["cpu"] for r in new)
+    cn, cb = pair_table(base, new, ["case", "wind", "states", "cpu", "evaluations", "flutter", "mode", "divergence"])
     print(f"CPU {cn:.1f} s against {cb:.1f} s ({cn / cb:.2f} x); states of the 10 m/s operating point "
           f"{new[0]['states']} against {base[0]['states']}")
     print(f"times in s (this process's CPU, one BLAS thread); rotor speeds in RPM; every onset the baseline's "

@@ -19,18 +19,13 @@ import sys
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from _benchutil import header, isolated, map_arguments, map_rows, table  # noqa: E402
+from _benchutil import header, isolated, map_arguments, map_rows, nrel5mw_solver, pair_table  # noqa: E402
 
 TOL = 0.01  # RPM, SearchSettings.tolerance_rpm
 
 
 def run(model: str, tip_mach, winds: list[float]) -> list[dict]:
-    import windflutter
-    from windflutter import methods
-
-    t = windflutter.load_turbine("nrel5mw")
-    cfg = windflutter.analysis_config(model=model, rotor_speed={"max_tip_mach": tip_mach})
-    solver = methods.stability_analysis(t, cfg, cfg.aero[0], "p")
+    solver = nrel5mw_solver(model, rotor_speed={"max_tip_mach": tip_mach})
     return map_rows(solver, winds, case="to 40 RPM [baseline]" if tip_mach is None else f"to tip Mach {tip_mach:g}")
 
 
@@ -49,11 +44,7 @@ def main(argv=None) -> int:
     new = isolated(run, model, 0.5, winds)[0]
     ok = all(_kept(a["flutter"], b["flutter"], b["end"]) and _kept(a["divergence"], b["divergence"], b["end"])
              and (b["flutter"] is None or a["mode"] == b["mode"]) for a, b in zip(base, new))
-    exact = ("flutter", "divergence")
-    table([{k: (f"{v:.4f}" if k in exact and v is not None else v) for k, v in r.items()} for pair in zip(base, new)
-           for r in pair],
-          ["case", "wind", "cpu", "wall", "evaluations", "end", "flutter", "mode", "divergence"])
-    cb, cn = sum(r["cpu"] for r in base), sum(r["cpu"] for r in new)
+    cn, cb = pair_table(base, new, ["case", "wind", "cpu", "wall", "evaluations", "end", "flutter", "mode", "divergence"])
     print(f"CPU {cn:.1f} s against {cb:.1f} s ({cn / cb:.2f} x), {sum(r['evaluations'] for r in new)} operating "
           f"points against {sum(r['evaluations'] for r in base)}")
     print(f"times in s (this process's CPU, one BLAS thread); rotor speeds in RPM; the baseline's onsets below "
