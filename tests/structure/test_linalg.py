@@ -80,3 +80,32 @@ def test_indefinite_symmetric_operator_solves():
     X = spd_operator(st.Kr - 0.5 * (w2[0] + w2[2]) * st.Mr) @ B
     ref = np.linalg.solve(A, B)
     assert np.abs(X - ref).max() <= 1e-8 * np.abs(ref).max()
+
+
+@pytest.mark.skipif("cholmod" not in BACKENDS, reason="the fast extra (kvxopt) is not installed")
+def test_factors_of_one_pattern_share_the_analysis_and_never_solve_wrong():
+    """Two matrices of one pattern (a sweep's structural operators) share CHOLMOD's symbolic analysis:
+    the second factorization writes into the first's factor, which then factorizes its own matrix anew
+    when it solves again -- each factor solves its own matrix to round-off, before and after; a matrix
+    of another pattern gets an analysis of its own."""
+    import scipy.sparse as sp
+
+    from windflutter.structure import linalg
+
+    K = _tube(spc=True).Kr.tocsc()
+    rng = np.random.default_rng(1)
+    K2 = (K + sp.diags(K.diagonal() * rng.random(K.shape[0]))).tocsc()  # same pattern, other numbers
+    b = rng.standard_normal(K.shape[0])
+    f1 = SPDFactor(K, backend="cholmod")
+    x1 = f1.solve(b)
+    f2 = SPDFactor(K2, backend="cholmod")
+    entry = next(e for e in linalg._SYMBOLIC if e[4] is f2._F)  # the cached analysis f2 used
+    assert entry[5]() is f2 and f1._F is None  # shared with f1, which is stale now
+    for f, A in ((f1, K), (f2, K2), (f1, K), (f2, K2)):
+        assert np.abs(A @ f.solve(b) - b).max() < 1e-8 * np.abs(b).max()
+    assert np.allclose(f1.solve(b), x1, rtol=1e-12, atol=0)
+    assert f1._F is not entry[4] and f2._F is entry[4]  # the stale one has its own analysis now
+    K3 = K[:-6, :-6].tocsc()  # another pattern
+    f3 = SPDFactor(K3, backend="cholmod")
+    assert f3._F is not entry[4] and f2._F is entry[4]
+    assert np.abs(K3 @ f3.solve(b[:-6]) - b[:-6]).max() < 1e-8 * np.abs(b).max()
