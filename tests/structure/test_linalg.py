@@ -101,6 +101,7 @@ def test_factors_of_one_pattern_share_the_analysis_and_never_solve_wrong():
     f2 = SPDFactor(K2, backend="cholmod")
     entry = next(e for e in linalg._SYMBOLIC if e[4] is f2._F)  # the cached analysis f2 used
     assert entry[5]() is f2 and f1._F is None  # shared with f1, which is stale now
+    assert entry[6] is not None  # the pattern's kvxopt matrix, its numbers rewritten for f2
     for f, A in ((f1, K), (f2, K2), (f1, K), (f2, K2)):
         assert np.abs(A @ f.solve(b) - b).max() < 1e-8 * np.abs(b).max()
     assert np.allclose(f1.solve(b), x1, rtol=1e-12, atol=0)

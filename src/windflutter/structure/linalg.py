@@ -20,7 +20,7 @@ class NotPositiveDefinite(Exception):
 
 
 #: the last CHOLMOD symbolic analyses (AMD ordering and symbolic factor), by the lower triangle's
-#: pattern: ``[n, rows, columns, ordering, factor, owner]``, newest first
+#: pattern: ``[n, rows, columns, ordering, factor, owner, kvxopt matrix]``, newest first
 _SYMBOLIC: list = []
 _SYMBOLIC_CACHE = 4
 
@@ -55,15 +55,23 @@ class SPDFactor:
 
     def _cholmod(self, A: sp.csc_matrix) -> None:
         """CHOLMOD's factor of ``A``.  Its symbolic analysis (AMD ordering, symbolic factor: 35 ms of
-        0.2 s on a 26k-DOF shell blade) is shared with the last factor of the same pattern
-        (:data:`_SYMBOLIC`; the structural operators of a sweep's points have one pattern): kvxopt's
-        ``numeric`` writes into the factor it is given, so the factor that had it is marked stale and,
-        should it solve again, factorizes its matrix anew (:meth:`_own_factor`) -- never a wrong solve."""
+        0.2 s on a 26k-DOF shell blade) and kvxopt's matrix of that pattern (whose numbers are rewritten:
+        25 ms saved) are shared with the last factor of the same pattern (:data:`_SYMBOLIC`; the
+        structural operators of a sweep's points have one pattern): kvxopt's ``numeric`` writes into the
+        factor it is given, so the factor that had it is marked stale and, should it solve again,
+        factorizes its matrix anew (:meth:`_own_factor`) -- never a wrong solve."""
         from kvxopt import cholmod, matrix, sparse
 
+        if not A.has_sorted_indices:  # the lower triangle's triplets in column-major order, as kvxopt
+            A = A.sorted_indices()    # stores them
         L = sp.tril(A, format="coo")
-        self._Ak = Ak = _kvxopt_lower(L, A.shape)
-        entry = _symbolic_entry(L, Ak)
+        self._L = L  # for a new factorization of its own, should it be stale
+        entry = _symbolic_entry(L)
+        Ak = entry[6]
+        if Ak is None:  # an order kvxopt does not keep: a matrix of its own
+            Ak = _kvxopt_lower(L, A.shape)
+        else:  # the pattern's matrix with these numbers (kvxopt: "an efficient way of changing the values")
+            Ak.V = matrix(np.ascontiguousarray(L.data, dtype=float))
         self._p = entry[3]
         owner = entry[5]() if entry[5] is not None else None
         if owner is not None and owner is not self:
@@ -102,8 +110,9 @@ class SPDFactor:
         into a symbolic factor of its own."""
         from kvxopt import cholmod
 
-        self._F = cholmod.symbolic(self._Ak, p=self._p)
-        cholmod.numeric(self._Ak, self._F)
+        Ak = _kvxopt_lower(self._L, self._L.shape)
+        self._F = cholmod.symbolic(Ak, p=self._p)
+        cholmod.numeric(Ak, self._F)
 
     def solve(self, b: np.ndarray) -> np.ndarray:
         """Solve ``A x = b`` for (n,) or (n, k) real b."""
@@ -136,17 +145,23 @@ def _kvxopt_lower(C: sp.coo_matrix, shape) -> object:
         return spmatrix(C.data.astype(float), C.row.astype(int).tolist(), C.col.astype(int).tolist(), size=shape)
 
 
-def _symbolic_entry(L: sp.coo_matrix, Ak) -> list:
+def _symbolic_entry(L: sp.coo_matrix) -> list:
     """The :data:`_SYMBOLIC` entry of the pattern of ``L`` (its triplets' rows and columns in their
-    order, compared in full: equal arrays are the same pattern), analysed and added if new."""
+    order, compared in full: equal arrays are the same pattern), analysed and added if new; its
+    kvxopt matrix is kept when kvxopt stores the triplets in their order (then new numbers are
+    written into it), else None."""
     from kvxopt import amd, cholmod
 
     n = L.shape[0]
     for entry in _SYMBOLIC:
         if entry[0] == n and np.array_equal(entry[1], L.row) and np.array_equal(entry[2], L.col):
             return entry
+    Ak = _kvxopt_lower(L, L.shape)
+    colptr = np.concatenate([[0], np.cumsum(np.bincount(L.col, minlength=n))])
+    same_order = (np.array_equal(np.asarray(Ak.CCS[0]).ravel(), colptr)
+                  and np.array_equal(np.asarray(Ak.CCS[1]).ravel(), L.row))
     p = amd.order(Ak)
-    entry = [n, L.row.copy(), L.col.copy(), p, cholmod.symbolic(Ak, p=p), None]
+    entry = [n, L.row.copy(), L.col.copy(), p, cholmod.symbolic(Ak, p=p), None, Ak if same_order else None]
     _SYMBOLIC.insert(0, entry)
     del _SYMBOLIC[_SYMBOLIC_CACHE:]
     return entry
