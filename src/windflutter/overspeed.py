@@ -38,6 +38,7 @@ from windflutter.aero.compressibility import SPEED_OF_SOUND
 from windflutter.errors import InputError, ModelError
 from windflutter.linalg_tools import mac_matrix
 from windflutter.results import Onset, PointSummary
+from windflutter.system.blade_aero import static_state_stiffness
 from windflutter.system.campbell import CampbellPoint, ambiguous, track_modes
 from windflutter.system.modes import point_modes, rotating_frequency, state_eig
 from windflutter.system.operational import OperationalModel, lowest_elastic, structural_margin
@@ -95,10 +96,7 @@ def blade_static_margin(ps) -> float:
     aerodynamic states at their static values (``z = -A^-1 (Bq y)``), hub clamped: negative beyond
     static divergence.  ``ps`` is a :class:`~windflutter.system.operational.PointSystem`."""
     bs = ps.blade_system
-    K = bs.K.copy()
-    if bs.n_states:
-        K = K + bs.F @ np.linalg.solve(bs.Az, bs.Bq)
-    return lowest_elastic(K, bs.M)
+    return lowest_elastic(bs.K + static_state_stiffness(bs), bs.M)
 
 
 def blade_structural_margin(ps) -> float:

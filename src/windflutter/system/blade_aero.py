@@ -141,12 +141,18 @@ def balanced_projection(bs: BladeSystem, tol: float) -> AeroStateProjection:
     return AeroStateProjection(W=(Lp @ Vt[:r].T) * scale, Wl=(Lq @ U[:, :r]) * scale, hsv=s)
 
 
+def static_state_stiffness(bs: BladeSystem) -> np.ndarray:
+    """``F Az^-1 Bq``: what the aerodynamic states at their static values (``z = -Az^-1 Bq y``) add to
+    ``K`` (the blade's static aerodynamic stiffness with its sign in ``M y'' + C y' + K y = F z``)."""
+    return bs.F @ np.linalg.solve(bs.Az, bs.Bq) if bs.n_states else np.zeros_like(bs.K)
+
+
 def reduced_blade_system(bs: BladeSystem, proj: AeroStateProjection) -> BladeSystem:
     """``bs`` with its aerodynamic states projected by ``proj``; the dropped states' static part is
     added to the stiffness, so the static aerodynamic stiffness ``-F Az^-1 Bq`` is the full
     subsystem's (divergence margins unchanged; the error moves to the frequencies between)."""
     W, Wl = proj.W, proj.Wl
     F, Az, Bq, Bv = bs.F @ W, Wl.T @ bs.Az @ W, Wl.T @ bs.Bq, Wl.T @ bs.Bv
-    static_full = bs.F @ np.linalg.solve(bs.Az, bs.Bq)
-    static = F @ np.linalg.solve(Az, Bq) if W.shape[1] else np.zeros_like(static_full)
-    return BladeSystem(M=bs.M, C=bs.C, K=bs.K + (static_full - static), F=F, Az=Az, Bq=Bq, Bv=Bv)
+    red = BladeSystem(M=bs.M, C=bs.C, K=bs.K, F=F, Az=Az, Bq=Bq, Bv=Bv)
+    red.K = bs.K + (static_state_stiffness(bs) - static_state_stiffness(red))
+    return red
