@@ -99,14 +99,14 @@ def test_factors_of_one_pattern_share_the_analysis_and_never_solve_wrong():
     f1 = SPDFactor(K, backend="cholmod")
     x1 = f1.solve(b)
     f2 = SPDFactor(K2, backend="cholmod")
-    entry = next(e for e in linalg._SYMBOLIC if e[4] is f2._F)  # the cached analysis f2 used
-    assert entry[5]() is f2 and f1._F is None  # shared with f1, which is stale now
-    assert entry[6] is not None  # the pattern's kvxopt matrix, its numbers rewritten for f2
+    entry = next(e for e in linalg._SYMBOLIC if e.factor is f2._F)  # the cached analysis f2 used
+    assert entry.owner() is f2 and f1._F is None  # shared with f1, which is stale now
+    assert entry.matrix is not None  # the pattern's kvxopt matrix, its numbers rewritten for f2
     for f, A in ((f1, K), (f2, K2), (f1, K), (f2, K2)):
         assert np.abs(A @ f.solve(b) - b).max() < 1e-8 * np.abs(b).max()
     assert np.allclose(f1.solve(b), x1, rtol=1e-12, atol=0)
-    assert f1._F is not entry[4] and f2._F is entry[4]  # the stale one has its own analysis now
+    assert f1._F is not entry.factor and f2._F is entry.factor  # the stale one has its own analysis now
     K3 = K[:-6, :-6].tocsc()  # another pattern
     f3 = SPDFactor(K3, backend="cholmod")
-    assert f3._F is not entry[4] and f2._F is entry[4]
+    assert f3._F is not entry.factor and f2._F is entry.factor
     assert np.abs(K3 @ f3.solve(b[:-6]) - b[:-6]).max() < 1e-8 * np.abs(b).max()

@@ -9,6 +9,7 @@ on the 30k-DOF tube of ``benchmarks/bench_structure.py``: CHOLMOD 1.2 s vs Super
 from __future__ import annotations
 
 import weakref
+from dataclasses import dataclass
 
 import numpy as np
 import scipy.sparse as sp
@@ -19,8 +20,23 @@ class NotPositiveDefinite(Exception):
     """The matrix has a zero or negative pivot."""
 
 
-#: the last CHOLMOD symbolic analyses (AMD ordering and symbolic factor), by the lower triangle's
-#: pattern: ``[n, rows, columns, ordering, factor, owner, kvxopt matrix]``, newest first
+@dataclass
+class _Analysis:
+    """CHOLMOD's symbolic analysis of one pattern (size, the lower triangle's triplet rows and columns):
+    the AMD ordering, the symbolic factor (into which each ``numeric`` writes), the factor that
+    holds it now (a weak reference) and kvxopt's matrix of the pattern (None when kvxopt stores the
+    triplets in another order)."""
+
+    n: int
+    rows: np.ndarray
+    cols: np.ndarray
+    ordering: object
+    factor: object
+    owner: weakref.ref | None = None
+    matrix: object = None
+
+
+#: the last symbolic analyses (:class:`_Analysis`), newest first
 _SYMBOLIC: list = []
 _SYMBOLIC_CACHE = 4
 
@@ -67,17 +83,17 @@ class SPDFactor:
         L = sp.tril(A, format="coo")
         self._L = L  # for a new factorization of its own, should it be stale
         entry = _symbolic_entry(L)
-        Ak = entry[6]
+        Ak = entry.matrix
         if Ak is None:  # an order kvxopt does not keep: a matrix of its own
             Ak = _kvxopt_lower(L, A.shape)
         else:  # the pattern's matrix with these numbers (kvxopt: "an efficient way of changing the values")
             Ak.V = matrix(np.ascontiguousarray(L.data, dtype=float))
-        self._p = entry[3]
-        owner = entry[5]() if entry[5] is not None else None
+        self._p = entry.ordering
+        owner = entry.owner() if entry.owner is not None else None
         if owner is not None and owner is not self:
             owner._F = None  # stale: its numbers are being overwritten
-        entry[5] = weakref.ref(self)
-        self._F = entry[4]
+        entry.owner = weakref.ref(self)
+        self._F = entry.factor
         try:
             cholmod.numeric(Ak, self._F)
         except ArithmeticError as exc:
@@ -145,7 +161,7 @@ def _kvxopt_lower(C: sp.coo_matrix, shape) -> object:
         return spmatrix(C.data.astype(float), C.row.astype(int).tolist(), C.col.astype(int).tolist(), size=shape)
 
 
-def _symbolic_entry(L: sp.coo_matrix) -> list:
+def _symbolic_entry(L: sp.coo_matrix) -> _Analysis:
     """The :data:`_SYMBOLIC` entry of the pattern of ``L`` (its triplets' rows and columns in their
     order, compared in full: equal arrays are the same pattern), analysed and added if new; its
     kvxopt matrix is kept when kvxopt stores the triplets in their order (then new numbers are
@@ -154,14 +170,14 @@ def _symbolic_entry(L: sp.coo_matrix) -> list:
 
     n = L.shape[0]
     for entry in _SYMBOLIC:
-        if entry[0] == n and np.array_equal(entry[1], L.row) and np.array_equal(entry[2], L.col):
+        if entry.n == n and np.array_equal(entry.rows, L.row) and np.array_equal(entry.cols, L.col):
             return entry
     Ak = _kvxopt_lower(L, L.shape)
     colptr = np.concatenate([[0], np.cumsum(np.bincount(L.col, minlength=n))])
     same_order = (np.array_equal(np.asarray(Ak.CCS[0]).ravel(), colptr)
                   and np.array_equal(np.asarray(Ak.CCS[1]).ravel(), L.row))
     p = amd.order(Ak)
-    entry = [n, L.row.copy(), L.col.copy(), p, cholmod.symbolic(Ak, p=p), None, Ak if same_order else None]
+    entry = _Analysis(n, L.row.copy(), L.col.copy(), p, cholmod.symbolic(Ak, p=p), matrix=Ak if same_order else None)
     _SYMBOLIC.insert(0, entry)
     del _SYMBOLIC[_SYMBOLIC_CACHE:]
     return entry
