@@ -26,7 +26,7 @@ SRC = Path(__file__).resolve().parents[1] / "src" / "windflutter"
 #: and the BLAS policy).
 LAYERS: tuple[tuple[str, ...], ...] = (
     ("errors",),
-    ("units", "linalg_tools", "files", "schema", "threads", "heap", "aero_types", "version"),
+    ("units", "linalg_tools", "files", "schema", "threads", "fastlib", "heap", "aero_types", "version"),
     ("results", "backends", "exporters", "parallel"),
     ("config",),
     ("structure",),

@@ -56,6 +56,7 @@ import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
 from windflutter.errors import InputError, ModelError
+from windflutter.fastlib import import_kvxopt
 from windflutter.threads import blas_limit  # noqa: F401  (re-exported: used here and by callers)
 
 __all__ = [
@@ -83,15 +84,9 @@ _ENV_VAR = "WINDFLUTTER_LU_BACKEND"
 
 
 def _kvxopt():
-    """Import kvxopt lazily; ``None`` when it is not installed or broken."""
-    try:
-        import kvxopt  # noqa: F401
-        from kvxopt import umfpack  # noqa: F401
-    except Exception:  # pragma: no cover - depends on the environment
-        return None
-    import kvxopt
-
-    return kvxopt
+    """kvxopt, imported lazily (:func:`windflutter.fastlib.import_kvxopt`); ``None`` when it is not
+    installed or broken."""
+    return import_kvxopt()
 
 
 def available_backends() -> list[str]:

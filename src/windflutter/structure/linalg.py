@@ -15,6 +15,8 @@ import numpy as np
 import scipy.sparse as sp
 import scipy.sparse.linalg as spla
 
+from windflutter.fastlib import import_kvxopt
+
 
 class NotPositiveDefinite(Exception):
     """The matrix has a zero or negative pivot."""
@@ -56,14 +58,12 @@ class SPDFactor:
         self.n = A.shape[0]
         self.backend = self.backend_asked = backend
         if backend in ("auto", "cholmod"):
-            try:
-                from kvxopt import amd, cholmod, spmatrix  # noqa: F401
-            except ImportError:
-                if backend == "cholmod":
-                    raise
-                self.backend = "superlu"
-            else:
+            if import_kvxopt() is not None:
                 self.backend = "cholmod"
+            elif backend == "cholmod":
+                raise ImportError("the CHOLMOD backend needs kvxopt (pip install windflutter[fast])")
+            else:
+                self.backend = "superlu"
         if self.backend == "cholmod":
             self._cholmod(A)
         else:
