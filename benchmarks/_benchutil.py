@@ -85,8 +85,44 @@ def header(title: str, **info) -> None:
     print(f"python {platform.python_version()}, {os.cpu_count()} cores "
           f"(usable {len(os.sched_getaffinity(0))}), load avg {os.getloadavg()[0]:.2f}"
           + (", QUICK mode" if QUICK else ""))
+    print(machine_speed())
     for k, v in info.items():
         print(f"{k}: {v}")
+
+
+def machine_speed() -> str:
+    """This machine's speed in two numbers that the project's time splits between: the interpreter
+    (a fixed pure-Python loop) and dense BLAS on one thread (a 1000 x 1000 product), so that times
+    measured in different sessions -- on machines that differ by up to 1.8x -- can be compared
+    (performance_rounds.md section 25).  About 0.5 s."""
+    import numpy as np
+
+    from windflutter.threads import blas_limit
+
+    t0 = time.perf_counter()
+    s = 0
+    for i in range(2_000_000):
+        s += i * i
+    loop = time.perf_counter() - t0
+    a = np.random.default_rng(0).standard_normal((1000, 1000))
+    with blas_limit(1):
+        a @ a
+        t0 = time.perf_counter()
+        for _ in range(3):
+            a @ a
+        gemm = time.perf_counter() - t0
+    return (f"machine: Python loop {1e3 * loop:.0f} ms (2e6 iterations), one-thread dgemm "
+            f"{3 * 2e9 / gemm / 1e9:.0f} GFLOP/s, CPU {_cpu_model()}")
+
+
+def _cpu_model() -> str:
+    try:
+        with open("/proc/cpuinfo") as fh:
+            first = fh.read().split("\n\n")[0]
+        info = {k.strip(): v.strip() for k, _, v in (line.partition(":") for line in first.splitlines())}
+        return f"{info['model name']} (family {info['cpu family']} model {info['model']})"
+    except (OSError, KeyError):
+        return platform.processor() or "?"
 
 
 def table(rows: list[dict], cols: list[str]) -> None:
