@@ -18,8 +18,8 @@ What it does
 :func:`import_kvxopt` imports kvxopt with ``OPENBLAS_CORETYPE`` (OpenBLAS's own variable, read at
 load) set to the kernel family the processor's instruction sets allow -- ``SkylakeX`` with the
 AVX-512 subsets those kernels use, ``Haswell`` with AVX2 and FMA, nothing otherwise -- and then
-restores the variable, so that only kvxopt's OpenBLAS is affected (NumPy's and SciPy's are loaded
-before it and detect for themselves).  A user's own ``OPENBLAS_CORETYPE`` is left alone, and so is
+restores the variable, so that only kvxopt's OpenBLAS is affected (NumPy's and SciPy's, loaded
+before or after it, detect for themselves).  A user's own ``OPENBLAS_CORETYPE`` is left alone, and so is
 every processor whose flags cannot be read (not Linux, not x86-64): there OpenBLAS detects as usual.
 The kernels change how fast, not what is computed (up to round-off).
 """
