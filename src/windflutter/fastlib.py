@@ -27,6 +27,7 @@ The kernels change how fast, not what is computed (up to round-off).
 from __future__ import annotations
 
 import contextlib
+import functools
 import os
 import platform
 from collections.abc import Iterable
@@ -86,11 +87,13 @@ def _coretype_scope():
         os.environ.pop(CORETYPE_VAR, None)
 
 
+@functools.cache
 def import_kvxopt():
     """kvxopt with the extension modules windflutter uses (``amd``, ``cholmod``, ``umfpack``)
     loaded, its OpenBLAS on the processor's kernels (module doc); ``None`` when kvxopt is not
     installed or does not load.  Every windflutter import of kvxopt goes through here: the first
-    import loads its OpenBLAS, and only that one reads the variable."""
+    import loads its OpenBLAS, and only that one reads the variable -- so the answer is kept for the
+    process (every factorization asks; reading the flags again would be 40 us of nothing)."""
     with _coretype_scope():
         try:
             import kvxopt

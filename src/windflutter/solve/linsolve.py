@@ -83,17 +83,11 @@ SUPERLU_GENERAL = dict(permc_spec="COLAMD")
 _ENV_VAR = "WINDFLUTTER_LU_BACKEND"
 
 
-def _kvxopt():
-    """kvxopt, imported lazily (:func:`windflutter.fastlib.import_kvxopt`); ``None`` when it is not
-    installed or broken."""
-    return import_kvxopt()
-
-
 def available_backends() -> list[str]:
     """Names of the LU backends usable in this environment, fastest first."""
     out = []
     for name in BACKENDS:
-        if name == "umfpack" and _kvxopt() is None:
+        if name == "umfpack" and import_kvxopt() is None:
             continue
         out.append(name)
     return out
