@@ -121,14 +121,16 @@ def clamped_modes(K, M, T, n_modes: int) -> tuple[np.ndarray, np.ndarray]:
 
 def changed_shell_blade(om, ps, layers, s: float) -> RotorBlade:
     """The point's (deflected) shell blade with the layers' thickness times ``1 + s``: the changed
-    laminates on its elements; its stiffness the nominal one plus the change of the assembled elastic
-    stiffness (the initial stress held), its structural damping held (the modal damping of the
+    laminates on its elements; its stiffness and mass the nominal ones plus the change of the assembled
+    elastic stiffness and mass (the initial stress held; the nominal deflected blade's elements are
+    its undeformed ones carried with their rotations, the change is that of pyfe3d's elements on the
+    deflected nodes: equal to the order of the strains), its structural damping held (the modal damping of the
     point's blade modes, :func:`windflutter.system.damping.shell_modal_damping`)."""
     rb = ps.blade
     fe2 = with_properties(rb.fe, layered_properties(om, layers, s))
     M0, K0 = assemble_matrices(rb.fe)
     M2, K2 = assemble_matrices(fe2)
-    st = dataclasses.replace(rb.struct, fe=fe2, M=sp.csr_matrix(M2), K=(rb.struct.K + (K2 - K0)).tocsr())
+    st = dataclasses.replace(rb.struct, fe=fe2, M=(rb.struct.M + (M2 - M0)).tocsr(), K=(rb.struct.K + (K2 - K0)).tocsr())
     return RotorBlade(fe2, st, rb.sections, rb.apex, rb.axis, damping=rb.damping)
 
 

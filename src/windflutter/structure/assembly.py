@@ -193,8 +193,25 @@ def spring_matrices(fe: FEModel) -> tuple[np.ndarray, np.ndarray, np.ndarray, np
     return gk, gd, tk, td
 
 
-def assemble_matrices(fe: FEModel, shell_mass: str = "consistent") -> tuple[sp.csr_matrix, sp.csr_matrix]:
-    """Unconstrained global (M, K) as CSR, summing all element contributions (COO)."""
+def _given_shell_blocks(fe: FEModel, shell_blocks) -> tuple[np.ndarray, np.ndarray]:
+    """The ``shell_blocks`` ``(K, M)`` of :func:`assemble_matrices`, checked against ``fe``."""
+    ne = len(fe.shell_conn)
+    try:
+        K, M = (np.asarray(b, dtype=float) for b in shell_blocks)
+    except (TypeError, ValueError):
+        raise InputError("shell_blocks", type(shell_blocks).__name__, "a pair (K, M) of element blocks") from None
+    for name, B in (("K", K), ("M", M)):
+        if B.shape != (ne, 24, 24) or not np.all(np.isfinite(B)):
+            raise InputError(f"shell_blocks.{name}", B.shape, f"finite ({ne}, 24, 24) element blocks, one per shell")
+    return K, M
+
+
+def assemble_matrices(fe: FEModel, shell_mass: str = "consistent",
+                      shell_blocks=None) -> tuple[sp.csr_matrix, sp.csr_matrix]:
+    """Unconstrained global (M, K) as CSR, summing all element contributions (COO).  ``shell_blocks``:
+    the shells' ``(K, M)`` element blocks (ne, 24, 24) given (global axes, DOFs node by node in
+    ``fe.shell_conn`` order, e.g. :func:`~windflutter.structure.shell.turned_blocks`) instead of
+    pyfe3d's elements on ``fe``'s nodes."""
     fe.check()
     n = fe.n_dof
     kr, kc, kv, mr, mc, mv = [], [], [], [], [], []
@@ -211,7 +228,12 @@ def assemble_matrices(fe: FEModel, shell_mass: str = "consistent") -> tuple[sp.c
         Ke, Me, d = beam_global_matrices(fe)
         add(Kt, Ke, d)
         add(Mt, Me, d)
-    if len(fe.shell_conn):
+    if len(fe.shell_conn) and shell_blocks is not None:
+        Kb, Mb = _given_shell_blocks(fe, shell_blocks)
+        d = element_dofs(np.asarray(fe.shell_conn, dtype=np.int64))
+        add(Kt, Kb, d)
+        add(Mt, Mb, d)
+    elif len(fe.shell_conn):
         (r, c, v), (r2, c2, v2) = shell_coo(fe, mass=shell_mass)
         kr.append(r), kc.append(c), kv.append(v)
         mr.append(r2), mc.append(c2), mv.append(v2)
@@ -267,7 +289,8 @@ def symmetric_csr(r: np.ndarray, c: np.ndarray, v: np.ndarray, n: int) -> sp.csr
     return symmetric_csr(r, c, v, n)
 
 
-def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent", allow_rigid: bool = False) -> Structural:
+def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent", allow_rigid: bool = False,
+             shell_blocks=None) -> Structural:
     """Assemble a :class:`FEModel` into a :class:`Structural`.
 
     Parameters
@@ -278,6 +301,7 @@ def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent", al
     shell_mass : "consistent" (default) or "lumped" shell mass matrix.
     allow_rigid : accept a model with no free DOF left (a rigid substructure, e.g. a rigid blade
         tied to a clamped hub); the default refuses it.
+    shell_blocks : the shells' ``(K, M)`` element blocks given (:func:`assemble_matrices`).
 
     Returns
     -------
@@ -285,7 +309,7 @@ def assemble(fe: FEModel, check: bool = True, shell_mass: str = "consistent", al
     """
     if shell_mass not in ("consistent", "lumped"):
         raise InputError("shell_mass", shell_mass, "'consistent' or 'lumped'")
-    M, K = assemble_matrices(fe, shell_mass=shell_mass)
+    M, K = assemble_matrices(fe, shell_mass=shell_mass, shell_blocks=shell_blocks)
     T, free = constraint_map(fe)
     # DOFs that nothing touches (unconnected nodes, unused rotations of point masses...)
     Kr = (T.T @ K @ T).tocsr()

@@ -98,6 +98,39 @@ def shell_kc0_coo(fe: FEModel):
     return _quad4_coo(fe, None)[0]
 
 
+def element_blocks(triplets: tuple, conn: np.ndarray) -> np.ndarray:
+    """(ne, 24, 24) dense element blocks (DOFs node by node in ``conn`` order) of COO ``triplets``
+    ``(r, c, v)`` written element by element, the same number per element (pyfe3d's layout)."""
+    r, c, v = triplets
+    ne = conn.shape[0]
+    nk = r.size // max(ne, 1)
+    li, lj = (element_local_dof(d.reshape(ne, nk), conn) for d in (r, c))
+    flat = (np.arange(ne)[:, None] * 576 + 24 * li + lj).ravel()
+    return np.bincount(flat, weights=v, minlength=576 * ne).reshape(ne, 24, 24)
+
+
+def shell_element_blocks(fe: FEModel, mass: str = "consistent") -> tuple[np.ndarray, np.ndarray]:
+    """``(K, M)`` each (ne, 24, 24): every shell element's stiffness and mass in global axes, DOFs
+    node by node in ``fe.shell_conn`` order -- the blocks :func:`shell_coo` assembles (the
+    model's transverse shear included), e.g. to carry them rigidly to another configuration
+    (:func:`turned_blocks`)."""
+    conn = np.asarray(fe.shell_conn, dtype=np.int64)
+    Kt, Mt = shell_coo(fe, mass)
+    return element_blocks(Kt, conn), element_blocks(Mt, conn)
+
+
+def turned_blocks(B: np.ndarray, Re: np.ndarray) -> np.ndarray:
+    """Element blocks ``B`` (ne, 24, 24) (global axes, :func:`shell_element_blocks`) of elements
+    carried rigidly by the rotations ``Re`` (ne, 3, 3): ``Q B Q^T``, ``Q`` the eight diagonal blocks
+    ``Re`` (each node's translation and rotation).  An element's stiffness and mass in its own frame
+    do not change under a rigid rotation: this is the co-rotational element's material part."""
+    ne = B.shape[0]
+    Re = np.asarray(Re, dtype=float)
+    X = np.matmul(Re[:, None], np.asarray(B, dtype=float).reshape(ne, 8, 3, 24))
+    X = np.matmul(X.reshape(ne, 24, 8, 3), np.swapaxes(Re, 1, 2)[:, None])
+    return X.reshape(ne, 24, 24)
+
+
 def _quad4_coo(fe: FEModel, mtype: int | None):
     """(K triplets, M triplets or None): mass type 0 consistent, 1 lumped, None no mass."""
     from pyfe3d import Quad4, Quad4Data, Quad4Probe

@@ -67,7 +67,7 @@ import numpy as np
 from windflutter.errors import InputError
 from windflutter.linalg_tools import skew
 from windflutter.structure.fem import FEModel
-from windflutter.structure.shell import (check_quads, element_local_dof, membrane_element_matrices, shell_frames,
+from windflutter.structure.shell import (check_quads, element_blocks, membrane_element_matrices, shell_frames,
                                          shell_kc0_coo)
 
 __all__ = ["shell_element_forces", "shell_complete_kg", "rotate_element_forces"]
@@ -119,12 +119,7 @@ def _local_stiffness(fe: FEModel, Rf: np.ndarray, X: np.ndarray, cache: bool) ->
         if k == key and np.abs(loc - local).max() <= tol:
             return K
     ne = conn.shape[0]
-    Kr, Kc, Kv = shell_kc0_coo(fe)
-    nk = Kr.size // ne
-
-    li, lj = (element_local_dof(dof.reshape(ne, nk), conn) for dof in (Kr, Kc))
-    flat = (np.arange(ne)[:, None] * 576 + 24 * li + lj).ravel()
-    K = np.bincount(flat, weights=Kv, minlength=576 * ne).reshape(ne, 24, 24)
+    K = element_blocks(shell_kc0_coo(fe), conn)
     B = np.zeros((ne, 8, 3, 8, 3))
     for k in range(8):
         B[:, k, :, k, :] = Rf

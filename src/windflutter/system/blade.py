@@ -36,6 +36,7 @@ from windflutter.errors import InputError
 from windflutter.rotor.spin import spin_terms
 from windflutter.structure.assembly import rigid_body_vectors
 from windflutter.structure.prestress import geometric_stiffness, static_solve
+from windflutter.structure.shell import shell_element_blocks
 
 
 def axis_skew_translations(n_nodes: int, axis: np.ndarray) -> sp.csr_matrix:
@@ -121,6 +122,16 @@ class RotorBlade:
         self.damping = damping
         self.St = axis_skew_translations(fe.n_nodes, self.axis)
         self._unit_prestress = None
+        self._shell_blocks = None
+
+    def shell_blocks(self) -> tuple[np.ndarray, np.ndarray]:
+        """``(K, M)`` (ne, 24, 24): the shell elements' stiffness and consistent mass blocks of this
+        blade in global axes (:func:`~windflutter.structure.shell.shell_element_blocks`), computed
+        once: a deflected shell blade carries them with its elements
+        (:mod:`windflutter.system.deflected_shell`)."""
+        if self._shell_blocks is None:
+            self._shell_blocks = shell_element_blocks(self.fe)
+        return self._shell_blocks
 
     # -- prestress ---------------------------------------------------------------------------
     def centrifugal_load(self, omega: float = 1.0) -> np.ndarray:

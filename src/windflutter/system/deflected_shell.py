@@ -14,10 +14,19 @@ linearized about the deflected shape in three steps (docs/steady_state.md, "Shel
    diaphragms' normals and any lumped mass turn with their nodes.  The section's own in-plane
    deformation (a few mm) is left out of the geometry; the span's bending, shortening and
    elastic twist are in it.
-2. **The deformed structure**: the shell FE model re-assembled on that geometry (elastic stiffness
-   ``K_d``, mass, Coriolis and spin softening of the deformed blade; the files' damping, the
-   undeformed blade's modal damping turned with the nodes), and the
-   strips' motion map with its lever arms turned by the nodal rotations.
+2. **The deformed structure**: each shell element's stiffness and consistent mass carried rigidly
+   with the element -- the undeformed element's blocks turned by its rotation (the mean of its
+   nodes' rotations, the one that carries its stress in step 3), ``K_e' = Q_e K_e Q_e^T``: the
+   material part of a co-rotational element, whose strains enter through its stress alone, as for
+   the co-rotational beam (:mod:`windflutter.structure.corotational`: ``K_loc`` in the turned
+   frame) -- and assembled on the carried nodes with the ribs, lumped masses and links there; the
+   mass is that of the undeformed blade exactly.  Mass, Coriolis and spin softening of the
+   deformed blade; the files' damping, the undeformed blade's modal damping turned with the nodes;
+   the strips' motion map with its lever arms turned by the nodal rotations.  (Until 6 Dec 2026
+   the elements were computed again by pyfe3d on the carried nodes, ``reassemble=True``: that
+   differs at the order of the strains -- the carried elements are stretched and sheared by up to
+   3e-3 on the NREL 5 MW at 19 RPM, their mass grows with their area -- and costs a pyfe3d pass per
+   point; docs/steady_state.md, "Shell blades".)
 3. **The steady stress** is the shell's own, that of its steady state: each element's nodal forces
    and moments ``K_e u_e`` and its membrane resultants ``(Nxx, Nyy, Nxy)``, carried with the
    element to the deformed geometry, give the complete initial-stress matrix there
@@ -59,7 +68,7 @@ from windflutter.steady.geometry import (Deflection, blade_strips, deflection, r
 from windflutter.structure.assembly import assemble
 from windflutter.structure.prestress import (diaphragm_geometric_stiffness, membrane_geometric_stiffness,
                                              shell_initial_stress, static_solve)
-from windflutter.structure.shell import shell_membrane_resultants
+from windflutter.structure.shell import shell_membrane_resultants, turned_blocks
 from windflutter.structure.shell_stress import rotate_element_forces, shell_element_forces
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 from windflutter.system.damping import ModalDamping, shell_modal_damping
@@ -227,7 +236,7 @@ def steady_stress_stiffness(fe, fe_d, u: np.ndarray, Rn: np.ndarray, constraint_
 
 
 def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray | None = None,
-                          balance: bool = True) -> DeflectedShell:
+                          balance: bool = True, reassemble: bool = False) -> DeflectedShell:
     """The shell blade ``rb`` linearized about its deflected steady state (module docstring).
 
     Parameters
@@ -240,6 +249,10 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     balance : the carried stress brought into equilibrium with the loads on the deformed geometry
         (:func:`balanced_stress`, the default); False: the carried linear stress alone (the route
         before 5 Dec 2026, for comparison).
+    reassemble : the deformed blade's elements computed again by pyfe3d on the carried nodes (the
+        route before 6 Dec 2026, for comparison); the default carries each undeformed element's
+        stiffness and mass rigidly with its element (:func:`~windflutter.structure.shell.
+        turned_blocks`, the co-rotational element's material part).
     """
 
     fe = rb.fe
@@ -254,7 +267,11 @@ def deflected_shell_blade(rb: RotorBlade, steady, omega: float, mu: np.ndarray |
     fixed = np.array(sorted(n for n, c in fe.spc.items() if len(c) == 6), dtype=np.int64)
     x, Rn = carried_nodes(fe.nodes, station_frames(rb.sections, defl), fixed)
     fe_d = _deformed_fe(fe, x, Rn)
-    st_d = assemble(fe_d, check=False)
+    if reassemble:
+        st_d = assemble(fe_d, check=False)
+    else:
+        Re = _element_rotations(fe, Rn)
+        st_d = assemble(fe_d, check=False, shell_blocks=[turned_blocks(B, Re) for B in rb.shell_blocks()])
     blade = RotorBlade(fe_d, st_d, sections, rb.apex, rb.axis, damping=_carried_damping(rb, mu, Rn))
     mm = deformed_motion_map(rb.sections.motion_map, Rn)
     # the steady stress: the membrane resultants of the shell's own steady state, carried with their
