@@ -54,3 +54,26 @@ def test_same_size_other_pattern_is_not_reused():
     assert abs(A - B).max() == 0.0 and A.nnz == B.nnz
     A, B = assembly.symmetric_csr(r, c, -v, n), _scipy(r, c, -v, n)  # the first pattern again
     assert abs(A - B).max() == 0.0 and A.nnz == B.nnz
+
+
+def test_given_shell_blocks_are_the_pyfe3d_assembly_and_are_checked():
+    """``assemble(fe, shell_blocks=...)`` with the elements' own blocks (``shell_element_blocks``)
+    is the pyfe3d assembly (1e-13: summation order); blocks of the wrong shape or not finite are an
+    InputError naming ``shell_blocks``."""
+    import pytest
+
+    from windflutter.errors import InputError
+    from windflutter.structure.shell import shell_element_blocks
+
+    fe, _ = tube(12, 6, 0.5, 3.0, iso(70e9, 0.3, 2700.0, 0.004))
+    Kb, Mb = shell_element_blocks(fe)
+    st0 = assembly.assemble(fe, check=False)
+    st1 = assembly.assemble(fe, check=False, shell_blocks=(Kb, Mb))
+    assert abs(st1.K - st0.K).max() <= 1e-13 * abs(st0.K).max()
+    assert abs(st1.M - st0.M).max() <= 1e-13 * abs(st0.M).max()
+    bad = Kb.copy()
+    bad[0, 0, 0] = np.nan
+    for blocks, field in (((Kb[:-1], Mb), "shell_blocks.K"), ((Kb, Mb[:, :12]), "shell_blocks.M"),
+                          ((bad, Mb), "shell_blocks.K"), ((Kb,), "shell_blocks")):
+        with pytest.raises(InputError, match=field):
+            assembly.assemble(fe, check=False, shell_blocks=blocks)

@@ -221,6 +221,8 @@ def test_nrel5mw_shell_overspeed_onsets_against_the_beam_of_its_own_properties(w
 
     With the shell's stress balanced on the bent geometry (5 Dec 2026; the shell map of the 9th session):
     8 m/s 21.03 RPM (+3.2 %), divergence 26.23; 10 m/s 19.42 RPM (-0.2 %), divergence 26.45.
+    With the deflected shell's elements its undeformed ones turned (6 Dec 2026, MITC4 shear; the map):
+    8 m/s 19.65 RPM (-3.5 %), 10 m/s 18.71 RPM (-3.8 %).
 
     With the shell's earlier damping (one ``beta K``, the flap's ``mu`` on every direction: its edge
     +57 %) the shell's first instability was the divergence at 8 m/s (its edge BW only grazing zero)
