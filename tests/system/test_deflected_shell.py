@@ -181,6 +181,16 @@ def test_turned_element_blocks_are_the_elements_of_a_rigidly_turned_mesh(shell_m
     assert abs(st_wrong.K - K).max() > 1e-3 * abs(K).max()
 
 
+def test_a_pitched_blades_elements_are_the_pitch_zero_ones_turned(shell_model):
+    """A pitched blade is the pitch-0 one turned (``system/pitch.py``): its element blocks, the pitch-0
+    blocks turned by the pitch rotation, are pyfe3d's elements on the pitched mesh (1e-10)."""
+    from windflutter.structure.shell import shell_element_blocks
+
+    rb = shell_model.blade(np.radians(12.0))
+    for mine, ref in zip(rb.shell_blocks(), shell_element_blocks(rb.fe)):
+        assert np.abs(mine - ref).max() <= 1e-10 * np.abs(ref).max()
+
+
 def test_deflected_shell_elements_are_carried_with_their_rotations(shell_point):
     """At 11 m/s the deflected blade's elements are the undeformed ones turned: its mass (the
     rigid-body mass about the apex: total mass and first moments along the turned span) is the

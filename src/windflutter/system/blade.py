@@ -108,9 +108,11 @@ class RotorBlade:
     sections : the blade's aerodynamic strips.
     apex : (3,) rotor apex (m); ``axis`` : (3,) unit shaft axis (rotor speed vector direction).
     damping : optional full-numbering structural damping matrix (N s/m).
+    shell_blocks : the shell elements' ``(K, M)`` blocks when known (:meth:`shell_blocks`; a pitched
+        copy's are the pitch-0 blade's turned), else computed on first use.
     """
 
-    def __init__(self, fe, struct, sections, apex, axis, damping=None):
+    def __init__(self, fe, struct, sections, apex, axis, damping=None, shell_blocks=None):
         self.fe, self.struct, self.sections = fe, struct, sections
         self.apex = np.asarray(apex, float)
         self.axis = np.asarray(axis, float) / np.linalg.norm(axis)
@@ -122,7 +124,7 @@ class RotorBlade:
         self.damping = damping
         self.St = axis_skew_translations(fe.n_nodes, self.axis)
         self._unit_prestress = None
-        self._shell_blocks = None
+        self._shell_blocks = shell_blocks
 
     def shell_blocks(self) -> tuple[np.ndarray, np.ndarray]:
         """``(K, M)`` (ne, 24, 24): the shell elements' stiffness and consistent mass blocks of this

@@ -35,6 +35,7 @@ from windflutter.steady import SteadyOptions, steady_state
 from windflutter.steady.geometry import pitching_frames
 from windflutter.structure.assembly import assemble
 from windflutter.structure.modal import m_orthonormalize, symmetric_eigs
+from windflutter.structure.shell import shell_element_blocks, turned_blocks
 from windflutter.system.blade import RotorBlade, link_geometric_stiffness
 from windflutter.system.blade_aero import (balanced_projection, blade_system, project_blade_aero, quasi_steady_blocks,
                                            reduced_blade_system)
@@ -168,16 +169,22 @@ class OperationalModel:
             shell = len(fe.shell_conn) > 0
             if shell and getattr(self, "_shell_damping0", False) is False:  # built once, turned with the pitch
                 self._shell_damping0 = shell_modal_damping(fe, st, sec, mu)
-            R = None
+            R, blocks = None, None
+            if shell and self.options.structure == "deflected":  # the elements the deflected blade turns
+                blocks = self._shell_blocks0()
             if key != 0.0:
                 R, root = pitch_rotation(self.turbine, pitch)
                 fe, st, sec = rotate_blade(fe, st, sec, R, root, self.rotor.hub_center, self.rotor.shaft_axis)
+                if blocks is not None:
+                    Re = np.broadcast_to(R, (len(fe.shell_conn), 3, 3))
+                    blocks = tuple(turned_blocks(B, Re) for B in blocks)
             if shell:
                 D = self._shell_damping0
                 D = D.rotated(R) if D is not None and R is not None else D
             else:
                 D = blade_damping_matrix(fe, mu, K=st.K)
-            self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis, damping=D)
+            self._blades[key] = RotorBlade(fe, st, sec, self.rotor.hub_center, self.rotor.shaft_axis, damping=D,
+                                           shell_blocks=blocks)
         return self._blades[key]
 
     def keep_blades(self, pitches=()) -> None:
@@ -188,6 +195,13 @@ class OperationalModel:
         keep = {0.0} | {round(float(p), 8) for p in pitches}
         self._blades = {k: b for k, b in self._blades.items() if k in keep}
         self._last_steady = {}
+
+    def _shell_blocks0(self):
+        """The pitch-0 shell blade's element blocks (:func:`~windflutter.structure.shell.
+        shell_element_blocks`), computed once: a pitched blade's are these turned by the pitch."""
+        if getattr(self, "_blocks_zero", None) is None:
+            self._blocks_zero = shell_element_blocks(self._blade0()[0])
+        return self._blocks_zero
 
     def _blade0(self):
         """The pitch-0 blade model ``(fe, struct, sections)``, built once."""
@@ -204,6 +218,7 @@ class OperationalModel:
         (design sensitivities, :mod:`windflutter.sensitivity`)."""
         out = OperationalModel(turbine, options or self.options)
         out._blades, out._blade_zero = self._blades, getattr(self, "_blade_zero", None)
+        out._blocks_zero = getattr(self, "_blocks_zero", None)
         out._reference = getattr(self, "_reference", None)
         return out
 
