@@ -182,13 +182,22 @@ def _cholmod_library():
     return lib, common
 
 
+@functools.cache
+def _capsule_api():
+    """``(PyCapsule_GetName, PyCapsule_GetPointer)`` as prototypes of their own (setting the types on
+    ``ctypes.pythonapi``'s shared function objects would change them for every other user)."""
+    api = ctypes.pythonapi
+    name = ctypes.PYFUNCTYPE(ctypes.c_char_p, ctypes.py_object)(("PyCapsule_GetName", api))
+    get = ctypes.PYFUNCTYPE(ctypes.c_void_p, ctypes.py_object, ctypes.c_char_p)(("PyCapsule_GetPointer", api))
+    return name, get
+
+
 def _factor_pointer(factor) -> int | None:
     """The ``cholmod_factor *`` in kvxopt's factor capsule, or None for anything else."""
-    name = ctypes.pythonapi.PyCapsule_GetName
-    name.restype, name.argtypes = ctypes.c_char_p, [ctypes.py_object]
-    get = ctypes.pythonapi.PyCapsule_GetPointer
-    get.restype, get.argtypes = ctypes.c_void_p, [ctypes.py_object, ctypes.c_char_p]
-    if type(factor).__name__ != "PyCapsule" or name(factor) != FACTOR_CAPSULE:
+    if type(factor).__name__ != "PyCapsule":
+        return None
+    name, get = _capsule_api()
+    if name(factor) != FACTOR_CAPSULE:
         return None
     return get(factor, FACTOR_CAPSULE)
 
