@@ -237,7 +237,7 @@ class SolverConfig:
     structure: str = setting("auto", "choice", "method p: the blade structure the stability problem is linearized "
                          "about: deflected (beam blades: the co-rotational beam re-equilibrated under the steady "
                          "loads, the geometric stiffness of every steady stress resultant; shell blades: the "
-                         "shell carried to its deflected steady shape and re-assembled there, with the membrane "
+                         "shell carried to its deflected steady shape, its elements turned with it, with the membrane "
                          "stress of the deformed blade's loads), undeformed (the straight axis turned by the "
                          "elastic twist, the geometric stiffness of the undeformed blade's stress) or auto "
                          "(deflected with solver.deflection, undeformed otherwise)",

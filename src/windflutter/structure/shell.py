@@ -61,7 +61,7 @@ def _cached_shellprop(p: ShellProperty):
 
 def _shellprop(p: ShellProperty, index: int):
     """:func:`pyfe3d_shellprop` cached by value (read only by the element routines; a deflected
-    shell blade is re-assembled at every operating point)."""
+    shell blade's element forces and stress are computed at every operating point)."""
     try:
         return _cached_shellprop(p)
     except InputError:

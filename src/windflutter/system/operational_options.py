@@ -58,7 +58,7 @@ class OperationalOptions:
         of the steady stress) or ``"deflected"`` (beam blades: the co-rotational beam
         re-equilibrated and linearized about the deflected shape, with the initial-stress matrix of
         all its stress resultants, :mod:`windflutter.system.deflected`; shell blades: the shell
-        carried to its deflected steady shape and re-assembled there, with the membrane stress of
+        carried to its deflected steady shape, its elements turned with it, with the membrane stress of
         the deformed blade's loads, :mod:`windflutter.system.deflected_shell`).
     induction : steady BEM induction in the inflow.
     high_thrust : its thrust--induction relation (:mod:`windflutter.aero.momentum`): ``"buhl"``
