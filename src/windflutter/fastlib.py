@@ -35,7 +35,7 @@ last bit.  No wheel on PyPI exposes it for a factor that kvxopt made (scikit-spa
 cholespy: its own factor on the reference BLAS), so :func:`cholmod_block_solve` calls it through
 ``ctypes`` in the CHOLMOD library kvxopt itself loads, on kvxopt's factor (its capsule), with a
 ``cholmod_common`` of its own.  CHOLMOD checks the factor's integer and numeric types against the
-call; anything unexpected (another kvxopt build, another capsule, a library not found) makes it
+call; anything unexpected (another kvxopt build, another capsule, no CHOLMOD library mapped) makes it
 return ``None`` and the caller falls back to kvxopt's solve.
 """
 
@@ -45,7 +45,6 @@ import atexit
 import contextlib
 import ctypes
 import functools
-import glob
 import os
 import platform
 from collections.abc import Iterable
@@ -152,18 +151,13 @@ def _loaded_library(stem: str) -> str | None:
 def _cholmod_library():
     """``(library, common)``: the CHOLMOD that kvxopt's ``cholmod`` module loaded, with a started
     ``cholmod_common`` of windflutter's (finished at exit), or None when it cannot be had."""
-    kv = import_kvxopt()
-    if kv is None or platform.system() != "Linux":
+    if import_kvxopt() is None or platform.system() != "Linux":
         return None
-    path = _loaded_library("libcholmod")
-    if path is None:  # not yet mapped, or linked statically: the wheel's own copy, if any
-        found = sorted(glob.glob(os.path.join(os.path.dirname(os.path.dirname(kv.__file__)), "kvxopt.libs",
-                                              "libcholmod*.so*")))
-        path = found[0] if found else None
+    path = _loaded_library("libcholmod")  # kvxopt's cholmod module is loaded: its CHOLMOD is mapped, unless
+    if path is None:                      # linked into the module (then no other copy may take its factors)
+        return None
     try:
-        lib = ctypes.CDLL(path) if path else None
-        if lib is None:
-            return None
+        lib = ctypes.CDLL(path)
         version = (ctypes.c_int * 3)()
         lib.cholmod_l_version.argtypes = [ctypes.c_void_p]
         if not 2 <= lib.cholmod_l_version(version) // 1000 <= 5:  # CHOLMOD's major * 1000 + minor

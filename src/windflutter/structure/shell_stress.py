@@ -68,7 +68,7 @@ from windflutter.errors import InputError
 from windflutter.linalg_tools import skew
 from windflutter.structure.fem import FEModel
 from windflutter.structure.shell import (check_quads, element_blocks, membrane_element_matrices, shell_frames,
-                                         shell_kc0_coo)
+                                         shell_kc0_coo, turned_blocks)
 
 __all__ = ["shell_element_forces", "shell_complete_kg", "rotate_element_forces"]
 
@@ -118,13 +118,7 @@ def _local_stiffness(fe: FEModel, Rf: np.ndarray, X: np.ndarray, cache: bool) ->
     for k, loc, K in _KLOC if cache else ():
         if k == key and np.abs(loc - local).max() <= tol:
             return K
-    ne = conn.shape[0]
-    K = element_blocks(shell_kc0_coo(fe), conn)
-    B = np.zeros((ne, 8, 3, 8, 3))
-    for k in range(8):
-        B[:, k, :, k, :] = Rf
-    B = B.reshape(ne, 24, 24)
-    K = B @ K @ B.transpose(0, 2, 1)
+    K = turned_blocks(element_blocks(shell_kc0_coo(fe), conn), Rf)  # global axes -> each element's frame
     if cache:
         del _KLOC[:-1]
         _KLOC.append((key, local, K))
